@@ -1,0 +1,53 @@
+//! The one error type of the library: every message is one sentence naming what is wrong and where.
+
+use thiserror::Error;
+
+/// Everything that can go wrong when building a model or calling an algorithm on bad input.
+///
+/// The `Display` text is a single sentence meant for a person: it names the offending item
+/// (file and line, joint, frame, argument) and what is wrong with it.
+///
+/// ```
+/// let e = screwdyn::Error::DimensionMismatch { what: "q".into(), got: 3, expected: 2, names: "j1, j2".into() };
+/// assert_eq!(e.to_string(), "q has 3 values, the model has 2 joints: j1, j2");
+/// ```
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum Error {
+    /// A joint-space vector has the wrong length.
+    #[error("{what} has {got} values, the model has {expected} joints: {names}")]
+    DimensionMismatch {
+        what: String,
+        got: usize,
+        expected: usize,
+        names: String,
+    },
+    /// A number is NaN or infinite where a finite value is required.
+    #[error("{what} contains a non-finite value ({value}) at position {index}")]
+    NonFinite {
+        what: String,
+        index: usize,
+        value: String,
+    },
+    /// A frame, body or joint name that the model does not have.
+    #[error("the model has no {kind} named '{name}' (known: {known})")]
+    UnknownName {
+        kind: &'static str,
+        name: String,
+        known: String,
+    },
+    /// A model description is inconsistent (bad tree, bad joint, bad inertia...).
+    #[error("{0}")]
+    InvalidModel(String),
+    /// A description file could not be read or parsed; the message names file and line.
+    #[error("{0}")]
+    Parse(String),
+    /// A numerical failure, e.g. a singular mass matrix in forward dynamics.
+    #[error("{0}")]
+    Numerical(String),
+    /// Reading or writing a file failed.
+    #[error("{0}")]
+    Io(String),
+}
+
+/// Shorthand for `std::result::Result<T, screwdyn::Error>`.
+pub type Result<T> = std::result::Result<T, Error>;

@@ -1,0 +1,1 @@
+//! Robot descriptions: URDF, DH tables, product of exponentials, native TOML; URDF export.

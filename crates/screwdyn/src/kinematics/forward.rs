@@ -1,0 +1,85 @@
+//! Forward kinematics: the recursion `H_i^0 = H_{λ(i)}^0 H_i^{λ(i)}(q_i)` and the spatial
+//! product-of-exponentials formula (seed 001).
+
+use crate::error::Result;
+use crate::model::Model;
+use crate::scalar::Real;
+use crate::spatial::Se3;
+use crate::workspace::Workspace;
+
+/// Poses of all bodies by the recursion `H_i^{λ(i)}(q_i) = H_i^{λ(i)}(0) e^{[S_i^{i,λ(i)}] q_i}`,
+/// `H_i^0 = H_{λ(i)}^0 H_i^{λ(i)}` (seed 000, forward iterations). Writes `ws.pose_in_parent`
+/// and `ws.pose_in_world`.
+///
+/// ```
+/// use screwdyn::{builtin, kinematics::forward_kinematics, Workspace};
+/// let m = builtin::planar2();
+/// let mut ws = Workspace::new(&m);
+/// let (q1, q2) = (0.3_f64, 0.5_f64);
+/// forward_kinematics(&m, &mut ws, &[q1, q2]).unwrap();
+/// let p = ws.pose_in_world[1].translation;
+/// assert!((p.x - (q1.cos() + (q1 + q2).cos())).abs() < 1e-15);
+/// assert!((p.y - (q1.sin() + (q1 + q2).sin())).abs() < 1e-15);
+/// ```
+pub fn forward_kinematics<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) -> Result<()> {
+    model.check_vector(q, "q")?;
+    for (i, joint) in model.joints().iter().enumerate() {
+        let h = joint.pose_in_parent(q[i]);
+        ws.pose_in_parent[i] = h;
+        ws.pose_in_world[i] = match model.parent(i) {
+            Some(p) => ws.pose_in_world[p].compose(&h),
+            None => h,
+        };
+    }
+    Ok(())
+}
+
+/// The pose `H_f^0` of frame `f`, from the body poses of the last
+/// [`forward_kinematics`] call.
+pub fn frame_pose<T: Real>(model: &Model<T>, ws: &Workspace<T>, frame: usize) -> Se3<T> {
+    let f = &model.frames()[frame];
+    match f.body {
+        Some(b) => ws.pose_in_world[b].compose(&f.placement),
+        None => f.placement,
+    }
+}
+
+/// Poses of all bodies by the spatial product-of-exponentials formula (seed 001):
+/// `H_i^0(q) = e^{[S_1^{0}] q_1} ⋯ e^{[S_i^{0}] q_i} H_i^0(0)`, the product running over the
+/// joints supporting body `i`, with `S_j^0 = Ad_{H_j^0(0)} S_j^{j,λ(j)}` the screw axes in the
+/// base frame at home. An independent formula, used to check the recursion; it allocates.
+///
+/// ```
+/// use screwdyn::{builtin, kinematics::{forward_kinematics, forward_kinematics_poe}, Workspace};
+/// let m = builtin::planar2();
+/// let q = [0.7, -1.1];
+/// let mut ws = Workspace::new(&m);
+/// forward_kinematics(&m, &mut ws, &q).unwrap();
+/// let poe = forward_kinematics_poe(&m, &q).unwrap();
+/// assert!((poe[1].to_matrix() - ws.pose_in_world[1].to_matrix()).amax() < 1e-12);
+/// ```
+pub fn forward_kinematics_poe<T: Real>(model: &Model<T>, q: &[T]) -> Result<Vec<Se3<T>>> {
+    model.check_vector(q, "q")?;
+    let n = model.nq();
+    // Home poses H_i^0(0) and space-frame screws S_i^0.
+    let mut home = vec![Se3::identity(); n];
+    for i in 0..n {
+        let h = model.joints()[i].home;
+        home[i] = match model.parent(i) {
+            Some(p) => home[p].compose(&h),
+            None => h,
+        };
+    }
+    let space_screw: Vec<_> = (0..n)
+        .map(|i| home[i].act_twist(&model.joints()[i].screw))
+        .collect();
+    Ok((0..n)
+        .map(|i| {
+            let mut h = Se3::identity();
+            for j in model.support(i) {
+                h = h.compose(&Se3::exp_screw(&space_screw[j], q[j]));
+            }
+            h.compose(&home[i])
+        })
+        .collect())
+}

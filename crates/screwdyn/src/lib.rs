@@ -1,0 +1,34 @@
+//! # screwdyn
+//!
+//! Kinematics, dynamics and simulation of robot manipulators in the screw-theory / Lie-group
+//! formulation of the lecture notes the project grew from (seeds 000–004): twists and wrenches
+//! angular first, `Ad` and `ad`, product of exponentials, the recursive Newton–Euler algorithm
+//! and the closed-form `M(θ) = Sᵀ Lᵀ 𝔍 L S`.
+//!
+//! Data flows one way: a description → an immutable [`Model`] → algorithms that write into a
+//! preallocated [`Workspace`] → results.
+//!
+//! ```
+//! use screwdyn::{builtin, kinematics, Workspace};
+//! let model = builtin::planar2();
+//! let mut ws = Workspace::new(&model);
+//! kinematics::forward_kinematics(&model, &mut ws, &[0.0, 0.0]).unwrap();
+//! let tip = kinematics::frame_pose(&model, &ws, model.frame_id("link2").unwrap());
+//! assert_eq!(tip.translation.x, 2.0);
+//! ```
+
+pub mod builtin;
+pub mod dynamics;
+mod error;
+pub mod inertia;
+pub mod io;
+pub mod kinematics;
+pub mod model;
+mod scalar;
+pub mod spatial;
+mod workspace;
+
+pub use error::{Error, Result};
+pub use model::{Model, ModelBuilder};
+pub use scalar::{real, Real};
+pub use workspace::Workspace;

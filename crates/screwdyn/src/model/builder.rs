@@ -1,0 +1,488 @@
+//! [`ModelBuilder`]: declare links by name the way seed 000's MATLAB does
+//! (`H_0_1_home`, `S_0_0_1`, `I_1`), then `build()` an immutable [`Model`].
+
+use super::joint::{Joint, JointKind, JointLimits, Mimic};
+use super::model::{Body, Frame, FrameKind, Model};
+use crate::error::{Error, Result};
+use crate::scalar::{real, Real};
+use crate::spatial::{ang, lin, Se3, SpatialInertia, Twist};
+use nalgebra::Vector3;
+use std::collections::HashMap;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum SpecKind<T: Real> {
+    Moving(JointKind<T>),
+    Fixed,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum AxisFrame {
+    Parent,
+    Child,
+}
+
+/// A joint declaration: kind, screw axis (in the parent or child frame at home), limits,
+/// damping and friction.
+///
+/// ```
+/// use nalgebra::Vector6;
+/// use screwdyn::model::JointSpec;
+/// let s_0_0_1 = Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0);
+/// let j = JointSpec::revolute("joint1").screw_in_parent(s_0_0_1).limits(-3.0, 3.0).effort_limit(50.0);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointSpec<T: Real = f64> {
+    name: String,
+    kind: SpecKind<T>,
+    screw: Option<(Twist<T>, AxisFrame)>,
+    limits: JointLimits<T>,
+    damping: T,
+    friction: T,
+    mimic: Option<Mimic>,
+}
+
+impl<T: Real> JointSpec<T> {
+    fn new(name: &str, kind: SpecKind<T>) -> Self {
+        JointSpec {
+            name: name.into(),
+            kind,
+            screw: None,
+            limits: JointLimits::default(),
+            damping: T::zero(),
+            friction: T::zero(),
+            mimic: None,
+        }
+    }
+    /// A revolute joint (set its screw with `screw_in_parent` or `screw_in_child`).
+    pub fn revolute(name: &str) -> Self {
+        Self::new(name, SpecKind::Moving(JointKind::Revolute))
+    }
+    /// A continuous (unlimited revolute) joint.
+    pub fn continuous(name: &str) -> Self {
+        Self::new(name, SpecKind::Moving(JointKind::Continuous))
+    }
+    /// A prismatic joint.
+    pub fn prismatic(name: &str) -> Self {
+        Self::new(name, SpecKind::Moving(JointKind::Prismatic))
+    }
+    /// A helical joint with `pitch` metres per radian.
+    pub fn helical(name: &str, pitch: T) -> Self {
+        Self::new(name, SpecKind::Moving(JointKind::Helical { pitch }))
+    }
+    /// A fixed joint: the child link is merged into its parent body and kept as a named frame.
+    pub fn fixed(name: &str) -> Self {
+        Self::new(name, SpecKind::Fixed)
+    }
+    /// The screw axis written in the parent frame at home, `S_c^{p,p}` (seed 000's `S_0_0_1`);
+    /// converted to the child frame as `S_c^{c,p} = Ad_{H_c^p(0)⁻¹} S_c^{p,p}`.
+    pub fn screw_in_parent(mut self, s: Twist<T>) -> Self {
+        self.screw = Some((s, AxisFrame::Parent));
+        self
+    }
+    /// The screw axis written in the child frame, `S_c^{c,p}` (URDF's `<axis>`).
+    pub fn screw_in_child(mut self, s: Twist<T>) -> Self {
+        self.screw = Some((s, AxisFrame::Child));
+        self
+    }
+    /// Position limits.
+    pub fn limits(mut self, lower: T, upper: T) -> Self {
+        self.limits.lower = lower;
+        self.limits.upper = upper;
+        self
+    }
+    /// Speed limit.
+    pub fn velocity_limit(mut self, v: T) -> Self {
+        self.limits.velocity = v;
+        self
+    }
+    /// Torque or force limit.
+    pub fn effort_limit(mut self, e: T) -> Self {
+        self.limits.effort = e;
+        self
+    }
+    /// Viscous damping coefficient.
+    pub fn damping(mut self, d: T) -> Self {
+        self.damping = d;
+        self
+    }
+    /// Coulomb friction magnitude.
+    pub fn friction(mut self, f: T) -> Self {
+        self.friction = f;
+        self
+    }
+    /// Records a URDF mimic tag (information only: the joint stays independent).
+    pub fn mimic(mut self, m: Mimic) -> Self {
+        self.mimic = Some(m);
+        self
+    }
+    /// The joint name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+}
+
+#[derive(Clone, Debug)]
+struct LinkDecl<T: Real> {
+    name: String,
+    parent: String,
+    joint: JointSpec<T>,
+    home: Se3<T>,
+    inertia: SpatialInertia<T>,
+}
+
+#[derive(Clone, Debug)]
+struct FrameDecl<T: Real> {
+    name: String,
+    link: String,
+    placement: Se3<T>,
+}
+
+/// Builds a [`Model`] from links declared by name, in any order that names existing parents
+/// or not (the tree is resolved at `build`).
+///
+/// Seed 000's two-link arm, line by line:
+/// ```
+/// use nalgebra::{Matrix3, Vector3, Vector6};
+/// use screwdyn::model::{JointSpec, ModelBuilder};
+/// use screwdyn::spatial::{Se3, SpatialInertia};
+/// let (l1, l2, m1, m2) = (1.0, 1.0, 1.0, 1.0);
+/// let h_0_1_home = Se3::from_translation(Vector3::new(l1, 0.0, 0.0));
+/// let h_1_2_home = Se3::from_translation(Vector3::new(l2, 0.0, 0.0));
+/// let s_0_0_1 = Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0);
+/// let s_1_1_2 = Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0);
+/// let i_1 = SpatialInertia::point_mass(m1, Vector3::zeros());
+/// let i_2 = SpatialInertia::point_mass(m2, Vector3::zeros());
+///
+/// let mut robot = ModelBuilder::new("two-link");
+/// robot.link("link1", "base", JointSpec::revolute("joint1").screw_in_parent(s_0_0_1), h_0_1_home, i_1);
+/// robot.link("link2", "link1", JointSpec::revolute("joint2").screw_in_parent(s_1_1_2), h_1_2_home, i_2);
+/// let model = robot.build().unwrap();
+/// // S_1^{1,0} = Ad_{H_0_1_home⁻¹} S_0_0_1 = (0,0,1, 0,L1,0)
+/// assert_eq!(model.joints()[0].screw, Vector6::new(0.0, 0.0, 1.0, 0.0, l1, 0.0));
+/// ```
+#[derive(Clone, Debug)]
+pub struct ModelBuilder<T: Real = f64> {
+    name: String,
+    base: String,
+    base_inertia: SpatialInertia<T>,
+    links: Vec<LinkDecl<T>>,
+    frames: Vec<FrameDecl<T>>,
+    gravity: Vector3<T>,
+    allow_nonphysical: bool,
+    meshes: Vec<(String, String)>,
+}
+
+impl<T: Real> ModelBuilder<T> {
+    /// A new robot whose root link (base frame {0}) is called `base`; gravity `(0, 0, −9.81)`.
+    pub fn new(name: &str) -> Self {
+        ModelBuilder {
+            name: name.into(),
+            base: "base".into(),
+            base_inertia: SpatialInertia::zero(),
+            links: Vec::new(),
+            frames: Vec::new(),
+            gravity: Vector3::new(T::zero(), T::zero(), real(-9.81)),
+            allow_nonphysical: false,
+            meshes: Vec::new(),
+        }
+    }
+    /// Renames the root link (default `base`).
+    pub fn base_name(&mut self, name: &str) -> &mut Self {
+        self.base = name.into();
+        self
+    }
+    /// The root link's inertia (kept for information; a fixed base does not move).
+    pub fn base_inertia(&mut self, i: SpatialInertia<T>) -> &mut Self {
+        self.base_inertia = i;
+        self
+    }
+    /// Gravity `g⁰` in the base frame.
+    pub fn gravity(&mut self, g: Vector3<T>) -> &mut Self {
+        self.gravity = g;
+        self
+    }
+    /// Accept inertias that fail the physical-consistency check (and massless leaf bodies).
+    pub fn allow_nonphysical(&mut self, allow: bool) -> &mut Self {
+        self.allow_nonphysical = allow;
+        self
+    }
+    /// Declares link `name`, attached to link `parent` by `joint`, with home pose
+    /// `home = H_c^p(0)` and spatial inertia `inertia` (in the link frame).
+    pub fn link(
+        &mut self,
+        name: &str,
+        parent: &str,
+        joint: JointSpec<T>,
+        home: Se3<T>,
+        inertia: SpatialInertia<T>,
+    ) -> &mut Self {
+        self.links.push(LinkDecl {
+            name: name.into(),
+            parent: parent.into(),
+            joint,
+            home,
+            inertia,
+        });
+        self
+    }
+    /// Declares an extra named frame rigidly attached to `link` at `placement` (in the link frame).
+    pub fn frame(&mut self, name: &str, link: &str, placement: Se3<T>) -> &mut Self {
+        self.frames.push(FrameDecl {
+            name: name.into(),
+            link: link.into(),
+            placement,
+        });
+        self
+    }
+    /// Records a mesh path of `link` for viewers.
+    pub fn mesh(&mut self, link: &str, path: &str) -> &mut Self {
+        self.meshes.push((link.into(), path.into()));
+        self
+    }
+
+    /// Resolves the tree (depth-first order from the root, children in declaration order),
+    /// merges fixed joints, converts screw axes to the child frame and checks everything.
+    pub fn build(&self) -> Result<Model<T>> {
+        let bad = |s: String| Err(Error::InvalidModel(s));
+        // Unique names.
+        let mut link_index: HashMap<&str, usize> = HashMap::new();
+        for (k, l) in self.links.iter().enumerate() {
+            if l.name == self.base {
+                return bad(format!(
+                    "link '{}' is declared with a parent joint '{}' but is the root link",
+                    l.name, l.joint.name
+                ));
+            }
+            if let Some(&prev) = link_index.get(l.name.as_str()) {
+                let (a, b) = (&self.links[prev], l);
+                return bad(if a.parent != b.parent {
+                    format!(
+                        "link '{}' has two parents: '{}' (joint '{}') and '{}' (joint '{}')",
+                        l.name, a.parent, a.joint.name, b.parent, b.joint.name
+                    )
+                } else {
+                    format!("two links are named '{}'", l.name)
+                });
+            }
+            link_index.insert(&l.name, k);
+        }
+        let mut joint_names: HashMap<&str, ()> = HashMap::new();
+        for l in &self.links {
+            if joint_names.insert(&l.joint.name, ()).is_some() {
+                return bad(format!("two joints are named '{}'", l.joint.name));
+            }
+        }
+        for l in &self.links {
+            if l.parent != self.base && !link_index.contains_key(l.parent.as_str()) {
+                return bad(format!(
+                    "joint '{}' names parent link '{}', which does not exist",
+                    l.joint.name, l.parent
+                ));
+            }
+        }
+        // Children lists in declaration order, then depth-first traversal from the root.
+        let mut kids: HashMap<&str, Vec<usize>> = HashMap::new();
+        for (k, l) in self.links.iter().enumerate() {
+            kids.entry(l.parent.as_str()).or_default().push(k);
+        }
+        let mut order = Vec::with_capacity(self.links.len());
+        let mut stack: Vec<usize> = kids
+            .get(self.base.as_str())
+            .map(|v| v.iter().rev().copied().collect())
+            .unwrap_or_default();
+        while let Some(k) = stack.pop() {
+            order.push(k);
+            if let Some(v) = kids.get(self.links[k].name.as_str()) {
+                stack.extend(v.iter().rev());
+            }
+        }
+        if order.len() != self.links.len() {
+            let mut seen = vec![false; self.links.len()];
+            for &k in &order {
+                seen[k] = true;
+            }
+            let lost: Vec<&str> = (0..self.links.len())
+                .filter(|&k| !seen[k])
+                .map(|k| self.links[k].name.as_str())
+                .collect();
+            return bad(format!(
+                "links {} form a cycle and are not connected to the root link '{}'",
+                lost.join(", "),
+                self.base
+            ));
+        }
+
+        // Where each link lives: (moving body or base, placement of the link frame in it).
+        let mut attach: HashMap<&str, (Option<usize>, Se3<T>)> = HashMap::new();
+        attach.insert(&self.base, (None, Se3::identity()));
+        let mut joints = Vec::new();
+        let mut bodies: Vec<Body<T>> = Vec::new();
+        let mut parents = Vec::new();
+        let mut base = Body {
+            name: self.base.clone(),
+            inertia: self.base_inertia,
+        };
+        let mut frames = vec![Frame {
+            name: self.base.clone(),
+            body: None,
+            placement: Se3::identity(),
+            kind: FrameKind::Base,
+        }];
+        for &k in &order {
+            let l = &self.links[k];
+            let (anc, parent_placement) = attach[l.parent.as_str()];
+            let home = parent_placement.compose(&l.home);
+            match l.joint.kind {
+                SpecKind::Fixed => {
+                    let inertia = l.inertia.transformed(&home);
+                    match anc {
+                        Some(b) => {
+                            bodies[b].inertia = bodies[b].inertia.combined(&inertia);
+                        }
+                        None => base.inertia = base.inertia.combined(&inertia),
+                    }
+                    attach.insert(&l.name, (anc, home));
+                    frames.push(Frame {
+                        name: l.name.clone(),
+                        body: anc,
+                        placement: home,
+                        kind: FrameKind::FixedLink,
+                    });
+                }
+                SpecKind::Moving(kind) => {
+                    let screw = self.child_screw(l, kind)?;
+                    let i = bodies.len();
+                    joints.push(Joint {
+                        name: l.joint.name.clone(),
+                        kind,
+                        screw,
+                        home,
+                        limits: l.joint.limits,
+                        damping: l.joint.damping,
+                        friction: l.joint.friction,
+                        mimic: l.joint.mimic.clone(),
+                    });
+                    bodies.push(Body {
+                        name: l.name.clone(),
+                        inertia: l.inertia,
+                    });
+                    parents.push(anc);
+                    attach.insert(&l.name, (Some(i), Se3::identity()));
+                    frames.push(Frame {
+                        name: l.name.clone(),
+                        body: Some(i),
+                        placement: Se3::identity(),
+                        kind: FrameKind::Body,
+                    });
+                }
+            }
+        }
+        for f in &self.frames {
+            let Some(&(anc, at)) = attach.get(f.link.as_str()) else {
+                return bad(format!(
+                    "frame '{}' is attached to link '{}', which does not exist",
+                    f.name, f.link
+                ));
+            };
+            if frames.iter().any(|g| g.name == f.name) {
+                return bad(format!("two frames are named '{}'", f.name));
+            }
+            frames.push(Frame {
+                name: f.name.clone(),
+                body: anc,
+                placement: at.compose(&f.placement),
+                kind: FrameKind::Extra,
+            });
+        }
+        let mut children = vec![Vec::new(); bodies.len()];
+        for (i, p) in parents.iter().enumerate() {
+            if let Some(p) = p {
+                children[*p].push(i);
+            }
+        }
+        if !self.allow_nonphysical {
+            for l in &self.links {
+                if let Err(why) = l.inertia.check_physical() {
+                    return bad(format!("the inertia of link '{}' {}", l.name, why));
+                }
+            }
+            for (i, b) in bodies.iter().enumerate() {
+                if children[i].is_empty() && b.inertia.mass <= T::zero() {
+                    return bad(format!(
+                        "link '{}' is a moving leaf body with mass {:?}: its joint '{}' would have no inertia",
+                        b.name, b.inertia.mass, joints[i].name
+                    ));
+                }
+            }
+        }
+        if !self.gravity.iter().all(|g| g.is_finite()) {
+            return bad("gravity has a non-finite component".into());
+        }
+        Ok(Model {
+            name: self.name.clone(),
+            joints,
+            bodies,
+            parents,
+            children,
+            frames,
+            gravity: self.gravity,
+            base,
+            meshes: self.meshes.clone(),
+        })
+    }
+
+    fn child_screw(&self, l: &LinkDecl<T>, kind: JointKind<T>) -> Result<Twist<T>> {
+        let j = &l.joint;
+        let Some((s, frame)) = j.screw else {
+            return Err(Error::InvalidModel(format!(
+                "joint '{}' has no screw axis",
+                j.name
+            )));
+        };
+        if !s.iter().all(|x| x.is_finite()) {
+            return Err(Error::InvalidModel(format!(
+                "joint '{}' has a non-finite screw axis",
+                j.name
+            )));
+        }
+        let s = match frame {
+            AxisFrame::Child => s,
+            AxisFrame::Parent => l.home.inv_act_twist(&s),
+        };
+        let (w, v) = (ang(&s), lin(&s));
+        let tol: T = real(1e-6);
+        let fail = |what: &str| {
+            Err(Error::InvalidModel(format!(
+                "joint '{}' ({}) has screw axis {:?}: {}",
+                j.name,
+                kind.name(),
+                s.as_slice(),
+                what
+            )))
+        };
+        match kind {
+            JointKind::Prismatic => {
+                if w.norm() > tol {
+                    return fail("a prismatic axis must have zero angular part");
+                }
+                if (v.norm() - T::one()).abs() > tol {
+                    return fail("its direction must be a unit vector");
+                }
+            }
+            JointKind::Revolute | JointKind::Continuous | JointKind::Helical { .. } => {
+                if (w.norm() - T::one()).abs() > tol {
+                    return fail("its rotation axis must be a unit vector");
+                }
+                let pitch = w.dot(&v);
+                let want = match kind {
+                    JointKind::Helical { pitch } => pitch,
+                    _ => T::zero(),
+                };
+                if (pitch - want).abs() > tol * (T::one() + v.norm()) {
+                    return fail("its pitch ω·v does not match the joint kind");
+                }
+            }
+        }
+        Ok(s)
+    }
+}

@@ -1,0 +1,21 @@
+//! The kinematic tree: joints, bodies, frames, gravity; built once, then read-only.
+//!
+//! Bodies and joints share one index: joint `i` moves body `i` relative to its parent body
+//! `λ(i)` (`parent(i)`, `None` for the fixed base {0}). Indices follow a depth-first traversal
+//! from the root link, children in the order they were declared, so `λ(i) < i` (DESIGN §4).
+//!
+//! ```
+//! let m = screwdyn::builtin::planar2();
+//! assert_eq!(m.nq(), 2);
+//! assert_eq!(m.parent(1), Some(0));
+//! assert_eq!(m.joint_names(), vec!["joint1", "joint2"]);
+//! ```
+
+mod builder;
+mod joint;
+#[allow(clippy::module_inception)]
+mod model;
+
+pub use builder::{JointSpec, ModelBuilder};
+pub use joint::{Joint, JointKind, JointLimits, Mimic};
+pub use model::{Body, Frame, FrameKind, Model};

@@ -1,0 +1,308 @@
+//! The immutable [`Model`].
+
+use super::joint::Joint;
+use crate::error::{Error, Result};
+use crate::scalar::Real;
+use crate::spatial::{Se3, SpatialInertia};
+use nalgebra::Vector3;
+
+/// A rigid body (a link, with any fixed children merged in).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Body<T: Real = f64> {
+    /// The link name.
+    pub name: String,
+    /// `𝔍^{i,i}`: spatial inertia in the body frame (fixed children included).
+    pub inertia: SpatialInertia<T>,
+}
+
+/// What a frame marks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrameKind {
+    /// The base frame {0} (the root link).
+    Base,
+    /// The frame of a moving body.
+    Body,
+    /// A link attached by a fixed joint, merged into its parent body.
+    FixedLink,
+    /// An extra named frame (a tool point, a sensor...).
+    Extra,
+}
+
+/// A named frame rigidly attached to a body (or to the base).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame<T: Real = f64> {
+    /// Unique frame name.
+    pub name: String,
+    /// The body it moves with; `None` for the base.
+    pub body: Option<usize>,
+    /// `H_f^b`: pose of the frame in its body's frame (in the base frame if `body` is `None`).
+    pub placement: Se3<T>,
+    /// What the frame marks.
+    pub kind: FrameKind,
+}
+
+/// A fixed-base kinematic tree with inertias: the input of every algorithm.
+///
+/// Built by [`ModelBuilder`](super::ModelBuilder), a description loader or
+/// [`builtin`](crate::builtin); read-only afterwards. Per-call results live in a
+/// [`Workspace`](crate::Workspace).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Model<T: Real = f64> {
+    pub(crate) name: String,
+    pub(crate) joints: Vec<Joint<T>>,
+    pub(crate) bodies: Vec<Body<T>>,
+    pub(crate) parents: Vec<Option<usize>>,
+    pub(crate) children: Vec<Vec<usize>>,
+    pub(crate) frames: Vec<Frame<T>>,
+    pub(crate) gravity: Vector3<T>,
+    pub(crate) base: Body<T>,
+    pub(crate) meshes: Vec<(String, String)>,
+}
+
+fn list(names: impl Iterator<Item = String>) -> String {
+    let v: Vec<String> = names.collect();
+    if v.len() > 12 {
+        format!("{}, … ({} in all)", v[..12].join(", "), v.len())
+    } else {
+        v.join(", ")
+    }
+}
+
+impl<T: Real> Model<T> {
+    /// The robot's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+    /// Number of joint coordinates (`nq == nv`, one per moving joint).
+    pub fn nq(&self) -> usize {
+        self.joints.len()
+    }
+    /// Number of joint velocities (equal to [`Model::nq`]).
+    pub fn nv(&self) -> usize {
+        self.joints.len()
+    }
+    /// Number of moving bodies (equal to [`Model::nq`]).
+    pub fn nbodies(&self) -> usize {
+        self.bodies.len()
+    }
+    /// The moving joints in coordinate order.
+    pub fn joints(&self) -> &[Joint<T>] {
+        &self.joints
+    }
+    /// The moving bodies; body `i` is moved by joint `i`.
+    pub fn bodies(&self) -> &[Body<T>] {
+        &self.bodies
+    }
+    /// `λ(i)`: the parent body of body `i` (`None` for the base).
+    #[inline]
+    pub fn parent(&self, i: usize) -> Option<usize> {
+        self.parents[i]
+    }
+    /// The parent array `λ`.
+    pub fn parents(&self) -> &[Option<usize>] {
+        &self.parents
+    }
+    /// The child bodies of body `i`.
+    pub fn children(&self, i: usize) -> &[usize] {
+        &self.children[i]
+    }
+    /// Every named frame: the base, each body, merged fixed links and extra frames.
+    pub fn frames(&self) -> &[Frame<T>] {
+        &self.frames
+    }
+    /// Gravity `g⁰` in the base frame (m/s²).
+    pub fn gravity(&self) -> Vector3<T> {
+        self.gravity
+    }
+    /// The root link (fixed; its inertia does not enter the dynamics).
+    pub fn base(&self) -> &Body<T> {
+        &self.base
+    }
+    /// `(link, mesh path)` pairs from URDF `<visual>`/`<collision>` tags, kept for viewers.
+    pub fn meshes(&self) -> &[(String, String)] {
+        &self.meshes
+    }
+    /// A copy of the model with another gravity vector.
+    pub fn with_gravity(&self, g: Vector3<T>) -> Self {
+        let mut m = self.clone();
+        m.gravity = g;
+        m
+    }
+    /// Joint names in coordinate order.
+    pub fn joint_names(&self) -> Vec<&str> {
+        self.joints.iter().map(|j| j.name.as_str()).collect()
+    }
+    /// The bodies from the root down to `i` (the support of body `i`, `i` last).
+    pub fn support(&self, i: usize) -> Vec<usize> {
+        let mut s = vec![i];
+        let mut k = i;
+        while let Some(p) = self.parents[k] {
+            s.push(p);
+            k = p;
+        }
+        s.reverse();
+        s
+    }
+    /// Whether body `j` is body `i` or one of its ancestors.
+    #[inline]
+    pub fn supports(&self, j: usize, i: usize) -> bool {
+        let mut k = Some(i);
+        while let Some(b) = k {
+            if b == j {
+                return true;
+            }
+            if b < j {
+                return false;
+            }
+            k = self.parents[b];
+        }
+        false
+    }
+    /// Total mass of the moving bodies (the base excluded).
+    pub fn total_mass(&self) -> T {
+        self.bodies
+            .iter()
+            .fold(T::zero(), |s, b| s + b.inertia.mass)
+    }
+
+    /// The index of the frame called `name`.
+    ///
+    /// ```
+    /// let m = screwdyn::builtin::planar2();
+    /// assert!(m.frame_id("link2").is_ok());
+    /// let e = m.frame_id("hand").unwrap_err().to_string();
+    /// assert!(e.contains("no frame named 'hand'"));
+    /// ```
+    pub fn frame_id(&self, name: &str) -> Result<usize> {
+        self.frames
+            .iter()
+            .position(|f| f.name == name)
+            .ok_or_else(|| Error::UnknownName {
+                kind: "frame",
+                name: name.into(),
+                known: list(self.frames.iter().map(|f| f.name.clone())),
+            })
+    }
+    /// The index of the moving body (link) called `name`.
+    pub fn body_id(&self, name: &str) -> Result<usize> {
+        self.bodies
+            .iter()
+            .position(|b| b.name == name)
+            .ok_or_else(|| Error::UnknownName {
+                kind: "moving body",
+                name: name.into(),
+                known: list(self.bodies.iter().map(|b| b.name.clone())),
+            })
+    }
+    /// The index of the joint called `name`.
+    pub fn joint_id(&self, name: &str) -> Result<usize> {
+        self.joints
+            .iter()
+            .position(|j| j.name == name)
+            .ok_or_else(|| Error::UnknownName {
+                kind: "joint",
+                name: name.into(),
+                known: list(self.joints.iter().map(|j| j.name.clone())),
+            })
+    }
+    /// The frame of body `i` (every body has one, named after its link).
+    pub fn body_frame(&self, i: usize) -> usize {
+        self.frames
+            .iter()
+            .position(|f| f.kind == FrameKind::Body && f.body == Some(i))
+            .expect("every body has a frame")
+    }
+
+    /// Checks that a joint-space vector has `nq` finite entries; `what` names it in the error.
+    ///
+    /// ```
+    /// let m = screwdyn::builtin::planar2();
+    /// let e = m.check_vector(&[0.1, 0.2, 0.3], "--q").unwrap_err();
+    /// assert_eq!(e.to_string(), "--q has 3 values, the model has 2 joints: joint1, joint2");
+    /// ```
+    pub fn check_vector(&self, x: &[T], what: &str) -> Result<()> {
+        if x.len() != self.nq() {
+            return Err(Error::DimensionMismatch {
+                what: what.into(),
+                got: x.len(),
+                expected: self.nq(),
+                names: self.joint_names().join(", "),
+            });
+        }
+        if let Some((i, v)) = x.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(Error::NonFinite {
+                what: what.into(),
+                index: i,
+                value: format!("{v:?}"),
+            });
+        }
+        Ok(())
+    }
+}
+
+impl Model<f64> {
+    /// The same model in another scalar type (e.g. `f32`).
+    ///
+    /// ```
+    /// let m32: screwdyn::Model<f32> = screwdyn::builtin::planar2().cast();
+    /// assert_eq!(m32.nq(), 2);
+    /// ```
+    pub fn cast<U: Real>(&self) -> Model<U> {
+        let c = |x: &f64| -> U { crate::scalar::real(*x) };
+        Model {
+            name: self.name.clone(),
+            joints: self
+                .joints
+                .iter()
+                .map(|j| Joint {
+                    name: j.name.clone(),
+                    kind: match j.kind {
+                        super::JointKind::Revolute => super::JointKind::Revolute,
+                        super::JointKind::Continuous => super::JointKind::Continuous,
+                        super::JointKind::Prismatic => super::JointKind::Prismatic,
+                        super::JointKind::Helical { pitch } => {
+                            super::JointKind::Helical { pitch: c(&pitch) }
+                        }
+                    },
+                    screw: j.screw.map(|x| c(&x)),
+                    home: j.home.cast(),
+                    limits: super::JointLimits {
+                        lower: c(&j.limits.lower),
+                        upper: c(&j.limits.upper),
+                        velocity: c(&j.limits.velocity),
+                        effort: c(&j.limits.effort),
+                    },
+                    damping: c(&j.damping),
+                    friction: c(&j.friction),
+                    mimic: j.mimic.clone(),
+                })
+                .collect(),
+            bodies: self
+                .bodies
+                .iter()
+                .map(|b| Body {
+                    name: b.name.clone(),
+                    inertia: b.inertia.cast(),
+                })
+                .collect(),
+            parents: self.parents.clone(),
+            children: self.children.clone(),
+            frames: self
+                .frames
+                .iter()
+                .map(|f| Frame {
+                    name: f.name.clone(),
+                    body: f.body,
+                    placement: f.placement.cast(),
+                    kind: f.kind,
+                })
+                .collect(),
+            gravity: self.gravity.map(|x| c(&x)),
+            base: Body {
+                name: self.base.name.clone(),
+                inertia: self.base.inertia.cast(),
+            },
+            meshes: self.meshes.clone(),
+        }
+    }
+}

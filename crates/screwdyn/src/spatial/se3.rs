@@ -1,0 +1,283 @@
+//! Homogeneous transforms `H ∈ SE(3)`, their adjoint actions on twists and wrenches, and the
+//! exponential and logarithm of SE(3).
+//!
+//! Notation (seeds 000–002): `H_c^p` is the pose of frame `c` in frame `p`; it maps coordinates
+//! in `c` to coordinates in `p`. `Ad_{H_c^p}` maps a twist written in `c` to the same twist written
+//! in `p`; `Ad_{H_c^p}ᵀ` maps a wrench written in `p` to the same wrench written in `c`.
+//! Twists are angular first, `V = (ω, v)`; wrenches moment first, `W = (m, f)`.
+//!
+//! [`Se3`] stores a rotation matrix and a translation and applies every operator to vectors
+//! directly, never forming a 6×6 matrix in a hot path. nalgebra's `IsometryMatrix3` stores the
+//! same two parts; we keep our own small type so that the seeds' operators (`Ad`, `Adᵀ`, their
+//! inverses) are methods with the seeds' names.
+
+use super::so3::{exp_so3, hat, log_so3, one_minus_cos_over_sq, phi_minus_sin_over_cube};
+use super::twist::{ang, lin, Twist, Wrench};
+use crate::scalar::{real, Real};
+use nalgebra::{Matrix3, Matrix4, Matrix6, Rotation3, Vector3, Vector6};
+
+/// A rigid-body transform `H = [R p; 0 1] ∈ SE(3)`.
+///
+/// ```
+/// use nalgebra::Vector3;
+/// use screwdyn::spatial::Se3;
+/// let h = Se3::from_rpy(0.0, 0.0, std::f64::consts::FRAC_PI_2).with_translation(Vector3::new(1.0, 0.0, 0.0));
+/// let p = h.act_point(&Vector3::new(1.0, 0.0, 0.0));
+/// assert!((p - Vector3::new(1.0, 1.0, 0.0)).norm() < 1e-15);
+/// assert!((h.inverse() * h).is_identity(1e-15));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Se3<T: Real = f64> {
+    /// `R`: the orientation of the moving frame in the reference frame.
+    pub rotation: Matrix3<T>,
+    /// `p`: the origin of the moving frame in the reference frame.
+    pub translation: Vector3<T>,
+}
+
+impl<T: Real> Default for Se3<T> {
+    fn default() -> Self {
+        Self::identity()
+    }
+}
+
+impl<T: Real> Se3<T> {
+    /// The identity transform.
+    pub fn identity() -> Self {
+        Se3 {
+            rotation: Matrix3::identity(),
+            translation: Vector3::zeros(),
+        }
+    }
+
+    /// `H = [R p; 0 1]` from its parts (`R` is trusted to be a rotation).
+    pub fn new(rotation: Matrix3<T>, translation: Vector3<T>) -> Self {
+        Se3 {
+            rotation,
+            translation,
+        }
+    }
+
+    /// A pure translation.
+    pub fn from_translation(p: Vector3<T>) -> Self {
+        Se3::new(Matrix3::identity(), p)
+    }
+
+    /// Replaces the translation, keeping the rotation.
+    pub fn with_translation(mut self, p: Vector3<T>) -> Self {
+        self.translation = p;
+        self
+    }
+
+    /// The URDF rotation `rpy`: fixed-axis X-Y-Z, i.e. `R = Rz(yaw)·Ry(pitch)·Rx(roll)`.
+    pub fn from_rpy(roll: T, pitch: T, yaw: T) -> Self {
+        let r = Rotation3::from_axis_angle(&Vector3::z_axis(), yaw)
+            * Rotation3::from_axis_angle(&Vector3::y_axis(), pitch)
+            * Rotation3::from_axis_angle(&Vector3::x_axis(), roll);
+        Se3::new(r.into_inner(), Vector3::zeros())
+    }
+
+    /// The URDF `rpy` angles of the rotation (inverse of [`Se3::from_rpy`]).
+    pub fn rpy(&self) -> (T, T, T) {
+        let r = &self.rotation;
+        let pitch = (-r[(2, 0)]).atan2((r[(0, 0)] * r[(0, 0)] + r[(1, 0)] * r[(1, 0)]).sqrt());
+        let cp = pitch.cos();
+        if cp.abs() > real(1e-10) {
+            (
+                r[(2, 1)].atan2(r[(2, 2)]),
+                pitch,
+                r[(1, 0)].atan2(r[(0, 0)]),
+            )
+        } else {
+            // Gimbal lock: roll and yaw share one degree of freedom; put it all in yaw.
+            (T::zero(), pitch, (-r[(0, 1)]).atan2(r[(1, 1)]))
+        }
+    }
+
+    /// From a 4×4 homogeneous matrix (the bottom row is ignored).
+    pub fn from_matrix(m: &Matrix4<T>) -> Self {
+        Se3::new(
+            m.fixed_view::<3, 3>(0, 0).into_owned(),
+            m.fixed_view::<3, 1>(0, 3).into_owned(),
+        )
+    }
+
+    /// The 4×4 homogeneous matrix `[R p; 0 1]`.
+    pub fn to_matrix(&self) -> Matrix4<T> {
+        let mut m = Matrix4::identity();
+        m.fixed_view_mut::<3, 3>(0, 0).copy_from(&self.rotation);
+        m.fixed_view_mut::<3, 1>(0, 3).copy_from(&self.translation);
+        m
+    }
+
+    /// `H⁻¹ = [Rᵀ −Rᵀp; 0 1]`.
+    #[inline]
+    pub fn inverse(&self) -> Self {
+        let rt = self.rotation.transpose();
+        Se3::new(rt, -(rt * self.translation))
+    }
+
+    /// `H₁ H₂`.
+    #[inline]
+    pub fn compose(&self, other: &Se3<T>) -> Self {
+        Se3::new(
+            self.rotation * other.rotation,
+            self.rotation * other.translation + self.translation,
+        )
+    }
+
+    /// `H⁻¹ H₂` without forming the inverse.
+    #[inline]
+    pub fn inv_compose(&self, other: &Se3<T>) -> Self {
+        let rt = self.rotation.transpose();
+        Se3::new(
+            rt * other.rotation,
+            rt * (other.translation - self.translation),
+        )
+    }
+
+    /// `R x + p`: a point given in the moving frame, written in the reference frame.
+    #[inline]
+    pub fn act_point(&self, x: &Vector3<T>) -> Vector3<T> {
+        self.rotation * x + self.translation
+    }
+
+    /// `Ad_H V = (R ω, p × Rω + R v)`: a twist given in the moving frame, written in the
+    /// reference frame (seed 001: `V^{p} = Ad_{H_c^p} V^{c}`).
+    #[inline]
+    pub fn act_twist(&self, v: &Twist<T>) -> Twist<T> {
+        let w = self.rotation * ang(v);
+        let l = self.translation.cross(&w) + self.rotation * lin(v);
+        Vector6::new(w.x, w.y, w.z, l.x, l.y, l.z)
+    }
+
+    /// `Ad_{H⁻¹} V = (Rᵀ ω, Rᵀ (v − p × ω))`: a twist given in the reference frame, written in
+    /// the moving frame (seed 000: `Ad_{H_{i-1}^i} V_{i-1}` with `H = H_i^{i-1}`).
+    #[inline]
+    pub fn inv_act_twist(&self, v: &Twist<T>) -> Twist<T> {
+        let w0 = ang(v);
+        let w = self.rotation.tr_mul(&w0);
+        let l = self.rotation.tr_mul(&(lin(v) - self.translation.cross(&w0)));
+        Vector6::new(w.x, w.y, w.z, l.x, l.y, l.z)
+    }
+
+    /// `Ad_Hᵀ W = (Rᵀ (m − p × f), Rᵀ f)`: a wrench given in the reference frame, written in the
+    /// moving frame. Power is preserved: `(Ad_Hᵀ W)ᵀ V = Wᵀ (Ad_H V)`.
+    #[inline]
+    pub fn act_transpose_wrench(&self, w: &Wrench<T>) -> Wrench<T> {
+        let f0 = lin(w);
+        let m = self.rotation.tr_mul(&(ang(w) - self.translation.cross(&f0)));
+        let f = self.rotation.tr_mul(&f0);
+        Vector6::new(m.x, m.y, m.z, f.x, f.y, f.z)
+    }
+
+    /// `Ad_{H⁻¹}ᵀ W = (R m + p × R f, R f)`: a wrench given in the moving frame, written in the
+    /// reference frame (seed 000 backward pass: `Ad_{H_i^{i+1}}ᵀ W_i^{i+1,i+1}` with
+    /// `H = H_{i+1}^i`).
+    #[inline]
+    pub fn inv_act_transpose_wrench(&self, w: &Wrench<T>) -> Wrench<T> {
+        let f = self.rotation * lin(w);
+        let m = self.rotation * ang(w) + self.translation.cross(&f);
+        Vector6::new(m.x, m.y, m.z, f.x, f.y, f.z)
+    }
+
+    /// The 6×6 matrix `Ad_H = [R 0; [p]R R]` (for teaching and the closed form, not hot paths).
+    ///
+    /// ```
+    /// use nalgebra::{Vector3, Vector6};
+    /// use screwdyn::spatial::Se3;
+    /// let h = Se3::from_rpy(0.1, 0.2, 0.3).with_translation(Vector3::new(1.0, -2.0, 0.5));
+    /// let v = Vector6::new(0.1, 0.2, 0.3, 0.4, 0.5, 0.6);
+    /// assert!((h.adjoint_matrix() * v - h.act_twist(&v)).norm() < 1e-14);
+    /// ```
+    pub fn adjoint_matrix(&self) -> Matrix6<T> {
+        let mut m = Matrix6::zeros();
+        m.fixed_view_mut::<3, 3>(0, 0).copy_from(&self.rotation);
+        m.fixed_view_mut::<3, 3>(3, 3).copy_from(&self.rotation);
+        m.fixed_view_mut::<3, 3>(3, 0)
+            .copy_from(&(hat(&self.translation) * self.rotation));
+        m
+    }
+
+    /// `e^{[ξ]}` for a twist `ξ = (φ, ρ)` (seed 001, "Exponential map `se(3) → SE(3)`"):
+    /// `R = e^{[φ]}`, `p = (I + B[φ] + C[φ]²) ρ` with `B = (1 − cos|φ|)/|φ|²`,
+    /// `C = (|φ| − sin|φ|)/|φ|³`, series-expanded near zero.
+    ///
+    /// ```
+    /// use nalgebra::Vector6;
+    /// use screwdyn::spatial::Se3;
+    /// // A revolute screw about z through (1, 0, 0): S = (ẑ, −ẑ × r) = (0,0,1, 0,-1,0).
+    /// let s = Vector6::new(0.0, 0.0, 1.0, 0.0, -1.0, 0.0);
+    /// let h = Se3::exp(&(s * std::f64::consts::PI));
+    /// // The origin swings round the axis to (2, 0, 0).
+    /// assert!((h.translation - nalgebra::Vector3::new(2.0, 0.0, 0.0)).norm() < 1e-15);
+    /// ```
+    pub fn exp(xi: &Twist<T>) -> Self {
+        let phi = ang(xi);
+        let rho = lin(xi);
+        let k = hat(&phi);
+        let t = phi.norm();
+        let kr = k * rho;
+        let p = rho + kr * one_minus_cos_over_sq(t) + k * kr * phi_minus_sin_over_cube(t);
+        Se3::new(exp_so3(&phi), p)
+    }
+
+    /// `e^{[S]θ}`: the displacement of a joint with screw axis `S` by `θ` (seed 001:
+    /// `H_c^p(θ) = H_c^p(0) e^{[S_c^{c,p}]θ}`).
+    #[inline]
+    pub fn exp_screw(screw: &Twist<T>, theta: T) -> Self {
+        Se3::exp(&(screw * theta))
+    }
+
+    /// The logarithm of SE(3): the twist `ξ` with `e^{[ξ]} = H` and `|ω| ≤ π`. Robust near
+    /// `|ω| = 0` and `|ω| = π`.
+    ///
+    /// ```
+    /// use nalgebra::Vector6;
+    /// use screwdyn::spatial::Se3;
+    /// let xi = Vector6::new(0.5, -0.4, 0.3, 1.0, 2.0, -3.0);
+    /// assert!((Se3::exp(&xi).log() - xi).norm() < 1e-12);
+    /// ```
+    pub fn log(&self) -> Twist<T> {
+        let phi = log_so3(&self.rotation);
+        let t = phi.norm();
+        // k = (1 − (t/2) cot(t/2)) / t², finite at t = π, series near 0.
+        let k: T = if t < real(0.1) {
+            let t2 = t * t;
+            real::<T>(1.0 / 12.0) + t2 / real(720.0) + t2 * t2 / real(30240.0)
+        } else {
+            let h = t * real(0.5);
+            (T::one() - h * h.cos() / h.sin()) / (t * t)
+        };
+        let kp = hat(&phi) * self.translation;
+        let rho: Vector3<T> = self.translation - kp * real::<T>(0.5) + hat(&phi) * kp * k;
+        Vector6::new(phi.x, phi.y, phi.z, rho.x, rho.y, rho.z)
+    }
+
+    /// Whether `H` is the identity within `tol` (entrywise).
+    pub fn is_identity(&self, tol: T) -> bool {
+        (self.rotation - Matrix3::identity()).amax() <= tol && self.translation.amax() <= tol
+    }
+}
+
+impl Se3<f64> {
+    /// Converts the scalar type (e.g. `f64 → f32`).
+    pub fn cast<U: Real>(&self) -> Se3<U> {
+        Se3::new(self.rotation.map(real), self.translation.map(real))
+    }
+}
+
+impl<T: Real> std::ops::Mul for Se3<T> {
+    type Output = Se3<T>;
+    #[inline]
+    fn mul(self, rhs: Se3<T>) -> Se3<T> {
+        self.compose(&rhs)
+    }
+}
+
+impl<T: Real> std::ops::Mul<&Se3<T>> for &Se3<T> {
+    type Output = Se3<T>;
+    #[inline]
+    fn mul(self, rhs: &Se3<T>) -> Se3<T> {
+        self.compose(rhs)
+    }
+}
