@@ -76,7 +76,10 @@ pub(crate) fn propagate_acceleration<T: Real>(
     for (i, joint) in model.joints().iter().enumerate() {
         let h = &ws.pose_in_parent[i];
         let (v_par, vd_par) = match model.parent(i) {
-            Some(p) => (h.inv_act_twist(&ws.twist[p]), h.inv_act_twist(&ws.twist_dot[p])),
+            Some(p) => (
+                h.inv_act_twist(&ws.twist[p]),
+                h.inv_act_twist(&ws.twist_dot[p]),
+            ),
             None => (Twist::zeros(), h.inv_act_twist(base)),
         };
         ws.twist_dot[i] = vd_par - ad(&(joint.screw * v[i]), &v_par);

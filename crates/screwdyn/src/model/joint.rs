@@ -47,7 +47,7 @@ pub struct JointLimits<T: Real = f64> {
 
 impl<T: Real> Default for JointLimits<T> {
     fn default() -> Self {
-        let inf = T::max_value().unwrap_or_else(|| T::one() / T::zero());
+        let inf: T = crate::scalar::real(f64::INFINITY);
         JointLimits {
             lower: -inf,
             upper: inf,

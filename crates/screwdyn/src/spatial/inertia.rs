@@ -23,7 +23,7 @@ use nalgebra::{Matrix3, Matrix6, Vector3};
 /// use nalgebra::{Matrix3, Vector3, Vector6};
 /// use screwdyn::spatial::SpatialInertia;
 /// // A point mass m = 2 at the frame origin: seed 000's I = [0 0; 0 m I].
-/// let i = SpatialInertia::point_mass(2.0, Vector3::zeros());
+/// let i = SpatialInertia::point_mass(2.0_f64, Vector3::zeros());
 /// let j = i.matrix();
 /// assert_eq!(j[(3, 3)], 2.0);
 /// assert_eq!(j[(0, 0)], 0.0);

@@ -156,7 +156,9 @@ impl<T: Real> Se3<T> {
     pub fn inv_act_twist(&self, v: &Twist<T>) -> Twist<T> {
         let w0 = ang(v);
         let w = self.rotation.tr_mul(&w0);
-        let l = self.rotation.tr_mul(&(lin(v) - self.translation.cross(&w0)));
+        let l = self
+            .rotation
+            .tr_mul(&(lin(v) - self.translation.cross(&w0)));
         Vector6::new(w.x, w.y, w.z, l.x, l.y, l.z)
     }
 
@@ -165,7 +167,9 @@ impl<T: Real> Se3<T> {
     #[inline]
     pub fn act_transpose_wrench(&self, w: &Wrench<T>) -> Wrench<T> {
         let f0 = lin(w);
-        let m = self.rotation.tr_mul(&(ang(w) - self.translation.cross(&f0)));
+        let m = self
+            .rotation
+            .tr_mul(&(ang(w) - self.translation.cross(&f0)));
         let f = self.rotation.tr_mul(&f0);
         Vector6::new(m.x, m.y, m.z, f.x, f.y, f.z)
     }

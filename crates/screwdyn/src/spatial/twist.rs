@@ -82,7 +82,7 @@ pub fn ad<T: Real>(v: &Twist<T>, x: &Twist<T>) -> Twist<T> {
 /// ```
 /// use nalgebra::Vector6;
 /// use screwdyn::spatial::{ad, ad_transpose};
-/// let (v, x, w) = (Vector6::new(0.1, -0.2, 0.3, 1.0, 2.0, 3.0),
+/// let (v, x, w) = (Vector6::new(0.1_f64, -0.2, 0.3, 1.0, 2.0, 3.0),
 ///                  Vector6::new(0.5, 0.1, -0.7, 0.2, 0.0, 1.0),
 ///                  Vector6::new(1.0, 2.0, 3.0, -1.0, 0.5, 0.2));
 /// assert!((ad_transpose(&v, &w).dot(&x) - w.dot(&ad(&v, &x))).abs() < 1e-14);

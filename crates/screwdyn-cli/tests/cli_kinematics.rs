@@ -1,0 +1,101 @@
+//! The binary's `fk`, `jacobian` and `info` commands, checked against the planar two-link
+//! closed form of seeds 003/004 and for clean errors.
+
+use assert_cmd::Command;
+use serde_json::Value;
+
+fn run_json(args: &[&str]) -> Value {
+    let out = Command::cargo_bin("screwdyn")
+        .unwrap()
+        .args(args)
+        .args(["--format", "json"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+fn fails(args: &[&str], expected: &str) {
+    let out = Command::cargo_bin("screwdyn")
+        .unwrap()
+        .args(args)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains(expected), "{err}");
+    assert!(!err.contains("panicked"));
+    assert_eq!(err.trim().lines().count(), 1, "one sentence: {err}");
+}
+
+#[test]
+fn fk_of_planar2_matches_closed_form() {
+    let (q1, q2) = (0.3_f64, -0.8_f64);
+    let v = run_json(&["fk", "builtin:planar2", "--q", "0.3,-0.8"]);
+    assert_eq!(v["joints"], serde_json::json!(["joint1", "joint2"]));
+    let h = &v["poses"]["link2"];
+    let x = h[0][3].as_f64().unwrap();
+    let y = h[1][3].as_f64().unwrap();
+    assert!((x - (q1.cos() + (q1 + q2).cos())).abs() < 1e-12);
+    assert!((y - (q1.sin() + (q1 + q2).sin())).abs() < 1e-12);
+    // Rotation about z by q1 + q2.
+    assert!((h[0][0].as_f64().unwrap() - (q1 + q2).cos()).abs() < 1e-12);
+    assert_eq!(h[3], serde_json::json!([0.0, 0.0, 0.0, 1.0]));
+}
+
+#[test]
+fn jacobian_of_planar2_matches_closed_form() {
+    let (q1, q2) = (0.3_f64, -0.8_f64);
+    let v = run_json(&[
+        "jacobian",
+        "builtin:planar2",
+        "--q",
+        "0.3,-0.8",
+        "--frame",
+        "link2",
+        "--reference",
+        "world-aligned",
+    ]);
+    let j = &v["jacobian"];
+    let at = |r: usize, c: usize| j[r][c].as_f64().unwrap();
+    // ẋ = −(s1 + s12) q̇1 − s12 q̇2, ẏ = (c1 + c12) q̇1 + c12 q̇2, ω_z = q̇1 + q̇2.
+    assert!((at(3, 0) + q1.sin() + (q1 + q2).sin()).abs() < 1e-12);
+    assert!((at(3, 1) + (q1 + q2).sin()).abs() < 1e-12);
+    assert!((at(4, 0) - q1.cos() - (q1 + q2).cos()).abs() < 1e-12);
+    assert!((at(4, 1) - (q1 + q2).cos()).abs() < 1e-12);
+    assert_eq!(at(2, 0), 1.0);
+    assert_eq!(at(2, 1), 1.0);
+}
+
+#[test]
+fn info_reports_the_tree() {
+    let v = run_json(&["info", "builtin:planar2"]);
+    assert_eq!(v["nq"], 2);
+    assert_eq!(v["total_mass"], 2.0);
+    assert_eq!(v["gravity"], serde_json::json!([0.0, -9.81, 0.0]));
+}
+
+#[test]
+fn bad_input_is_one_sentence_and_exit_2() {
+    fails(
+        &["fk", "builtin:planar2", "--q", "0.1"],
+        "--q has 1 values, the model has 2 joints: joint1, joint2",
+    );
+    fails(
+        &["fk", "builtin:planar2", "--q", "0.1,abc"],
+        "--q: 'abc' is not a number",
+    );
+    fails(
+        &["fk", "builtin:planar2", "--q", "0.1,NaN"],
+        "--q contains a non-finite value",
+    );
+    fails(&["fk", "builtin:nope"], "no built-in robot named 'nope'");
+    fails(
+        &["jacobian", "builtin:planar2", "--frame", "hand"],
+        "no frame named 'hand'",
+    );
+}
