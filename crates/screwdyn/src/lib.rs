@@ -25,6 +25,7 @@ pub mod io;
 pub mod kinematics;
 pub mod model;
 mod scalar;
+pub mod sim;
 pub mod spatial;
 mod workspace;
 

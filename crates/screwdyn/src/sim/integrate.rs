@@ -1,0 +1,272 @@
+//! Time integration of `q̈ = f(t, q, q̇)`: semi-implicit (symplectic) Euler, classic
+//! Runge–Kutta 4 (seed 004 §6.4: "Integrating q̈ to find q̇ and q (Runge-Kutta)"), and adaptive
+//! Dormand–Prince 5(4).
+
+use crate::error::{Error, Result};
+
+/// The integration scheme.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Integrator {
+    /// `q̇ ← q̇ + h q̈(q, q̇)`, then `q ← q + h q̇`: first order, symplectic (bounded energy error).
+    SymplecticEuler,
+    /// Classic fourth-order Runge–Kutta with a fixed step.
+    Rk4,
+    /// Dormand–Prince 5(4) with error control: steps adapt so that each step's local error
+    /// stays below `atol + rtol·|x|` (per component); output is still reported every `dt`.
+    DormandPrince {
+        /// Relative tolerance.
+        rtol: f64,
+        /// Absolute tolerance.
+        atol: f64,
+    },
+}
+
+impl std::str::FromStr for Integrator {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        match s {
+            "euler" | "symplectic-euler" => Ok(Integrator::SymplecticEuler),
+            "rk4" => Ok(Integrator::Rk4),
+            "dopri5" | "dormand-prince" => Ok(Integrator::DormandPrince {
+                rtol: 1e-8,
+                atol: 1e-10,
+            }),
+            _ => Err(format!(
+                "unknown integrator '{s}' (use euler, rk4 or dopri5)"
+            )),
+        }
+    }
+}
+
+/// The acceleration function: writes `q̈` for time `t`, position `q`, velocity `v`.
+pub type AccelFn<'a> = dyn FnMut(f64, &[f64], &[f64], &mut [f64]) -> Result<()> + 'a;
+
+/// Buffers for one integrator, allocated once for `n` coordinates.
+#[derive(Clone, Debug)]
+pub struct Stepper {
+    integrator: Integrator,
+    k: Vec<Vec<f64>>,
+    qs: Vec<f64>,
+    vs: Vec<f64>,
+    q5: Vec<f64>,
+    v5: Vec<f64>,
+    /// Dormand–Prince's current internal step (adapted).
+    h_adaptive: f64,
+    /// Number of accepted and rejected internal steps so far.
+    pub steps: (usize, usize),
+}
+
+// Dormand–Prince 5(4) tableau (published coefficients).
+const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
+const A: [[f64; 6]; 7] = [
+    [0.0; 6],
+    [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+    [
+        19372.0 / 6561.0,
+        -25360.0 / 2187.0,
+        64448.0 / 6561.0,
+        -212.0 / 729.0,
+        0.0,
+        0.0,
+    ],
+    [
+        9017.0 / 3168.0,
+        -355.0 / 33.0,
+        46732.0 / 5247.0,
+        49.0 / 176.0,
+        -5103.0 / 18656.0,
+        0.0,
+    ],
+    [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
+];
+const B5: [f64; 7] = [
+    35.0 / 384.0,
+    0.0,
+    500.0 / 1113.0,
+    125.0 / 192.0,
+    -2187.0 / 6784.0,
+    11.0 / 84.0,
+    0.0,
+];
+const B4: [f64; 7] = [
+    5179.0 / 57600.0,
+    0.0,
+    7571.0 / 16695.0,
+    393.0 / 640.0,
+    -92097.0 / 339200.0,
+    187.0 / 2100.0,
+    1.0 / 40.0,
+];
+
+impl Stepper {
+    /// Buffers for `n` coordinates.
+    pub fn new(integrator: Integrator, n: usize) -> Self {
+        Stepper {
+            integrator,
+            // Stage derivatives: for the first-order system x = (q, v), ẋ = (v, q̈):
+            // k[s] holds q̇ (first n) and q̈ (last n) of stage s.
+            k: vec![vec![0.0; 2 * n]; 7],
+            qs: vec![0.0; n],
+            vs: vec![0.0; n],
+            q5: vec![0.0; n],
+            v5: vec![0.0; n],
+            h_adaptive: 0.0,
+            steps: (0, 0),
+        }
+    }
+
+    /// Advances `(q, v)` from `t` to `t + dt` (one step, or adaptive sub-steps for
+    /// Dormand–Prince).
+    pub fn advance(
+        &mut self,
+        f: &mut AccelFn,
+        t: f64,
+        dt: f64,
+        q: &mut [f64],
+        v: &mut [f64],
+    ) -> Result<()> {
+        match self.integrator {
+            Integrator::SymplecticEuler => {
+                let n = q.len();
+                let acc = &mut self.k[0][n..];
+                f(t, q, v, acc)?;
+                for i in 0..n {
+                    v[i] += dt * acc[i];
+                    q[i] += dt * v[i];
+                }
+                self.steps.0 += 1;
+                Ok(())
+            }
+            Integrator::Rk4 => {
+                self.rk4(f, t, dt, q, v)?;
+                self.steps.0 += 1;
+                Ok(())
+            }
+            Integrator::DormandPrince { rtol, atol } => self.dopri(f, t, dt, q, v, rtol, atol),
+        }
+    }
+
+    /// Evaluates stage `s` at `(t, qs, vs)`.
+    fn stage(&mut self, f: &mut AccelFn, s: usize, t: f64) -> Result<()> {
+        let n = self.qs.len();
+        let (qd, qdd) = self.k[s].split_at_mut(n);
+        qd.copy_from_slice(&self.vs);
+        f(t, &self.qs, &self.vs, qdd)
+    }
+
+    /// Sets `(qs, vs) = (q, v) + h Σ_j a_j k_j`.
+    fn combine(&mut self, q: &[f64], v: &[f64], h: f64, a: &[f64]) {
+        let n = q.len();
+        for i in 0..n {
+            let (mut dq, mut dv) = (0.0, 0.0);
+            for (j, &aj) in a.iter().enumerate() {
+                if aj != 0.0 {
+                    dq += aj * self.k[j][i];
+                    dv += aj * self.k[j][n + i];
+                }
+            }
+            self.qs[i] = q[i] + h * dq;
+            self.vs[i] = v[i] + h * dv;
+        }
+    }
+
+    fn rk4(&mut self, f: &mut AccelFn, t: f64, h: f64, q: &mut [f64], v: &mut [f64]) -> Result<()> {
+        let n = q.len();
+        self.combine(q, v, h, &[]);
+        self.stage(f, 0, t)?;
+        self.combine(q, v, h, &[0.5]);
+        self.stage(f, 1, t + 0.5 * h)?;
+        self.combine(q, v, h, &[0.0, 0.5]);
+        self.stage(f, 2, t + 0.5 * h)?;
+        self.combine(q, v, h, &[0.0, 0.0, 1.0]);
+        self.stage(f, 3, t + h)?;
+        for i in 0..n {
+            let k = &self.k;
+            q[i] += h / 6.0 * (k[0][i] + 2.0 * k[1][i] + 2.0 * k[2][i] + k[3][i]);
+            v[i] += h / 6.0 * (k[0][n + i] + 2.0 * k[1][n + i] + 2.0 * k[2][n + i] + k[3][n + i]);
+        }
+        Ok(())
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn dopri(
+        &mut self,
+        f: &mut AccelFn,
+        t0: f64,
+        dt: f64,
+        q: &mut [f64],
+        v: &mut [f64],
+        rtol: f64,
+        atol: f64,
+    ) -> Result<()> {
+        let n = q.len();
+        let t_end = t0 + dt;
+        let mut t = t0;
+        if self.h_adaptive <= 0.0 {
+            self.h_adaptive = dt;
+        }
+        let mut guard = 0usize;
+        while t < t_end - 1e-15 * t_end.abs().max(1.0) {
+            guard += 1;
+            if guard > 1_000_000 {
+                return Err(Error::Numerical(format!(
+                    "Dormand-Prince could not meet its tolerance near t = {t:.6} s (step size {:.3e} s)",
+                    self.h_adaptive
+                )));
+            }
+            let h = self.h_adaptive.min(t_end - t);
+            for s in 0..7 {
+                let a = A[s];
+                self.combine(q, v, h, &a[..s.min(6)]);
+                self.stage(f, s, t + C[s] * h)?;
+            }
+            // Fifth-order solution and the embedded fourth-order error estimate.
+            let mut err: f64 = 0.0;
+            for i in 0..2 * n {
+                let (mut x5, mut x4) = (0.0, 0.0);
+                for s in 0..7 {
+                    x5 += B5[s] * self.k[s][i];
+                    x4 += B4[s] * self.k[s][i];
+                }
+                let x0 = if i < n { q[i] } else { v[i - n] };
+                let new = x0 + h * x5;
+                let scale = atol + rtol * x0.abs().max(new.abs());
+                err = err.max((h * (x5 - x4) / scale).abs());
+                if i < n {
+                    self.q5[i] = new;
+                } else {
+                    self.v5[i - n] = new;
+                }
+            }
+            if !err.is_finite() {
+                return Err(Error::Numerical(format!(
+                    "the state became non-finite at t = {t:.6} s"
+                )));
+            }
+            if err <= 1.0 {
+                q.copy_from_slice(&self.q5);
+                v.copy_from_slice(&self.v5);
+                t += h;
+                self.steps.0 += 1;
+            } else {
+                self.steps.1 += 1;
+            }
+            let factor = if err == 0.0 {
+                5.0
+            } else {
+                (0.9 * err.powf(-0.2)).clamp(0.2, 5.0)
+            };
+            self.h_adaptive = h * factor;
+        }
+        Ok(())
+    }
+}
