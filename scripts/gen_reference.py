@@ -48,8 +48,7 @@ JACOBIAN_FRAMES = {
     "tree": ["tool4", "tool6", "tool8", "tool9"],
 }
 
-# URDFs inside the example-robot-data wheel (what its former Python loader `load("ur5")`,
-# `load("panda")` read).
+# URDFs inside the example-robot-data wheel.
 URDFS = {
     "ur5": "robots/ur_description/urdf/ur5_robot.urdf",
     "panda": "robots/panda_description/urdf/panda.urdf",
@@ -102,17 +101,15 @@ def inertia_json(inertia):
 
 
 def erd_urdf_path(name):
-    """Locate a URDF inside the installed example-robot-data distribution."""
-    try:  # older example-robot-data releases ship a Python loader
-        import example_robot_data  # noqa: F401
+    """Locate a URDF inside the installed example-robot-data distribution.
 
-        robot = example_robot_data.load(name)
-        return robot.urdf if hasattr(robot, "urdf") else None
-    except ImportError:
-        pass
+    example-robot-data 6.x on PyPI ships the robot files but no Python loader (no
+    `example_robot_data.load`), so the file is found through the distribution's file list:
+    the same URDF the former `load("ur5")` / `load("panda")` read.
+    """
     dist = importlib.metadata.distribution("example-robot-data")
     want = "share/example-robot-data/" + URDFS[name]
-    for f in dist.files:
+    for f in dist.files or []:
         if str(f).endswith(want):
             return str(f.locate())
     raise RuntimeError(f"{want} not found in example-robot-data {dist.version}")
@@ -186,9 +183,9 @@ def build_tree(rng):
     # Tool frames with random placements on the leaves (and on j2, a branching body).
     for k in (2, 4, 6, 8, 9):
         placement = pin.SE3(random_rotation(rng), rng.uniform(-0.3, 0.3, size=3))
-        model.addFrame(
-            pin.Frame(f"tool{k}", k, model.getFrameId(f"link{k}"), placement, pin.FrameType.OP_FRAME)
-        )
+        parent_frame = model.getFrameId(f"link{k}")
+        frame = pin.Frame(f"tool{k}", k, parent_frame, placement, pin.FrameType.OP_FRAME)
+        model.addFrame(frame)
     return model
 
 
