@@ -262,7 +262,7 @@ pub fn parse_poe(text: &str, file: &str, options: &LoadOptions) -> Result<Model>
             }
         }
     }
-    let inf = f64::INFINITY;
+    let inf = crate::model::JointLimits::<f64>::default().upper;
     let limits = (f.lower.is_some() || f.upper.is_some()).then(|| {
         (0..n)
             .map(|i| {

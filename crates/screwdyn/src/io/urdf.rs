@@ -212,7 +212,8 @@ fn parse_joint(ctx: &Ctx, n: Node) -> Result<UJoint> {
             }
         }
     }
-    let inf = f64::INFINITY;
+    // "No limit" is the model's default limit value.
+    let inf = crate::model::JointLimits::<f64>::default().upper;
     let mut j = UJoint {
         name,
         line: ctx.line(n),
@@ -455,6 +456,11 @@ pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model
     super::common::build(&b, file)
 }
 
+/// Whether a limit value is an actual bound (not infinite, not the "no limit" default).
+fn limited(x: f64) -> bool {
+    x.is_finite() && x.abs() < f64::MAX
+}
+
 fn num(x: f64) -> String {
     if x == 0.0 {
         "0".into()
@@ -563,7 +569,7 @@ pub fn to_urdf_string(model: &Model) -> Result<String> {
             JointKind::Prismatic => ("prismatic", v, Vector3::zeros()),
             JointKind::Continuous => ("continuous", w, w.cross(&v)),
             JointKind::Revolute => {
-                let unlimited = !j.limits.lower.is_finite() && !j.limits.upper.is_finite();
+                let unlimited = !limited(j.limits.lower) && !limited(j.limits.upper);
                 (if unlimited { "continuous" } else { "revolute" }, w, w.cross(&v))
             }
         };
@@ -586,7 +592,7 @@ pub fn to_urdf_string(model: &Model) -> Result<String> {
             ("effort", j.limits.effort, true),
             ("velocity", j.limits.velocity, true),
         ] {
-            if on && x.is_finite() {
+            if on && limited(x) {
                 let _ = write!(limit, " {key}=\"{}\"", num(x));
             }
         }
