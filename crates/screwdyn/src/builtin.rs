@@ -26,10 +26,22 @@ pub const NAMES: &[&str] = &["planar2", "pendulum", "ur5", "panda", "branched"];
 
 /// The shipped description files: (built-in name, file name in `models/`, text).
 pub const FILES: &[(&str, &str, &str)] = &[
-    ("planar2", "planar2.toml", include_str!("../../../models/planar2.toml")),
+    (
+        "planar2",
+        "planar2.toml",
+        include_str!("../../../models/planar2.toml"),
+    ),
     ("ur5", "ur5.toml", include_str!("../../../models/ur5.toml")),
-    ("panda", "panda.toml", include_str!("../../../models/panda.toml")),
-    ("branched", "branched.toml", include_str!("../../../models/branched.toml")),
+    (
+        "panda",
+        "panda.toml",
+        include_str!("../../../models/panda.toml"),
+    ),
+    (
+        "branched",
+        "branched.toml",
+        include_str!("../../../models/branched.toml"),
+    ),
 ];
 
 fn from_file(name: &str) -> Result<Model> {
@@ -37,7 +49,11 @@ fn from_file(name: &str) -> Result<Model> {
         .iter()
         .find(|(n, _, _)| *n == name)
         .ok_or_else(|| Error::InvalidModel(format!("no shipped file for built-in '{name}'")))?;
-    crate::io::load_str(text, &format!("builtin:{name} (models/{file})"), &Default::default())
+    crate::io::load_str(
+        text,
+        &format!("builtin:{name} (models/{file})"),
+        &Default::default(),
+    )
 }
 
 /// The built-in robot called `name` (without the `builtin:` prefix).

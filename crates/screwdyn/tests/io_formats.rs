@@ -65,10 +65,16 @@ fn assert_same_robot(models: &[(&str, Model)], frames: &[&str], trials: usize) {
             assert_eq!(m.joint_names(), m0.joint_names(), "{name} vs {name0}");
             let mm = mass_matrix(m, &q);
             let d = (&mm - &mm0).amax();
-            assert!(d < 1e-12, "mass matrix of {name} differs from {name0} by {d:e} at {q:?}");
+            assert!(
+                d < 1e-12,
+                "mass matrix of {name} differs from {name0} by {d:e} at {q:?}"
+            );
             for f in frames {
                 let d = (pose(m, &q, f) - pose(m0, &q, f)).amax();
-                assert!(d < 1e-12, "pose of {f} in {name} differs from {name0} by {d:e}");
+                assert!(
+                    d < 1e-12,
+                    "pose of {f} in {name} differs from {name0} by {d:e}"
+                );
             }
         }
     }
@@ -120,7 +126,10 @@ fn planar2_in_every_format_matches_the_seed_closed_form() {
 
 #[test]
 fn models_planar2_toml_equals_builtin_planar2() {
-    assert_eq!(load(&format!("{MODELS}planar2.toml")), screwdyn::builtin::planar2());
+    assert_eq!(
+        load(&format!("{MODELS}planar2.toml")),
+        screwdyn::builtin::planar2()
+    );
 }
 
 const OUT_OF_ORDER: &str = r#"<robot name="tree">
@@ -211,17 +220,32 @@ fn urdf_details_axis_inertial_rotation_limits_dynamics_mimic_meshes() {
     let j1 = &m.joints()[0];
     // The axis is normalised: (0, 3, 4)/5.
     assert!((j1.screw - nalgebra::Vector6::new(0.0, 0.6, 0.8, 0.0, 0.0, 0.0)).amax() < 1e-15);
-    assert_eq!((j1.limits.lower, j1.limits.upper, j1.limits.effort, j1.limits.velocity), (-1.0, 2.0, 30.0, 4.0));
+    assert_eq!(
+        (
+            j1.limits.lower,
+            j1.limits.upper,
+            j1.limits.effort,
+            j1.limits.velocity
+        ),
+        (-1.0, 2.0, 30.0, 4.0)
+    );
     assert_eq!((j1.damping, j1.friction), (0.5, 0.2));
     // I_c = R I Rᵀ with R = Rz(90°): the x and y moments swap.
     let i = &m.bodies()[0].inertia;
-    assert!((i.inertia_com[(0, 0)] - 2.0).abs() < 1e-15 && (i.inertia_com[(1, 1)] - 1.0).abs() < 1e-15);
+    assert!(
+        (i.inertia_com[(0, 0)] - 2.0).abs() < 1e-15 && (i.inertia_com[(1, 1)] - 1.0).abs() < 1e-15
+    );
     // A continuous joint has no position limits; the mimic tag is kept, the joint independent.
     let j2 = &m.joints()[1];
     let none = screwdyn::model::JointLimits::<f64>::default();
     assert_eq!((j2.limits.lower, j2.limits.upper), (none.lower, none.upper));
     assert_eq!((j2.limits.effort, j2.limits.velocity), (3.0, 1.0));
-    assert_eq!(j2.mimic.as_ref().map(|x| (x.joint.as_str(), x.multiplier, x.offset)), Some(("j1", -2.0, 0.1)));
+    assert_eq!(
+        j2.mimic
+            .as_ref()
+            .map(|x| (x.joint.as_str(), x.multiplier, x.offset)),
+        Some(("j1", -2.0, 0.1))
+    );
     assert_eq!(m.nq(), 2);
     assert_eq!(m.meshes().len(), 2);
     assert_eq!(m.meshes()[1], ("l1".to_string(), "l1.dae".to_string()));
@@ -233,11 +257,27 @@ fn assert_round_trip(m: &Model, what: &str) {
         .unwrap_or_else(|e| panic!("{what}: {e}\n{text}"))
         .with_gravity(m.gravity());
     let frames: Vec<&str> = m.frames().iter().map(|f| f.name.as_str()).collect();
-    assert_same_robot(&[(what, m.clone()), ("exported", back.clone())], &frames, 10);
+    assert_same_robot(
+        &[(what, m.clone()), ("exported", back.clone())],
+        &frames,
+        10,
+    );
     for (a, b) in m.joints().iter().zip(back.joints()) {
-        assert_eq!((a.limits.lower, a.limits.upper), (b.limits.lower, b.limits.upper), "{what}");
-        assert_eq!((a.limits.effort, a.limits.velocity), (b.limits.effort, b.limits.velocity), "{what}");
-        assert_eq!((a.damping, a.friction, &a.mimic), (b.damping, b.friction, &b.mimic), "{what}");
+        assert_eq!(
+            (a.limits.lower, a.limits.upper),
+            (b.limits.lower, b.limits.upper),
+            "{what}"
+        );
+        assert_eq!(
+            (a.limits.effort, a.limits.velocity),
+            (b.limits.effort, b.limits.velocity),
+            "{what}"
+        );
+        assert_eq!(
+            (a.damping, a.friction, &a.mimic),
+            (b.damping, b.friction, &b.mimic),
+            "{what}"
+        );
     }
     assert!((m.total_mass() - back.total_mass()).abs() < 1e-12);
     assert_eq!(m.meshes(), back.meshes());
@@ -245,7 +285,12 @@ fn assert_round_trip(m: &Model, what: &str) {
 
 #[test]
 fn exported_urdf_loads_back_to_the_same_model() {
-    for path in [data("arm3_dh.toml"), data("arm3_poe.toml"), data("arm3.urdf"), data("planar2_mdh.toml")] {
+    for path in [
+        data("arm3_dh.toml"),
+        data("arm3_poe.toml"),
+        data("arm3.urdf"),
+        data("planar2_mdh.toml"),
+    ] {
         assert_round_trip(&load(&path), &path);
     }
     for name in screwdyn::builtin::NAMES {
@@ -260,7 +305,10 @@ fn exported_urdf_loads_back_to_the_same_model() {
         assert!((a.inertia.matrix() - b.inertia.matrix()).amax() < 1e-15);
     }
     for (a, b) in m.joints().iter().zip(back.joints()) {
-        assert!((a.screw - b.screw).amax() < 1e-15 && (a.home.to_matrix() - b.home.to_matrix()).amax() < 1e-15);
+        assert!(
+            (a.screw - b.screw).amax() < 1e-15
+                && (a.home.to_matrix() - b.home.to_matrix()).amax() < 1e-15
+        );
     }
 }
 
@@ -268,6 +316,46 @@ fn exported_urdf_loads_back_to_the_same_model() {
 fn helical_joints_cannot_be_exported_to_urdf() {
     let toml = "format = \"screwdyn\"\n[[body]]\nname = \"nut\"\nparent = \"base\"\ntype = \"helical\"\npitch = 0.01\nscrew_in_child = [0, 0, 1, 0, 0, 0.01]\nmass = 1\n";
     let m = screwdyn::io::load_str(toml, "screw.toml", &LoadOptions::default()).unwrap();
-    let e = screwdyn::io::urdf::to_urdf_string(&m).unwrap_err().to_string();
+    let e = screwdyn::io::urdf::to_urdf_string(&m)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("nut_joint") && e.contains("helical"), "{e}");
+}
+
+#[test]
+fn native_rotations_as_rpy_quaternion_or_matrix_agree_and_gravity_is_read() {
+    // Rz(π/2): rpy (0, 0, π/2), quaternion (cos π/4, 0, 0, sin π/4), matrix [[0,-1,0],[1,0,0],[0,0,1]].
+    let h = std::f64::consts::FRAC_PI_4;
+    let poses = [
+        "rpy = [0, 0, 1.5707963267948966]".to_string(),
+        format!("quaternion = [{}, 0, 0, {}]", h.cos(), h.sin()),
+        "rotation = [[0, -1, 0], [1, 0, 0], [0, 0, 1]]".to_string(),
+    ];
+    let mut homes = Vec::new();
+    for p in &poses {
+        let text = format!(
+            "format = \"screwdyn\"\ngravity = [1, 2, 3]\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"revolute\"\nhome = {{ xyz = [1, 2, 3], {p} }}\nscrew_in_parent = [0, 0, 1, 0, 0, 0]\nmass = 1\n"
+        );
+        let m = screwdyn::io::load_str(&text, "r.toml", &LoadOptions::default()).unwrap();
+        assert_eq!(m.gravity(), nalgebra::Vector3::new(1.0, 2.0, 3.0));
+        homes.push(m.joints()[0].home.to_matrix());
+    }
+    let want = nalgebra::Matrix4::new(
+        0.0, -1.0, 0.0, 1.0, 1.0, 0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 3.0, 0.0, 0.0, 0.0, 1.0,
+    );
+    for h in homes {
+        assert!((h - want).amax() < 1e-15, "{h}");
+    }
+    // The default gravity of every TOML format is (0, 0, −9.81); planar2's files override it.
+    let dh = screwdyn::io::load_str(
+        "format = \"dh\"\n[[row]]\ntype = \"P\"\nmass = 1\n",
+        "p.toml",
+        &LoadOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(dh.gravity(), nalgebra::Vector3::new(0.0, 0.0, -9.81));
+    assert_eq!(
+        load(&data("planar2_poe.toml")).gravity(),
+        nalgebra::Vector3::new(0.0, -9.81, 0.0)
+    );
 }

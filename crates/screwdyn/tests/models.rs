@@ -3,7 +3,9 @@
 use nalgebra::{DMatrix, Matrix6xX, Vector3};
 use rand::{Rng, SeedableRng};
 use screwdyn::io::load_model;
-use screwdyn::kinematics::{compute_joint_jacobians, forward_kinematics, frame_pose, link_jacobian};
+use screwdyn::kinematics::{
+    compute_joint_jacobians, forward_kinematics, frame_pose, link_jacobian,
+};
 use screwdyn::{Model, Workspace};
 
 const MODELS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../models/");
@@ -23,7 +25,8 @@ fn mass_matrix(m: &Model, q: &[f64]) -> DMatrix<f64> {
     for (i, b) in m.bodies().iter().enumerate() {
         link_jacobian(m, &ws, i, &mut j);
         let jd = DMatrix::from_column_slice(6, n, j.as_slice());
-        out += jd.transpose() * DMatrix::from_column_slice(6, 6, b.inertia.matrix().as_slice()) * jd;
+        out +=
+            jd.transpose() * DMatrix::from_column_slice(6, 6, b.inertia.matrix().as_slice()) * jd;
     }
     out
 }
@@ -60,7 +63,10 @@ fn every_builtin_has_a_symmetric_positive_definite_mass_matrix() {
         for _ in 0..5 {
             let mm = mass_matrix(&m, &random_q(&m, &mut rng));
             assert!((&mm - mm.transpose()).amax() < 1e-12, "{name}");
-            assert!(mm.clone().cholesky().is_some(), "{name}: M not positive definite\n{mm}");
+            assert!(
+                mm.clone().cholesky().is_some(),
+                "{name}: M not positive definite\n{mm}"
+            );
         }
     }
 }
@@ -88,12 +94,24 @@ fn ur5_urdf_and_dh_table_are_the_same_robot() {
     let urdf = file("ur5.urdf");
     assert_eq!(dh.joint_names(), urdf.joint_names());
     let mut rng = rand::rngs::StdRng::seed_from_u64(11);
-    let frames = ["base_link", "shoulder_link", "upper_arm_link", "forearm_link", "wrist_1_link", "wrist_2_link", "wrist_3_link", "tool0"];
+    let frames = [
+        "base_link",
+        "shoulder_link",
+        "upper_arm_link",
+        "forearm_link",
+        "wrist_1_link",
+        "wrist_2_link",
+        "wrist_3_link",
+        "tool0",
+    ];
     for _ in 0..20 {
         let q = random_q(&dh, &mut rng);
         assert!((mass_matrix(&dh, &q) - mass_matrix(&urdf, &q)).amax() < 1e-12);
         for f in frames {
-            assert!((pose(&dh, &q, f) - pose(&urdf, &q, f)).amax() < 1e-12, "{f}");
+            assert!(
+                (pose(&dh, &q, f) - pose(&urdf, &q, f)).amax() < 1e-12,
+                "{f}"
+            );
         }
     }
     for (a, b) in dh.joints().iter().zip(urdf.joints()) {
@@ -108,7 +126,10 @@ fn panda_flange_at_zero_follows_from_its_published_modified_dh_table() {
     // q = 0 by hand from Craig's transforms: x = a4 + a5 + a7 = 0.088,
     // z = d1 + d3 + d5 − d_flange = 0.333 + 0.316 + 0.384 − 0.107 = 0.926, flange z pointing down.
     let h = pose(&m, &[0.0; 7], "panda_link8");
-    assert!((h.fixed_view::<3, 1>(0, 3) - Vector3::new(0.088, 0.0, 0.926)).amax() < 1e-12, "{h}");
+    assert!(
+        (h.fixed_view::<3, 1>(0, 3) - Vector3::new(0.088, 0.0, 0.926)).amax() < 1e-12,
+        "{h}"
+    );
     let want_r = nalgebra::Matrix3::new(1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -1.0);
     assert!((h.fixed_view::<3, 3>(0, 0) - want_r).amax() < 1e-12, "{h}");
     // Joint 4's range is entirely negative (Franka's limits).
@@ -120,19 +141,38 @@ fn branched_robot_order_and_mirror_symmetry() {
     let m = screwdyn::builtin::load("branched").unwrap();
     assert_eq!(
         m.joint_names(),
-        vec!["torso_yaw", "left_shoulder_pitch", "left_shoulder_roll", "left_elbow", "right_shoulder_pitch", "right_shoulder_roll", "right_elbow"]
+        vec![
+            "torso_yaw",
+            "left_shoulder_pitch",
+            "left_shoulder_roll",
+            "left_elbow",
+            "right_shoulder_pitch",
+            "right_shoulder_roll",
+            "right_elbow"
+        ]
     );
-    assert_eq!(m.parents(), &[None, Some(0), Some(1), Some(2), Some(0), Some(4), Some(5)]);
+    assert_eq!(
+        m.parents(),
+        &[None, Some(0), Some(1), Some(2), Some(0), Some(4), Some(5)]
+    );
     // The head is merged into the torso: 12 + 3 kg.
     assert!((m.bodies()[0].inertia.mass - 15.0).abs() < 1e-12);
     // The right arm mirrors the left in the xz-plane: pitch and elbow (about y) keep their sign,
     // roll (about x) flips; the hands then mirror (y ↦ −y).
     let mut rng = rand::rngs::StdRng::seed_from_u64(5);
     for _ in 0..10 {
-        let (p, r, e): (f64, f64, f64) = (rng.gen_range(-3.0..3.0), rng.gen_range(-1.5..1.5), rng.gen_range(-2.4..0.0));
+        let (p, r, e): (f64, f64, f64) = (
+            rng.gen_range(-3.0..3.0),
+            rng.gen_range(-1.5..1.5),
+            rng.gen_range(-2.4..0.0),
+        );
         let q = [0.0, p, r, e, p, -r, e];
         let (l, rt) = (pose(&m, &q, "left_hand"), pose(&m, &q, "right_hand"));
-        assert!((l[(0, 3)] - rt[(0, 3)]).abs() < 1e-12 && (l[(1, 3)] + rt[(1, 3)]).abs() < 1e-12 && (l[(2, 3)] - rt[(2, 3)]).abs() < 1e-12);
+        assert!(
+            (l[(0, 3)] - rt[(0, 3)]).abs() < 1e-12
+                && (l[(1, 3)] + rt[(1, 3)]).abs() < 1e-12
+                && (l[(2, 3)] - rt[(2, 3)]).abs() < 1e-12
+        );
         // and the mass matrix entries of the two arms agree (up to the roll sign).
         let mm = mass_matrix(&m, &q);
         assert!((mm[(1, 1)] - mm[(4, 4)]).abs() < 1e-12 && (mm[(3, 3)] - mm[(6, 6)]).abs() < 1e-12);

@@ -66,7 +66,7 @@ impl PoseSpec {
             Se3::from_rpy(r, p, y)
         } else if let Some([w, x, y, z]) = self.quaternion {
             let q = Quaternion::new(w, x, y, z);
-            if !(q.norm() > 1e-9) {
+            if q.norm().is_nan() || q.norm() <= 1e-9 {
                 return Err("has a zero quaternion".into());
             }
             Se3::new(
@@ -78,7 +78,9 @@ impl PoseSpec {
         } else if let Some(rows) = self.rotation {
             let r = Matrix3::from_fn(|i, j| rows[i][j]);
             if (r.transpose() * r - Matrix3::identity()).amax() > 1e-6 || r.determinant() < 0.0 {
-                return Err("has a rotation matrix that is not orthonormal with determinant +1".into());
+                return Err(
+                    "has a rotation matrix that is not orthonormal with determinant +1".into(),
+                );
             }
             Se3::new(r, Vector3::zeros())
         } else {
@@ -87,7 +89,12 @@ impl PoseSpec {
         if let Some(p) = self.xyz {
             h.translation = Vector3::from(p);
         }
-        if !h.rotation.iter().chain(h.translation.iter()).all(|x| x.is_finite()) {
+        if !h
+            .rotation
+            .iter()
+            .chain(h.translation.iter())
+            .all(|x| x.is_finite())
+        {
             return Err("has a non-finite number".into());
         }
         Ok(h)
@@ -123,8 +130,9 @@ impl InertiaSpec {
                 return Err("gives both spatial_inertia and mass/com/inertia".into());
             }
             let j = Matrix6::from_fn(|i, k| rows[i][k]);
-            return SpatialInertia::from_matrix(&j)
-                .map_err(|why| format!("has a spatial_inertia that is not a spatial inertia: {why}"));
+            return SpatialInertia::from_matrix(&j).map_err(|why| {
+                format!("has a spatial_inertia that is not a spatial inertia: {why}")
+            });
         }
         if self.mass.is_none() && (self.com.is_some() || self.inertia.is_some()) {
             return Err("gives com or inertia without mass".into());
@@ -174,7 +182,12 @@ pub(crate) struct LimitSpec {
 }
 
 impl LimitSpec {
-    pub fn apply(&self, mut j: JointSpec, damping: Option<f64>, friction: Option<f64>) -> JointSpec {
+    pub fn apply(
+        &self,
+        mut j: JointSpec,
+        damping: Option<f64>,
+        friction: Option<f64>,
+    ) -> JointSpec {
         let d = crate::model::JointLimits::<f64>::default();
         j = j.limits(self.lower.unwrap_or(d.lower), self.upper.unwrap_or(d.upper));
         if let Some(v) = self.velocity {

@@ -176,8 +176,8 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
             "P" | "p" => true,
             other => {
                 return Err(bad(format!(
-                    "has joint type '{other}', expected R (revolute), P (prismatic) or C (continuous)"
-                )))
+                "has joint type '{other}', expected R (revolute), P (prismatic) or C (continuous)"
+            )))
             }
         };
         let mut j = match row.kind.as_str() {

@@ -130,7 +130,10 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
     for body in &f.body {
         let what = format!("body '{}'", body.name);
         let bad = |why: String| Error::Parse(format!("{file}: {what} {why}"));
-        let home = body.home.to_se3().map_err(|w| bad(format!("home pose {w}")))?;
+        let home = body
+            .home
+            .to_se3()
+            .map_err(|w| bad(format!("home pose {w}")))?;
         let inertia = InertiaSpec {
             mass: body.mass,
             com: body.com,
@@ -139,7 +142,12 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
         }
         .to_inertia()
         .map_err(bad)?;
-        common::check_inertia(&inertia, &format!("link '{}'", body.name), file, options.allow_nonphysical)?;
+        common::check_inertia(
+            &inertia,
+            &format!("link '{}'", body.name),
+            file,
+            options.allow_nonphysical,
+        )?;
         let jname = body
             .joint
             .clone()
@@ -168,7 +176,11 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
         if body.pitch.is_some() && body.kind != "helical" {
             return Err(bad("gives a pitch but is not helical".into()));
         }
-        match (body.screw_in_parent, body.screw_in_child, body.kind.as_str()) {
+        match (
+            body.screw_in_parent,
+            body.screw_in_child,
+            body.kind.as_str(),
+        ) {
             (None, None, "fixed") => {}
             (_, _, "fixed") => return Err(bad("is fixed but gives a screw axis".into())),
             (Some(s), None, _) => j = j.screw_in_parent(Vector6::from(s)),
@@ -177,7 +189,9 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
                 return Err(bad("gives both screw_in_parent and screw_in_child".into()))
             }
             (None, None, _) => {
-                return Err(bad("gives no screw axis (screw_in_parent or screw_in_child)".into()))
+                return Err(bad(
+                    "gives no screw axis (screw_in_parent or screw_in_child)".into(),
+                ))
             }
         }
         j = body.limits.apply(j, body.damping, body.friction);

@@ -93,7 +93,10 @@ pub fn poe_builder(
         return bad("Slist is empty".into());
     }
     if glist.len() != n {
-        return bad(format!("Glist has {} entries but Slist has {n}", glist.len()));
+        return bad(format!(
+            "Glist has {} entries but Slist has {n}",
+            glist.len()
+        ));
     }
     if mlist.len() != n && mlist.len() != n + 1 {
         return bad(format!(
@@ -120,11 +123,14 @@ pub fn poe_builder(
         extras.effort.as_ref().map(|v| v.len()),
     ];
     if let Some(len) = lens.into_iter().flatten().find(|&l| l != n) {
-        return bad(format!("a list of joint limits has {len} entries but Slist has {n}"));
+        return bad(format!(
+            "a list of joint limits has {len} entries but Slist has {n}"
+        ));
     }
     let mut b = ModelBuilder::new(name);
     let base = extras.base.clone().unwrap_or_else(|| "base".into());
-    b.base_name(&base).allow_nonphysical(extras.allow_nonphysical);
+    b.base_name(&base)
+        .allow_nonphysical(extras.allow_nonphysical);
     let mut m_i = Se3::identity();
     for i in 0..n {
         m_i = m_i.compose(&mlist[i]);
@@ -158,9 +164,16 @@ pub fn poe_builder(
             j = j.effort_limit(e[i]);
         }
         let g = SpatialInertia::from_matrix(&glist[i]).map_err(|why| {
-            Error::InvalidModel(format!("{what}: Glist entry {} is not a spatial inertia: {why}", i + 1))
+            Error::InvalidModel(format!(
+                "{what}: Glist entry {} is not a spatial inertia: {why}",
+                i + 1
+            ))
         })?;
-        let parent = if i == 0 { base.clone() } else { ln[i - 1].clone() };
+        let parent = if i == 0 {
+            base.clone()
+        } else {
+            ln[i - 1].clone()
+        };
         b.link(&ln[i], &parent, j, mlist[i], g);
     }
     let ee_from_mlist = (mlist.len() == n + 1).then(|| mlist[n]);
@@ -252,7 +265,12 @@ pub fn parse_poe(text: &str, file: &str, options: &LoadOptions) -> Result<Model>
         .map(|r| Matrix6::from_fn(|i, j| r[i][j]))
         .collect();
     let slist: Vec<Twist> = f.Slist.iter().map(|s| Twist::from(*s)).collect();
-    for (key, v) in [("lower", &f.lower), ("upper", &f.upper), ("velocity", &f.velocity), ("effort", &f.effort)] {
+    for (key, v) in [
+        ("lower", &f.lower),
+        ("upper", &f.upper),
+        ("velocity", &f.velocity),
+        ("effort", &f.effort),
+    ] {
         if let Some(v) = v {
             if v.len() != n {
                 return Err(Error::Parse(format!(

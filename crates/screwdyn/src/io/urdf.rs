@@ -80,7 +80,10 @@ impl Ctx<'_> {
         n.attribute(name).ok_or_else(|| {
             self.parse_err(
                 n,
-                format!("<{}> of {owner} has no '{name}' attribute", n.tag_name().name()),
+                format!(
+                    "<{}> of {owner} has no '{name}' attribute",
+                    n.tag_name().name()
+                ),
             )
         })
     }
@@ -147,22 +150,32 @@ fn parse_link(ctx: &Ctx, n: Node, b: &mut ModelBuilder) -> Result<ULink> {
         link.inertial_line = ctx.line(inl);
         let origin = ctx.origin(inl, &owner)?;
         let mass = match child(inl, "mass") {
-            Some(m) => ctx
-                .number(m, "value", &owner)?
-                .ok_or_else(|| ctx.parse_err(m, format!("<mass> of {owner} has no 'value' attribute")))?,
+            Some(m) => ctx.number(m, "value", &owner)?.ok_or_else(|| {
+                ctx.parse_err(m, format!("<mass> of {owner} has no 'value' attribute"))
+            })?,
             None => return Err(ctx.parse_err(inl, format!("<inertial> of {owner} has no <mass>"))),
         };
         let mut i = Matrix3::zeros();
         if let Some(t) = child(inl, "inertia") {
             let g = |a: &str| -> Result<f64> { Ok(ctx.number(t, a, &owner)?.unwrap_or(0.0)) };
-            let (xx, xy, xz, yy, yz, zz) = (g("ixx")?, g("ixy")?, g("ixz")?, g("iyy")?, g("iyz")?, g("izz")?);
+            let (xx, xy, xz, yy, yz, zz) = (
+                g("ixx")?,
+                g("ixy")?,
+                g("ixz")?,
+                g("iyy")?,
+                g("iyz")?,
+                g("izz")?,
+            );
             i = Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
         }
         let r = origin.rotation;
         link.inertia = SpatialInertia::new(mass, origin.translation, r * i * r.transpose());
     }
     for tag in ["visual", "collision"] {
-        for v in n.children().filter(|c| c.is_element() && c.has_tag_name(tag)) {
+        for v in n
+            .children()
+            .filter(|c| c.is_element() && c.has_tag_name(tag))
+        {
             if let Some(mesh) = child(v, "geometry").and_then(|g| child(g, "mesh")) {
                 if let Some(f) = mesh.attribute("filename") {
                     b.mesh(&name, f);
@@ -193,7 +206,8 @@ fn parse_joint(ctx: &Ctx, n: Node) -> Result<UJoint> {
         }
     }
     let link_of = |tag: &str| -> Result<String> {
-        let c = child(n, tag).ok_or_else(|| ctx.parse_err(n, format!("{owner} has no <{tag}> element")))?;
+        let c = child(n, tag)
+            .ok_or_else(|| ctx.parse_err(n, format!("{owner} has no <{tag}> element")))?;
         Ok(ctx.attr(c, "link", &owner)?.to_string())
     };
     let (parent, child_link) = (link_of("parent")?, link_of("child")?);
@@ -263,7 +277,10 @@ pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model
     if !root.has_tag_name("robot") {
         return Err(ctx.parse_err(
             root,
-            format!("the root element is <{}>, expected <robot>", root.tag_name().name()),
+            format!(
+                "the root element is <{}>, expected <robot>",
+                root.tag_name().name()
+            ),
         ));
     }
     let robot_name = root
@@ -282,7 +299,10 @@ pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model
             if let Some(&k) = link_at.get(&l.name) {
                 return Err(ctx.model_err(
                     l.line,
-                    format!("link '{}' is declared twice (first at line {})", l.name, links[k].line),
+                    format!(
+                        "link '{}' is declared twice (first at line {})",
+                        l.name, links[k].line
+                    ),
                 ));
             }
             link_at.insert(l.name.clone(), links.len());
@@ -292,7 +312,10 @@ pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model
             if let Some(&k) = joint_at.get(&j.name) {
                 return Err(ctx.model_err(
                     j.line,
-                    format!("joint '{}' is declared twice (first at line {})", j.name, joints[k].line),
+                    format!(
+                        "joint '{}' is declared twice (first at line {})",
+                        j.name, joints[k].line
+                    ),
                 ));
             }
             joint_at.insert(j.name.clone(), joints.len());
@@ -306,7 +329,10 @@ pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model
             if !link_at.contains_key(l) {
                 return Err(ctx.model_err(
                     j.line,
-                    format!("joint '{}' names {role} link '{l}', which does not exist", j.name),
+                    format!(
+                        "joint '{}' names {role} link '{l}', which does not exist",
+                        j.name
+                    ),
                 ));
             }
         }
@@ -330,10 +356,9 @@ pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model
         while let Some(&p) = parent_joint.get(at) {
             if at == j.child {
                 path.reverse();
-                return Err(ctx.model_err(
-                    j.line,
-                    format!("joints {} form a cycle", path.join(", ")),
-                ));
+                return Err(
+                    ctx.model_err(j.line, format!("joints {} form a cycle", path.join(", ")))
+                );
             }
             path.push(&joints[p].name);
             at = &joints[p].parent;
@@ -548,7 +573,11 @@ pub fn to_urdf_string(model: &Model) -> Result<String> {
         links += &s;
     };
     let _ = writeln!(out, "<?xml version=\"1.0\"?>");
-    let _ = writeln!(out, "<!-- Written by screwdyn from model '{}'. -->", xml_escape(model.name()));
+    let _ = writeln!(
+        out,
+        "<!-- Written by screwdyn from model '{}'. -->",
+        xml_escape(model.name())
+    );
     let _ = writeln!(out, "<robot name=\"{}\">", xml_escape(model.name()));
     let base = model.base();
     link(&base.name, Some(&base.inertia));
@@ -570,7 +599,11 @@ pub fn to_urdf_string(model: &Model) -> Result<String> {
             JointKind::Continuous => ("continuous", w, w.cross(&v)),
             JointKind::Revolute => {
                 let unlimited = !limited(j.limits.lower) && !limited(j.limits.upper);
-                (if unlimited { "continuous" } else { "revolute" }, w, w.cross(&v))
+                (
+                    if unlimited { "continuous" } else { "revolute" },
+                    w,
+                    w.cross(&v),
+                )
             }
         };
         let split = offset.norm() > 1e-12;
