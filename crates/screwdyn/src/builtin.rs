@@ -6,6 +6,15 @@
 //!   seed's MATLAB model.
 //! - `pendulum`: a simple pendulum, point mass 1 kg on a 1 m massless rod, joint about `z`,
 //!   gravity `(0, −9.81, 0)`; at `q = 0` the mass hangs straight down.
+//! - `ur5`: Universal Robots UR5 from its published standard-DH table, masses and CoMs
+//!   (rotational inertias approximated as cylinders), `models/ur5.toml`.
+//! - `panda`: Franka Emika Panda from its published modified-DH table and Gaz et al. (2019)'s
+//!   inertial parameters, `models/panda.toml`.
+//! - `branched`: a torso turning about `z` with a fixed head and two 3-DoF arms,
+//!   `models/branched.toml`.
+//!
+//! The last three are the files in `models/`, compiled in with `include_str!`, so a built-in
+//! and its file are the same robot.
 
 use crate::error::{Error, Result};
 use crate::model::{JointSpec, Model, ModelBuilder};
@@ -13,18 +22,53 @@ use crate::spatial::{Se3, SpatialInertia};
 use nalgebra::{Vector3, Vector6};
 
 /// The names accepted by [`load`].
-pub const NAMES: &[&str] = &["planar2", "pendulum"];
+pub const NAMES: &[&str] = &["planar2", "pendulum", "ur5", "panda", "branched"];
+
+/// The shipped description files: (built-in name, file name in `models/`, text).
+pub const FILES: &[(&str, &str, &str)] = &[
+    (
+        "planar2",
+        "planar2.toml",
+        include_str!("../../../models/planar2.toml"),
+    ),
+    ("ur5", "ur5.toml", include_str!("../../../models/ur5.toml")),
+    (
+        "panda",
+        "panda.toml",
+        include_str!("../../../models/panda.toml"),
+    ),
+    (
+        "branched",
+        "branched.toml",
+        include_str!("../../../models/branched.toml"),
+    ),
+];
+
+fn from_file(name: &str) -> Result<Model> {
+    let (_, file, text) = FILES
+        .iter()
+        .find(|(n, _, _)| *n == name)
+        .ok_or_else(|| Error::InvalidModel(format!("no shipped file for built-in '{name}'")))?;
+    crate::io::load_str(
+        text,
+        &format!("builtin:{name} (models/{file})"),
+        &Default::default(),
+    )
+}
 
 /// The built-in robot called `name` (without the `builtin:` prefix).
 ///
 /// ```
 /// assert_eq!(screwdyn::builtin::load("pendulum").unwrap().nq(), 1);
+/// assert_eq!(screwdyn::builtin::load("ur5").unwrap().nq(), 6);
+/// assert_eq!(screwdyn::builtin::load("panda").unwrap().nq(), 7);
 /// assert!(screwdyn::builtin::load("r2d2").unwrap_err().to_string().contains("planar2"));
 /// ```
 pub fn load(name: &str) -> Result<Model> {
     match name {
         "planar2" => Ok(planar2()),
         "pendulum" => Ok(pendulum()),
+        "ur5" | "panda" | "branched" => from_file(name),
         _ => Err(Error::UnknownName {
             kind: "built-in robot",
             name: name.into(),

@@ -1,0 +1,227 @@
+//! Pieces shared by the TOML formats: error positions, poses, inertias, extra frames, limits.
+
+use crate::error::{Error, Result};
+use crate::model::{JointSpec, Model, ModelBuilder};
+use crate::spatial::{Se3, SpatialInertia};
+use nalgebra::{Matrix3, Matrix6, Quaternion, UnitQuaternion, Vector3};
+use serde::de::DeserializeOwned;
+use serde::Deserialize;
+
+/// Line and column (1-based) of byte offset `at` in `text`.
+pub(crate) fn line_col(text: &str, at: usize) -> (usize, usize) {
+    let at = at.min(text.len());
+    let before = &text[..at];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |s| s.chars().count()) + 1;
+    (line, col)
+}
+
+/// Deserializes TOML, turning an error into `file:line:col: message`.
+pub(crate) fn from_toml<T: DeserializeOwned>(text: &str, file: &str) -> Result<T> {
+    toml::from_str(text).map_err(|e| {
+        let msg = e.message().trim().trim_end_matches('.').replace('\n', " ");
+        match e.span() {
+            Some(span) => {
+                let (l, c) = line_col(text, span.start);
+                Error::Parse(format!("{file}:{l}:{c}: {msg}"))
+            }
+            None => Error::Parse(format!("{file}: {msg}")),
+        }
+    })
+}
+
+/// Prefixes a builder error with the file name.
+pub(crate) fn build(b: &ModelBuilder, file: &str) -> Result<Model> {
+    b.build().map_err(|e| match e {
+        Error::InvalidModel(m) => Error::InvalidModel(format!("{file}: {m}")),
+        other => other,
+    })
+}
+
+/// A rigid placement in a TOML file: `xyz` plus at most one of `rpy` (URDF convention
+/// `Rz·Ry·Rx`), `quaternion` (`[w, x, y, z]`, normalised) or `rotation` (3×3, rows).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct PoseSpec {
+    #[serde(default)]
+    pub xyz: Option<[f64; 3]>,
+    #[serde(default)]
+    pub rpy: Option<[f64; 3]>,
+    #[serde(default)]
+    pub quaternion: Option<[f64; 4]>,
+    #[serde(default)]
+    pub rotation: Option<[[f64; 3]; 3]>,
+}
+
+impl PoseSpec {
+    /// The pose, or a phrase saying what is wrong.
+    pub fn to_se3(&self) -> std::result::Result<Se3, String> {
+        let n = self.rpy.is_some() as u8
+            + self.quaternion.is_some() as u8
+            + self.rotation.is_some() as u8;
+        if n > 1 {
+            return Err("gives more than one of rpy, quaternion and rotation".into());
+        }
+        let mut h = if let Some([r, p, y]) = self.rpy {
+            Se3::from_rpy(r, p, y)
+        } else if let Some([w, x, y, z]) = self.quaternion {
+            let q = Quaternion::new(w, x, y, z);
+            if q.norm().is_nan() || q.norm() <= 1e-9 {
+                return Err("has a zero quaternion".into());
+            }
+            Se3::new(
+                UnitQuaternion::from_quaternion(q)
+                    .to_rotation_matrix()
+                    .into_inner(),
+                Vector3::zeros(),
+            )
+        } else if let Some(rows) = self.rotation {
+            let r = Matrix3::from_fn(|i, j| rows[i][j]);
+            if (r.transpose() * r - Matrix3::identity()).amax() > 1e-6 || r.determinant() < 0.0 {
+                return Err(
+                    "has a rotation matrix that is not orthonormal with determinant +1".into(),
+                );
+            }
+            Se3::new(r, Vector3::zeros())
+        } else {
+            Se3::identity()
+        };
+        if let Some(p) = self.xyz {
+            h.translation = Vector3::from(p);
+        }
+        if !h
+            .rotation
+            .iter()
+            .chain(h.translation.iter())
+            .all(|x| x.is_finite())
+        {
+            return Err("has a non-finite number".into());
+        }
+        Ok(h)
+    }
+}
+
+/// Inertia of a link: `mass` + `com` + `inertia` (about the CoM, link-frame axes, in URDF order
+/// `[ixx, ixy, ixz, iyy, iyz, izz]`), or a full 6×6 `spatial_inertia` (angular first, about the
+/// link frame origin).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct InertiaSpec {
+    #[serde(default)]
+    pub mass: Option<f64>,
+    #[serde(default)]
+    pub com: Option<[f64; 3]>,
+    #[serde(default)]
+    pub inertia: Option<[f64; 6]>,
+    #[serde(default)]
+    pub spatial_inertia: Option<[[f64; 6]; 6]>,
+}
+
+/// `[ixx, ixy, ixz, iyy, iyz, izz]` → symmetric 3×3.
+pub(crate) fn inertia_matrix(i: [f64; 6]) -> Matrix3<f64> {
+    let [xx, xy, xz, yy, yz, zz] = i;
+    Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
+}
+
+impl InertiaSpec {
+    pub fn to_inertia(&self) -> std::result::Result<SpatialInertia, String> {
+        if let Some(rows) = self.spatial_inertia {
+            if self.mass.is_some() || self.com.is_some() || self.inertia.is_some() {
+                return Err("gives both spatial_inertia and mass/com/inertia".into());
+            }
+            let j = Matrix6::from_fn(|i, k| rows[i][k]);
+            return SpatialInertia::from_matrix(&j).map_err(|why| {
+                format!("has a spatial_inertia that is not a spatial inertia: {why}")
+            });
+        }
+        if self.mass.is_none() && (self.com.is_some() || self.inertia.is_some()) {
+            return Err("gives com or inertia without mass".into());
+        }
+        let m = self.mass.unwrap_or(0.0);
+        let c = Vector3::from(self.com.unwrap_or([0.0; 3]));
+        let i = inertia_matrix(self.inertia.unwrap_or([0.0; 6]));
+        Ok(SpatialInertia::new(m, c, i))
+    }
+}
+
+/// An extra named frame: `name`, `link`, and its `pose` in the link frame.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct FrameSpec {
+    pub name: String,
+    pub link: String,
+    #[serde(default)]
+    pub pose: PoseSpec,
+}
+
+/// Adds the extra frames.
+pub(crate) fn add_frames(b: &mut ModelBuilder, frames: &[FrameSpec], file: &str) -> Result<()> {
+    for f in frames {
+        let h = f
+            .pose
+            .to_se3()
+            .map_err(|why| Error::Parse(format!("{file}: the pose of frame '{}' {why}", f.name)))?;
+        b.frame(&f.name, &f.link, h);
+    }
+    Ok(())
+}
+
+/// The `limits = { lower, upper, velocity, effort }` table of a TOML joint (each optional,
+/// infinite when absent).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct LimitSpec {
+    #[serde(default)]
+    pub lower: Option<f64>,
+    #[serde(default)]
+    pub upper: Option<f64>,
+    #[serde(default)]
+    pub velocity: Option<f64>,
+    #[serde(default)]
+    pub effort: Option<f64>,
+}
+
+impl LimitSpec {
+    pub fn apply(
+        &self,
+        mut j: JointSpec,
+        damping: Option<f64>,
+        friction: Option<f64>,
+    ) -> JointSpec {
+        let d = crate::model::JointLimits::<f64>::default();
+        j = j.limits(self.lower.unwrap_or(d.lower), self.upper.unwrap_or(d.upper));
+        if let Some(v) = self.velocity {
+            j = j.velocity_limit(v);
+        }
+        if let Some(e) = self.effort {
+            j = j.effort_limit(e);
+        }
+        if let Some(x) = damping {
+            j = j.damping(x);
+        }
+        if let Some(x) = friction {
+            j = j.friction(x);
+        }
+        j
+    }
+}
+
+/// Gravity from an optional `[gx, gy, gz]`, default `(0, 0, −9.81)`.
+pub(crate) fn gravity(g: Option<[f64; 3]>) -> Vector3<f64> {
+    g.map(Vector3::from)
+        .unwrap_or_else(|| Vector3::new(0.0, 0.0, -9.81))
+}
+
+/// Checks a link inertia before the builder does, so that the message names the file.
+pub(crate) fn check_inertia(
+    i: &SpatialInertia,
+    what: &str,
+    file: &str,
+    allow_nonphysical: bool,
+) -> Result<()> {
+    if allow_nonphysical {
+        return Ok(());
+    }
+    i.check_physical()
+        .map_err(|why| Error::InvalidModel(format!("{file}: the inertia of {what} {why}")))
+}

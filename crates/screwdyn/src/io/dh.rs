@@ -1,0 +1,215 @@
+//! Denavit–Hartenberg tables in TOML: standard DH (`format = "dh"`, seed 004) and modified DH
+//! (`format = "modified-dh"`, Craig, seed 003).
+//!
+//! **Standard DH** (seed 004): link frame `{i}` in `{i−1}` is
+//! `A_i^{i−1} = Rot_z(θ_i) Trans_z(d_i) Trans_x(a_i) Rot_x(α_i)`; joint `i` turns `θ_i` (R) or
+//! slides `d_i` (P) about/along `z_{i−1}`. In the seeds' notation the screw is written in the
+//! parent frame at home, `S = (ẑ, 0)` (R) or `(0, ẑ)` (P), and the home pose is
+//! `H_i^{i−1}(0) = Rot_z(θ_offset) Trans_z(d) Trans_x(a) Rot_x(α)`.
+//!
+//! **Modified DH** (Craig): `H_i^{i−1} = Rot_x(α_{i−1}) Trans_x(a_{i−1}) Rot_z(θ_i) Trans_z(d_i)`;
+//! the joint axis is `z_i` of the child frame: `S_i^{i,i−1} = (ẑ, 0)` (R) or `(0, ẑ)` (P). On row
+//! `i`, `a` and `alpha` are Craig's `a_{i−1}` and `α_{i−1}` (the values printed on row `i` of his
+//! tables).
+//!
+//! | key | meaning |
+//! | --- | --- |
+//! | `format` | `"dh"` or `"modified-dh"` |
+//! | `name`, `base`, `gravity` | robot name, root link name (default `base`), gravity (default `[0, 0, -9.81]`) |
+//! | `[[row]]` | one per joint, in chain order |
+//! | `row.type` | `"R"` (revolute), `"P"` (prismatic) or `"C"` (continuous revolute) |
+//! | `row.a`, `row.alpha`, `row.d`, `row.theta` | DH parameters (m, rad); the joint's own variable (`θ` for R, `d` for P) is `q + offset`, its value here the offset; all default 0 |
+//! | `row.name`, `row.link` | joint and link names (default `joint<i>`, `link<i>`) |
+//! | `row.parent` | parent link (default: the previous row's link, or the base) — allows trees |
+//! | `row.limits = { lower, upper, velocity, effort }`, `row.damping`, `row.friction` | joint limits |
+//! | `row.mass`, `row.com`, `row.inertia` | link mass, CoM in link frame `{i}`, inertia about the CoM `[ixx, ixy, ixz, iyy, iyz, izz]` |
+//! | `[[frame]]` `name`, `link`, `pose = { xyz, rpy }` | extra frames (a flange, a tool) |
+//!
+//! ```
+//! use screwdyn::io::{dh::parse_dh, LoadOptions};
+//! use screwdyn::{kinematics::forward_kinematics, Workspace};
+//! // The two-link planar arm as a standard DH table (seed 004): a1 = a2 = 1.
+//! let text = r#"
+//! format = "dh"
+//! [[row]]
+//! type = "R"
+//! a = 1.0
+//! mass = 1.0
+//! [[row]]
+//! type = "R"
+//! a = 1.0
+//! mass = 1.0
+//! "#;
+//! let m = parse_dh(text, "planar.toml", &LoadOptions::default()).unwrap();
+//! let mut ws = Workspace::new(&m);
+//! let (q1, q2) = (0.3_f64, 0.4_f64);
+//! forward_kinematics(&m, &mut ws, &[q1, q2]).unwrap();
+//! let p = ws.pose_in_world[1].translation;
+//! assert!((p.x - (q1.cos() + (q1 + q2).cos())).abs() < 1e-15);
+//! ```
+
+use super::common::{self, FrameSpec, LimitSpec};
+use super::LoadOptions;
+use crate::error::{Error, Result};
+use crate::model::{JointSpec, Model, ModelBuilder};
+use crate::spatial::{Se3, SpatialInertia};
+use nalgebra::{Vector3, Vector6};
+use serde::Deserialize;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DhFile {
+    format: String,
+    #[serde(default)]
+    name: Option<String>,
+    #[serde(default)]
+    base: Option<String>,
+    #[serde(default)]
+    gravity: Option<[f64; 3]>,
+    #[serde(default)]
+    row: Vec<Row>,
+    #[serde(default)]
+    frame: Vec<FrameSpec>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Row {
+    #[serde(rename = "type")]
+    kind: String,
+    #[serde(default)]
+    a: f64,
+    #[serde(default)]
+    alpha: f64,
+    #[serde(default)]
+    d: f64,
+    #[serde(default)]
+    theta: f64,
+    #[serde(default)]
+    name: Option<String>,
+    #[serde(default)]
+    link: Option<String>,
+    #[serde(default)]
+    parent: Option<String>,
+    #[serde(default)]
+    limits: LimitSpec,
+    #[serde(default)]
+    damping: Option<f64>,
+    #[serde(default)]
+    friction: Option<f64>,
+    #[serde(default)]
+    mass: Option<f64>,
+    #[serde(default)]
+    com: Option<[f64; 3]>,
+    #[serde(default)]
+    inertia: Option<[f64; 6]>,
+}
+
+fn rot_z(t: f64) -> Se3 {
+    Se3::from_rpy(0.0, 0.0, t)
+}
+fn rot_x(t: f64) -> Se3 {
+    Se3::from_rpy(t, 0.0, 0.0)
+}
+fn trans(x: f64, y: f64, z: f64) -> Se3 {
+    Se3::from_translation(Vector3::new(x, y, z))
+}
+
+/// `A_i^{i−1} = Rot_z(θ) Trans_z(d) Trans_x(a) Rot_x(α)` (standard DH, seed 004).
+pub fn standard_dh_transform(a: f64, alpha: f64, d: f64, theta: f64) -> Se3 {
+    rot_z(theta)
+        .compose(&trans(a, 0.0, d))
+        .compose(&rot_x(alpha))
+}
+
+/// `Rot_x(α_{i−1}) Trans_x(a_{i−1}) Rot_z(θ_i) Trans_z(d_i)` (modified DH, Craig, seed 003).
+pub fn modified_dh_transform(a_prev: f64, alpha_prev: f64, d: f64, theta: f64) -> Se3 {
+    rot_x(alpha_prev)
+        .compose(&trans(a_prev, 0.0, 0.0))
+        .compose(&rot_z(theta))
+        .compose(&trans(0.0, 0.0, d))
+}
+
+/// Parses a standard or modified DH table (see the module documentation for the keys).
+pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
+    let f: DhFile = common::from_toml(text, file)?;
+    let modified = match f.format.as_str() {
+        "dh" => false,
+        "modified-dh" => true,
+        other => {
+            return Err(Error::Parse(format!(
+                "{file}: format '{other}' is not a DH table (expected dh or modified-dh)"
+            )))
+        }
+    };
+    let mut b = ModelBuilder::new(
+        &f.name
+            .clone()
+            .unwrap_or_else(|| super::native::default_name(file)),
+    );
+    let base = f.base.clone().unwrap_or_else(|| "base".into());
+    b.base_name(&base)
+        .gravity(common::gravity(f.gravity))
+        .allow_nonphysical(options.allow_nonphysical);
+    if f.row.is_empty() {
+        return Err(Error::Parse(format!("{file}: the DH table has no [[row]]")));
+    }
+    let mut previous = base.clone();
+    let z = Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0);
+    let z_lin = Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, 1.0);
+    for (k, row) in f.row.iter().enumerate() {
+        let i = k + 1;
+        let jname = row.name.clone().unwrap_or_else(|| format!("joint{i}"));
+        let lname = row.link.clone().unwrap_or_else(|| format!("link{i}"));
+        let bad = |why: String| Error::Parse(format!("{file}: DH row {i} (joint '{jname}') {why}"));
+        let nums = [row.a, row.alpha, row.d, row.theta];
+        if !nums.iter().all(|x| x.is_finite()) {
+            return Err(bad("has a non-finite DH parameter".into()));
+        }
+        let home = if modified {
+            modified_dh_transform(row.a, row.alpha, row.d, row.theta)
+        } else {
+            standard_dh_transform(row.a, row.alpha, row.d, row.theta)
+        };
+        let prismatic = match row.kind.as_str() {
+            "R" | "r" | "C" | "c" => false,
+            "P" | "p" => true,
+            other => {
+                return Err(bad(format!(
+                "has joint type '{other}', expected R (revolute), P (prismatic) or C (continuous)"
+            )))
+            }
+        };
+        let mut j = match row.kind.as_str() {
+            "P" | "p" => JointSpec::prismatic(&jname),
+            "C" | "c" => JointSpec::continuous(&jname),
+            _ => JointSpec::revolute(&jname),
+        };
+        let s = if prismatic { z_lin } else { z };
+        j = if modified {
+            j.screw_in_child(s)
+        } else {
+            j.screw_in_parent(s)
+        };
+        j = row.limits.apply(j, row.damping, row.friction);
+        if row.mass.is_none() && (row.com.is_some() || row.inertia.is_some()) {
+            return Err(bad("gives com or inertia without mass".into()));
+        }
+        let inertia = SpatialInertia::new(
+            row.mass.unwrap_or(0.0),
+            Vector3::from(row.com.unwrap_or([0.0; 3])),
+            common::inertia_matrix(row.inertia.unwrap_or([0.0; 6])),
+        );
+        common::check_inertia(
+            &inertia,
+            &format!("DH row {i} (link '{lname}')"),
+            file,
+            options.allow_nonphysical,
+        )?;
+        let parent = row.parent.clone().unwrap_or(previous);
+        b.link(&lname, &parent, j, home, inertia);
+        previous = lname;
+    }
+    common::add_frames(&mut b, &f.frame, file)?;
+    common::build(&b, file)
+}

@@ -1,0 +1,202 @@
+//! The native TOML format (`format = "screwdyn"`): the seeds' quantities written directly.
+//!
+//! Per body: its `parent`, the home pose `H_i^{λ(i)}(0)` (`home`), the screw axis
+//! `S_i` (`screw_in_parent = S_i^{λ(i),λ(i)}`, seed 000's `S_0_0_1`, or
+//! `screw_in_child = S_i^{i,λ(i)}`), the joint kind and limits, and the inertia `𝔍^{i,i}`.
+//!
+//! | key | meaning |
+//! | --- | --- |
+//! | `format = "screwdyn"` | required |
+//! | `name` | robot name (default: the file name) |
+//! | `base` | root link name (default `base`) |
+//! | `gravity = [gx, gy, gz]` | base-frame gravity, default `[0, 0, -9.81]` |
+//! | `[[body]]` | one per link, in any order; joints are ordered depth-first (DESIGN §4) |
+//! | `body.name`, `body.parent` | link names (required) |
+//! | `body.joint` | joint name (default `<name>_joint`) |
+//! | `body.type` | `revolute`, `continuous`, `prismatic`, `helical` (with `pitch`, m/rad) or `fixed` |
+//! | `body.home = { xyz, rpy \| quaternion \| rotation }` | `H_i^{λ(i)}(0)`; `quaternion = [w, x, y, z]`, `rotation` = 3 rows |
+//! | `body.screw_in_parent` / `body.screw_in_child` | `[ωx, ωy, ωz, vx, vy, vz]` (one of them; not for `fixed`) |
+//! | `body.limits = { lower, upper, velocity, effort }` | each optional, infinite when absent |
+//! | `body.damping`, `body.friction` | viscous and Coulomb coefficients |
+//! | `body.mass`, `body.com`, `body.inertia` | mass, CoM in the link frame, inertia about the CoM `[ixx, ixy, ixz, iyy, iyz, izz]` |
+//! | `body.spatial_inertia` | or the full 6×6 `𝔍^{i,i}` (6 rows, angular first, about the link origin) |
+//! | `[[frame]]` `name`, `link`, `pose = { xyz, rpy \| … }` | extra frames (tool points...) |
+//!
+//! Unknown keys are errors.
+//!
+//! ```
+//! use screwdyn::io::{native::parse_native, LoadOptions};
+//! // Seed 000's two-link arm: H_0_1_home, S_0_0_1, I_1 = point mass...
+//! let text = r#"
+//! format = "screwdyn"
+//! gravity = [0, -9.81, 0]
+//! [[body]]
+//! name = "link1"
+//! parent = "base"
+//! joint = "joint1"
+//! type = "revolute"
+//! home = { xyz = [1, 0, 0] }
+//! screw_in_parent = [0, 0, 1, 0, 0, 0]
+//! mass = 1.0
+//! [[body]]
+//! name = "link2"
+//! parent = "link1"
+//! joint = "joint2"
+//! type = "revolute"
+//! home = { xyz = [1, 0, 0] }
+//! screw_in_parent = [0, 0, 1, 0, 0, 0]
+//! mass = 1.0
+//! [[frame]]
+//! name = "tip"
+//! link = "link2"
+//! "#;
+//! let m = parse_native(text, "planar2.toml", &LoadOptions::default()).unwrap();
+//! // S_1^{1,0} = Ad_{H_0_1_home⁻¹} S_0_0_1 = (0, 0, 1, 0, L1, 0)
+//! assert_eq!(m.joints()[0].screw.as_slice(), &[0.0, 0.0, 1.0, 0.0, 1.0, 0.0]);
+//! ```
+
+use super::common::{self, FrameSpec, InertiaSpec, LimitSpec, PoseSpec};
+use super::LoadOptions;
+use crate::error::{Error, Result};
+use crate::model::{JointSpec, Model, ModelBuilder};
+use nalgebra::Vector6;
+use serde::Deserialize;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct NativeFile {
+    #[allow(dead_code)]
+    format: String,
+    #[serde(default)]
+    name: Option<String>,
+    #[serde(default)]
+    base: Option<String>,
+    #[serde(default)]
+    gravity: Option<[f64; 3]>,
+    #[serde(default)]
+    body: Vec<BodySpec>,
+    #[serde(default)]
+    frame: Vec<FrameSpec>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BodySpec {
+    name: String,
+    parent: String,
+    #[serde(default)]
+    joint: Option<String>,
+    #[serde(rename = "type")]
+    kind: String,
+    #[serde(default)]
+    pitch: Option<f64>,
+    #[serde(default)]
+    home: PoseSpec,
+    #[serde(default)]
+    screw_in_parent: Option<[f64; 6]>,
+    #[serde(default)]
+    screw_in_child: Option<[f64; 6]>,
+    #[serde(default)]
+    limits: LimitSpec,
+    #[serde(default)]
+    damping: Option<f64>,
+    #[serde(default)]
+    friction: Option<f64>,
+    #[serde(default)]
+    mass: Option<f64>,
+    #[serde(default)]
+    com: Option<[f64; 3]>,
+    #[serde(default)]
+    inertia: Option<[f64; 6]>,
+    #[serde(default)]
+    spatial_inertia: Option<[[f64; 6]; 6]>,
+}
+
+/// The robot name used when a file gives none: the file name without directory and extension.
+pub(crate) fn default_name(file: &str) -> String {
+    let base = file.rsplit(['/', '\\']).next().unwrap_or(file);
+    base.split('.').next().unwrap_or(base).to_string()
+}
+
+/// Parses a native screwdyn TOML description (see the module documentation for the keys).
+pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
+    let f: NativeFile = common::from_toml(text, file)?;
+    let mut b = ModelBuilder::new(&f.name.clone().unwrap_or_else(|| default_name(file)));
+    if let Some(base) = &f.base {
+        b.base_name(base);
+    }
+    b.gravity(common::gravity(f.gravity))
+        .allow_nonphysical(options.allow_nonphysical);
+    for body in &f.body {
+        let what = format!("body '{}'", body.name);
+        let bad = |why: String| Error::Parse(format!("{file}: {what} {why}"));
+        let home = body
+            .home
+            .to_se3()
+            .map_err(|w| bad(format!("home pose {w}")))?;
+        let inertia = InertiaSpec {
+            mass: body.mass,
+            com: body.com,
+            inertia: body.inertia,
+            spatial_inertia: body.spatial_inertia,
+        }
+        .to_inertia()
+        .map_err(bad)?;
+        common::check_inertia(
+            &inertia,
+            &format!("link '{}'", body.name),
+            file,
+            options.allow_nonphysical,
+        )?;
+        let jname = body
+            .joint
+            .clone()
+            .unwrap_or_else(|| format!("{}_joint", body.name));
+        let mut j = match body.kind.as_str() {
+            "revolute" => JointSpec::revolute(&jname),
+            "continuous" => JointSpec::continuous(&jname),
+            "prismatic" => JointSpec::prismatic(&jname),
+            "helical" => match body.pitch {
+                Some(p) => JointSpec::helical(&jname, p),
+                None => return Err(bad("is helical but gives no pitch".into())),
+            },
+            "fixed" => JointSpec::fixed(&jname),
+            "floating" | "planar" => {
+                return Err(bad(format!(
+                    "has a {} joint, which screwdyn does not support (fixed-base trees of 1-DoF joints only)",
+                    body.kind
+                )))
+            }
+            other => {
+                return Err(bad(format!(
+                    "has unknown joint type '{other}' (expected revolute, continuous, prismatic, helical or fixed)"
+                )))
+            }
+        };
+        if body.pitch.is_some() && body.kind != "helical" {
+            return Err(bad("gives a pitch but is not helical".into()));
+        }
+        match (
+            body.screw_in_parent,
+            body.screw_in_child,
+            body.kind.as_str(),
+        ) {
+            (None, None, "fixed") => {}
+            (_, _, "fixed") => return Err(bad("is fixed but gives a screw axis".into())),
+            (Some(s), None, _) => j = j.screw_in_parent(Vector6::from(s)),
+            (None, Some(s), _) => j = j.screw_in_child(Vector6::from(s)),
+            (Some(_), Some(_), _) => {
+                return Err(bad("gives both screw_in_parent and screw_in_child".into()))
+            }
+            (None, None, _) => {
+                return Err(bad(
+                    "gives no screw axis (screw_in_parent or screw_in_child)".into(),
+                ))
+            }
+        }
+        j = body.limits.apply(j, body.damping, body.friction);
+        b.link(&body.name, &body.parent, j, home, inertia);
+    }
+    common::add_frames(&mut b, &f.frame, file)?;
+    common::build(&b, file)
+}

@@ -1,0 +1,695 @@
+//! URDF: loading ([`parse_urdf`]) and export of any [`Model`] ([`to_urdf_string`]).
+//!
+//! Mapping (DESIGN §3–4): a joint's frame is its child link's frame, so `<origin>` is
+//! `H_c^p(0)` and `<axis>` (any direction, normalised; a zero axis is an error) is written in
+//! the child frame: `S_c^{c,p} = (axis, 0)` for revolute/continuous joints, `(0, axis)` for
+//! prismatic ones. `<inertial>` gives the CoM (`origin xyz`) and the inertia about it in axes
+//! rotated by `origin rpy`: `I_c = R I Rᵀ`. Fixed joints merge the child into its parent body
+//! and keep the link as a named frame. Joints are numbered depth-first from the root link,
+//! children in file order. `<visual>`/`<collision>` are ignored except for their mesh file
+//! names, kept in [`Model::meshes`]. `<mimic>` is recorded but the joint stays an independent
+//! coordinate (as in Pinocchio). A `<limit>` attribute that is absent means "no limit".
+//! Floating and planar joints are rejected.
+//!
+//! ```
+//! use screwdyn::io::{urdf::{parse_urdf, to_urdf_string}, LoadOptions};
+//! let text = r#"<robot name="r">
+//!   <link name="base"/>
+//!   <link name="arm"><inertial><mass value="2"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+//!   <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+//!     <origin xyz="0 0 1"/><axis xyz="0 0 2"/><limit lower="-1" upper="1" effort="5" velocity="2"/></joint>
+//! </robot>"#;
+//! let m = parse_urdf(text, "r.urdf", &LoadOptions::default()).unwrap();
+//! assert_eq!(m.joints()[0].screw.as_slice(), &[0.0, 0.0, 1.0, 0.0, 0.0, 0.0]);
+//! let again = parse_urdf(&to_urdf_string(&m).unwrap(), "again.urdf", &LoadOptions::default()).unwrap();
+//! assert_eq!(again.joints()[0].limits, m.joints()[0].limits);
+//!
+//! let e = parse_urdf("<robot name='r'><link name='a'/>", "bad.urdf", &LoadOptions::default()).unwrap_err();
+//! assert!(e.to_string().starts_with("bad.urdf:1:"));
+//! ```
+
+use super::LoadOptions;
+use crate::error::{Error, Result};
+use crate::model::{FrameKind, JointKind, JointSpec, Mimic, Model, ModelBuilder};
+use crate::spatial::{ang, lin, Se3, SpatialInertia};
+use nalgebra::{Matrix3, Vector3, Vector6};
+use roxmltree::{Document, Node};
+use std::collections::{HashMap, HashSet};
+use std::fmt::Write;
+
+struct ULink {
+    name: String,
+    line: u32,
+    inertia: SpatialInertia,
+    inertial_line: u32,
+}
+
+struct UJoint {
+    name: String,
+    line: u32,
+    kind: String,
+    parent: String,
+    child: String,
+    origin: Se3,
+    axis: Vector3<f64>,
+    lower: f64,
+    upper: f64,
+    velocity: f64,
+    effort: f64,
+    damping: f64,
+    friction: f64,
+    mimic: Option<Mimic>,
+}
+
+struct Ctx<'a> {
+    doc: &'a Document<'a>,
+    file: &'a str,
+}
+
+impl Ctx<'_> {
+    fn line(&self, n: Node) -> u32 {
+        self.doc.text_pos_at(n.range().start).row
+    }
+    fn parse_err(&self, n: Node, msg: String) -> Error {
+        Error::Parse(format!("{}:{}: {msg}", self.file, self.line(n)))
+    }
+    fn model_err(&self, line: u32, msg: String) -> Error {
+        Error::InvalidModel(format!("{}:{line}: {msg}", self.file))
+    }
+    fn attr<'n>(&self, n: Node<'n, 'n>, name: &str, owner: &str) -> Result<&'n str> {
+        n.attribute(name).ok_or_else(|| {
+            self.parse_err(
+                n,
+                format!(
+                    "<{}> of {owner} has no '{name}' attribute",
+                    n.tag_name().name()
+                ),
+            )
+        })
+    }
+    fn numbers(&self, n: Node, name: &str, owner: &str, count: usize) -> Result<Option<Vec<f64>>> {
+        let Some(s) = n.attribute(name) else {
+            return Ok(None);
+        };
+        let tag = n.tag_name().name();
+        let mut v = Vec::new();
+        for w in s.split_whitespace() {
+            match w.parse::<f64>() {
+                Ok(x) if x.is_finite() => v.push(x),
+                _ => {
+                    return Err(self.parse_err(
+                        n,
+                        format!("<{tag} {name}=\"{s}\"> of {owner}: '{w}' is not a finite number"),
+                    ))
+                }
+            }
+        }
+        if v.len() != count {
+            return Err(self.parse_err(
+                n,
+                format!(
+                    "<{tag} {name}=\"{s}\"> of {owner} has {} numbers, expected {count}",
+                    v.len()
+                ),
+            ));
+        }
+        Ok(Some(v))
+    }
+    fn number(&self, n: Node, name: &str, owner: &str) -> Result<Option<f64>> {
+        Ok(self.numbers(n, name, owner, 1)?.map(|v| v[0]))
+    }
+    fn vec3(&self, n: Node, name: &str, owner: &str) -> Result<Option<Vector3<f64>>> {
+        Ok(self
+            .numbers(n, name, owner, 3)?
+            .map(|v| Vector3::new(v[0], v[1], v[2])))
+    }
+    fn origin(&self, parent: Node, owner: &str) -> Result<Se3> {
+        let Some(o) = child(parent, "origin") else {
+            return Ok(Se3::identity());
+        };
+        let xyz = self.vec3(o, "xyz", owner)?.unwrap_or_else(Vector3::zeros);
+        let rpy = self.vec3(o, "rpy", owner)?.unwrap_or_else(Vector3::zeros);
+        Ok(Se3::from_rpy(rpy.x, rpy.y, rpy.z).with_translation(xyz))
+    }
+}
+
+fn child<'a, 'i>(n: Node<'a, 'i>, tag: &str) -> Option<Node<'a, 'i>> {
+    n.children().find(|c| c.is_element() && c.has_tag_name(tag))
+}
+
+fn parse_link(ctx: &Ctx, n: Node, b: &mut ModelBuilder) -> Result<ULink> {
+    let name = ctx.attr(n, "name", "a link")?.to_string();
+    let owner = format!("link '{name}'");
+    let mut link = ULink {
+        name: name.clone(),
+        line: ctx.line(n),
+        inertia: SpatialInertia::zero(),
+        inertial_line: ctx.line(n),
+    };
+    if let Some(inl) = child(n, "inertial") {
+        link.inertial_line = ctx.line(inl);
+        let origin = ctx.origin(inl, &owner)?;
+        let mass = match child(inl, "mass") {
+            Some(m) => ctx.number(m, "value", &owner)?.ok_or_else(|| {
+                ctx.parse_err(m, format!("<mass> of {owner} has no 'value' attribute"))
+            })?,
+            None => return Err(ctx.parse_err(inl, format!("<inertial> of {owner} has no <mass>"))),
+        };
+        let mut i = Matrix3::zeros();
+        if let Some(t) = child(inl, "inertia") {
+            let g = |a: &str| -> Result<f64> { Ok(ctx.number(t, a, &owner)?.unwrap_or(0.0)) };
+            let (xx, xy, xz, yy, yz, zz) = (
+                g("ixx")?,
+                g("ixy")?,
+                g("ixz")?,
+                g("iyy")?,
+                g("iyz")?,
+                g("izz")?,
+            );
+            i = Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
+        }
+        let r = origin.rotation;
+        link.inertia = SpatialInertia::new(mass, origin.translation, r * i * r.transpose());
+    }
+    for tag in ["visual", "collision"] {
+        for v in n
+            .children()
+            .filter(|c| c.is_element() && c.has_tag_name(tag))
+        {
+            if let Some(mesh) = child(v, "geometry").and_then(|g| child(g, "mesh")) {
+                if let Some(f) = mesh.attribute("filename") {
+                    b.mesh(&name, f);
+                }
+            }
+        }
+    }
+    Ok(link)
+}
+
+fn parse_joint(ctx: &Ctx, n: Node) -> Result<UJoint> {
+    let name = ctx.attr(n, "name", "a joint")?.to_string();
+    let owner = format!("joint '{name}'");
+    let kind = ctx.attr(n, "type", &owner)?.to_string();
+    match kind.as_str() {
+        "revolute" | "continuous" | "prismatic" | "fixed" => {}
+        "floating" | "planar" => {
+            return Err(ctx.model_err(
+                ctx.line(n),
+                format!("{owner} is {kind}, which screwdyn does not support (fixed-base trees of revolute, continuous, prismatic and fixed joints only)"),
+            ))
+        }
+        other => {
+            return Err(ctx.parse_err(
+                n,
+                format!("{owner} has unknown type '{other}' (expected revolute, continuous, prismatic or fixed)"),
+            ))
+        }
+    }
+    let link_of = |tag: &str| -> Result<String> {
+        let c = child(n, tag)
+            .ok_or_else(|| ctx.parse_err(n, format!("{owner} has no <{tag}> element")))?;
+        Ok(ctx.attr(c, "link", &owner)?.to_string())
+    };
+    let (parent, child_link) = (link_of("parent")?, link_of("child")?);
+    let origin = ctx.origin(n, &owner)?;
+    let mut axis = Vector3::x();
+    if let Some(a) = child(n, "axis") {
+        if let Some(v) = ctx.vec3(a, "xyz", &owner)? {
+            if v.norm() < 1e-12 && kind != "fixed" {
+                return Err(ctx.model_err(
+                    ctx.line(a),
+                    format!("{owner} has a zero axis; the axis must be a nonzero direction"),
+                ));
+            }
+            if kind != "fixed" {
+                axis = v / v.norm();
+            }
+        }
+    }
+    // "No limit" is the model's default limit value.
+    let inf = crate::model::JointLimits::<f64>::default().upper;
+    let mut j = UJoint {
+        name,
+        line: ctx.line(n),
+        kind,
+        parent,
+        child: child_link,
+        origin,
+        axis,
+        lower: -inf,
+        upper: inf,
+        velocity: inf,
+        effort: inf,
+        damping: 0.0,
+        friction: 0.0,
+        mimic: None,
+    };
+    if let Some(l) = child(n, "limit") {
+        if j.kind != "continuous" {
+            j.lower = ctx.number(l, "lower", &owner)?.unwrap_or(-inf);
+            j.upper = ctx.number(l, "upper", &owner)?.unwrap_or(inf);
+        }
+        j.velocity = ctx.number(l, "velocity", &owner)?.unwrap_or(inf);
+        j.effort = ctx.number(l, "effort", &owner)?.unwrap_or(inf);
+    }
+    if let Some(d) = child(n, "dynamics") {
+        j.damping = ctx.number(d, "damping", &owner)?.unwrap_or(0.0);
+        j.friction = ctx.number(d, "friction", &owner)?.unwrap_or(0.0);
+    }
+    if let Some(m) = child(n, "mimic") {
+        j.mimic = Some(Mimic {
+            joint: ctx.attr(m, "joint", &owner)?.to_string(),
+            multiplier: ctx.number(m, "multiplier", &owner)?.unwrap_or(1.0),
+            offset: ctx.number(m, "offset", &owner)?.unwrap_or(0.0),
+        });
+    }
+    Ok(j)
+}
+
+/// Parses URDF text into a [`Model`]; `file` names the source in messages (`file:line: …`).
+pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
+    let doc = Document::parse(text).map_err(|e| {
+        let p = e.pos();
+        Error::Parse(format!("{file}:{}:{}: XML syntax error: {e}", p.row, p.col))
+    })?;
+    let ctx = Ctx { doc: &doc, file };
+    let root = doc.root_element();
+    if !root.has_tag_name("robot") {
+        return Err(ctx.parse_err(
+            root,
+            format!(
+                "the root element is <{}>, expected <robot>",
+                root.tag_name().name()
+            ),
+        ));
+    }
+    let robot_name = root
+        .attribute("name")
+        .map(str::to_string)
+        .unwrap_or_else(|| super::native::default_name(file));
+    let mut b = ModelBuilder::new(&robot_name);
+    b.allow_nonphysical(options.allow_nonphysical);
+    let mut links: Vec<ULink> = Vec::new();
+    let mut joints: Vec<UJoint> = Vec::new();
+    let mut link_at: HashMap<String, usize> = HashMap::new();
+    let mut joint_at: HashMap<String, usize> = HashMap::new();
+    for n in root.children().filter(|c| c.is_element()) {
+        if n.has_tag_name("link") {
+            let l = parse_link(&ctx, n, &mut b)?;
+            if let Some(&k) = link_at.get(&l.name) {
+                return Err(ctx.model_err(
+                    l.line,
+                    format!(
+                        "link '{}' is declared twice (first at line {})",
+                        l.name, links[k].line
+                    ),
+                ));
+            }
+            link_at.insert(l.name.clone(), links.len());
+            links.push(l);
+        } else if n.has_tag_name("joint") {
+            let j = parse_joint(&ctx, n)?;
+            if let Some(&k) = joint_at.get(&j.name) {
+                return Err(ctx.model_err(
+                    j.line,
+                    format!(
+                        "joint '{}' is declared twice (first at line {})",
+                        j.name, joints[k].line
+                    ),
+                ));
+            }
+            joint_at.insert(j.name.clone(), joints.len());
+            joints.push(j);
+        }
+    }
+    // Tree checks, each reported at the offending element.
+    let mut parent_joint: HashMap<&str, usize> = HashMap::new();
+    for (k, j) in joints.iter().enumerate() {
+        for (role, l) in [("parent", &j.parent), ("child", &j.child)] {
+            if !link_at.contains_key(l) {
+                return Err(ctx.model_err(
+                    j.line,
+                    format!(
+                        "joint '{}' names {role} link '{l}', which does not exist",
+                        j.name
+                    ),
+                ));
+            }
+        }
+        if let Some(&p) = parent_joint.get(j.child.as_str()) {
+            let first = &joints[p];
+            return Err(ctx.model_err(
+                j.line,
+                format!(
+                    "link '{}' has two parents: '{}' (joint '{}', line {}) and '{}' (joint '{}')",
+                    j.child, first.parent, first.name, first.line, j.parent, j.name
+                ),
+            ));
+        }
+        parent_joint.insert(&j.child, k);
+    }
+    for j in &joints {
+        // Walk up from the parent: reaching the child again means a cycle.
+        let mut at = j.parent.as_str();
+        let mut path = vec![j.name.as_str()];
+        let mut steps = 0;
+        while let Some(&p) = parent_joint.get(at) {
+            if at == j.child {
+                path.reverse();
+                return Err(
+                    ctx.model_err(j.line, format!("joints {} form a cycle", path.join(", ")))
+                );
+            }
+            path.push(&joints[p].name);
+            at = &joints[p].parent;
+            steps += 1;
+            if steps > joints.len() {
+                break;
+            }
+        }
+        if at == j.child {
+            return Err(ctx.model_err(j.line, format!("joint '{}' closes a cycle", j.name)));
+        }
+    }
+    let roots: Vec<&ULink> = links
+        .iter()
+        .filter(|l| !parent_joint.contains_key(l.name.as_str()))
+        .collect();
+    let root_link = match roots.as_slice() {
+        [] => {
+            return Err(ctx.model_err(
+                ctx.line(root),
+                "the robot has no root link: every link is the child of a joint".into(),
+            ))
+        }
+        [r] => *r,
+        [_, second, ..] => {
+            let names: Vec<&str> = roots.iter().map(|l| l.name.as_str()).collect();
+            return Err(ctx.model_err(
+                second.line,
+                format!(
+                    "the robot has several root links ({}), but every link except one must be the child of a joint",
+                    names.join(", ")
+                ),
+            ));
+        }
+    };
+    // Inertias, checked at the <inertial> element.
+    for l in &links {
+        if l.inertia.mass < 0.0 {
+            return Err(ctx.model_err(
+                l.inertial_line,
+                format!("link '{}' has negative mass {}", l.name, l.inertia.mass),
+            ));
+        }
+        if !options.allow_nonphysical {
+            if let Err(why) = l.inertia.check_physical() {
+                return Err(ctx.model_err(
+                    l.inertial_line,
+                    format!("the inertia of link '{}' {why}", l.name),
+                ));
+            }
+        }
+    }
+    // A moving leaf body (its fixed subtree holds no moving joint) must have mass.
+    if !options.allow_nonphysical {
+        let mut kids: HashMap<&str, Vec<&UJoint>> = HashMap::new();
+        for j in &joints {
+            kids.entry(j.parent.as_str()).or_default().push(j);
+        }
+        for j in joints.iter().filter(|j| j.kind != "fixed") {
+            let (mut mass, mut moving_below) = (0.0, false);
+            let mut stack = vec![j.child.as_str()];
+            while let Some(l) = stack.pop() {
+                mass += links[link_at[l]].inertia.mass;
+                for c in kids.get(l).into_iter().flatten() {
+                    if c.kind == "fixed" {
+                        stack.push(&c.child);
+                    } else {
+                        moving_below = true;
+                    }
+                }
+            }
+            if !moving_below && mass <= 0.0 {
+                let l = &links[link_at[j.child.as_str()]];
+                return Err(ctx.model_err(
+                    l.line,
+                    format!(
+                        "link '{}' is moved by joint '{}' and carries nothing else, but has mass {mass}: give it a positive mass",
+                        l.name, j.name
+                    ),
+                ));
+            }
+        }
+    }
+    b.base_name(&root_link.name).base_inertia(root_link.inertia);
+    for j in &joints {
+        let spec = match j.kind.as_str() {
+            "fixed" => JointSpec::fixed(&j.name),
+            kind => {
+                let a = j.axis;
+                let (spec, s) = match kind {
+                    "prismatic" => (
+                        JointSpec::prismatic(&j.name),
+                        Vector6::new(0.0, 0.0, 0.0, a.x, a.y, a.z),
+                    ),
+                    "continuous" => (
+                        JointSpec::continuous(&j.name),
+                        Vector6::new(a.x, a.y, a.z, 0.0, 0.0, 0.0),
+                    ),
+                    _ => (
+                        JointSpec::revolute(&j.name),
+                        Vector6::new(a.x, a.y, a.z, 0.0, 0.0, 0.0),
+                    ),
+                };
+                let mut spec = spec
+                    .screw_in_child(s)
+                    .limits(j.lower, j.upper)
+                    .velocity_limit(j.velocity)
+                    .effort_limit(j.effort)
+                    .damping(j.damping)
+                    .friction(j.friction);
+                if let Some(m) = &j.mimic {
+                    spec = spec.mimic(m.clone());
+                }
+                spec
+            }
+        };
+        let inertia = links[link_at[j.child.as_str()]].inertia;
+        b.link(&j.child, &j.parent, spec, j.origin, inertia);
+    }
+    super::common::build(&b, file)
+}
+
+/// Whether a limit value is an actual bound (not infinite, not the "no limit" default).
+fn limited(x: f64) -> bool {
+    x.is_finite() && x.abs() < f64::MAX
+}
+
+fn num(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else {
+        format!("{x}")
+    }
+}
+
+fn v3(v: &Vector3<f64>) -> String {
+    format!("{} {} {}", num(v.x), num(v.y), num(v.z))
+}
+
+fn origin_tag(h: &Se3) -> String {
+    let (r, p, y) = h.rpy();
+    format!(
+        "<origin xyz=\"{}\" rpy=\"{}\"/>",
+        v3(&h.translation),
+        v3(&Vector3::new(r, p, y))
+    )
+}
+
+fn inertial_tag(i: &SpatialInertia) -> String {
+    let c = &i.inertia_com;
+    format!(
+        "\n    <inertial>\n      <origin xyz=\"{}\" rpy=\"0 0 0\"/>\n      <mass value=\"{}\"/>\n      <inertia ixx=\"{}\" ixy=\"{}\" ixz=\"{}\" iyy=\"{}\" iyz=\"{}\" izz=\"{}\"/>\n    </inertial>\n  ",
+        v3(&i.com),
+        num(i.mass),
+        num(c[(0, 0)]),
+        num(c[(0, 1)]),
+        num(c[(0, 2)]),
+        num(c[(1, 1)]),
+        num(c[(1, 2)]),
+        num(c[(2, 2)])
+    )
+}
+
+fn xml_escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Writes `model` as URDF. Each moving body becomes a link named after it; when its screw axis
+/// does not pass through its frame origin (e.g. a standard-DH joint, which turns about
+/// `z_{i−1}`), a link `<body>_axis` on the axis carries the joint and the body's own frame
+/// follows as a fixed link `<body>` (so every frame keeps its name and pose). Merged fixed
+/// links and extra frames become massless links on fixed joints named `<frame>_fixed`. A
+/// revolute joint without position limits is written as `continuous`; infinite limits are
+/// left out. Gravity is not part of URDF and is not written. Helical joints cannot be written
+/// (URDF has none): that is an error.
+pub fn to_urdf_string(model: &Model) -> Result<String> {
+    let mut out = String::new();
+    let mut links = String::new();
+    let mut joints = String::new();
+    let mut meshes: HashMap<&str, Vec<&str>> = HashMap::new();
+    for (l, p) in model.meshes() {
+        meshes.entry(l.as_str()).or_default().push(p.as_str());
+    }
+    let mut used: HashSet<String> = model.joints().iter().map(|j| j.name.clone()).collect();
+    let mut fresh = |base: String| {
+        let mut name = base.clone();
+        let mut k = 1;
+        while used.contains(&name) {
+            name = format!("{base}_{k}");
+            k += 1;
+        }
+        used.insert(name.clone());
+        name
+    };
+    let mut link_names: HashSet<String> = model.frames().iter().map(|f| f.name.clone()).collect();
+    let mut link = |name: &str, inertia: Option<&SpatialInertia>| {
+        let mut s = format!("  <link name=\"{}\">", xml_escape(name));
+        if let Some(i) = inertia.filter(|i| i.mass > 0.0 || i.inertia_com.amax() > 0.0) {
+            s += &inertial_tag(i);
+        }
+        for m in meshes.get(name).into_iter().flatten() {
+            let _ = write!(
+                s,
+                "\n    <visual><geometry><mesh filename=\"{}\"/></geometry></visual>\n  ",
+                xml_escape(m)
+            );
+        }
+        s += "</link>\n";
+        links += &s;
+    };
+    let _ = writeln!(out, "<?xml version=\"1.0\"?>");
+    let _ = writeln!(
+        out,
+        "<!-- Written by screwdyn from model '{}'. -->",
+        xml_escape(model.name())
+    );
+    let _ = writeln!(out, "<robot name=\"{}\">", xml_escape(model.name()));
+    let base = model.base();
+    link(&base.name, Some(&base.inertia));
+    let body_link = |b: Option<usize>| match b {
+        Some(i) => model.bodies()[i].name.clone(),
+        None => base.name.clone(),
+    };
+    for (i, (j, body)) in model.joints().iter().zip(model.bodies()).enumerate() {
+        let parent = body_link(model.parent(i));
+        let (w, v) = (ang(&j.screw), lin(&j.screw));
+        let (kind, axis, offset) = match j.kind {
+            JointKind::Helical { .. } => {
+                return Err(Error::InvalidModel(format!(
+                    "joint '{}' is helical, which URDF cannot describe",
+                    j.name
+                )))
+            }
+            JointKind::Prismatic => ("prismatic", v, Vector3::zeros()),
+            JointKind::Continuous => ("continuous", w, w.cross(&v)),
+            JointKind::Revolute => {
+                let unlimited = !limited(j.limits.lower) && !limited(j.limits.upper);
+                (
+                    if unlimited { "continuous" } else { "revolute" },
+                    w,
+                    w.cross(&v),
+                )
+            }
+        };
+        let split = offset.norm() > 1e-12;
+        let moving = if split {
+            let mut name = format!("{}_axis", body.name);
+            while link_names.contains(&name) {
+                name += "_";
+            }
+            link_names.insert(name.clone());
+            name
+        } else {
+            body.name.clone()
+        };
+        let home = j.home.compose(&Se3::from_translation(offset));
+        let mut limit = String::new();
+        for (key, x, on) in [
+            ("lower", j.limits.lower, kind != "continuous"),
+            ("upper", j.limits.upper, kind != "continuous"),
+            ("effort", j.limits.effort, true),
+            ("velocity", j.limits.velocity, true),
+        ] {
+            if on && limited(x) {
+                let _ = write!(limit, " {key}=\"{}\"", num(x));
+            }
+        }
+        let mut s = format!(
+            "  <joint name=\"{}\" type=\"{kind}\">\n    <parent link=\"{}\"/>\n    <child link=\"{}\"/>\n    {}\n    <axis xyz=\"{}\"/>\n",
+            xml_escape(&j.name),
+            xml_escape(&parent),
+            xml_escape(&moving),
+            origin_tag(&home),
+            v3(&axis)
+        );
+        if !limit.is_empty() {
+            let _ = writeln!(s, "    <limit{limit}/>");
+        }
+        if j.damping != 0.0 || j.friction != 0.0 {
+            let _ = writeln!(
+                s,
+                "    <dynamics damping=\"{}\" friction=\"{}\"/>",
+                num(j.damping),
+                num(j.friction)
+            );
+        }
+        if let Some(m) = &j.mimic {
+            let _ = writeln!(
+                s,
+                "    <mimic joint=\"{}\" multiplier=\"{}\" offset=\"{}\"/>",
+                xml_escape(&m.joint),
+                num(m.multiplier),
+                num(m.offset)
+            );
+        }
+        s += "  </joint>\n";
+        joints += &s;
+        if split {
+            link(&moving, None);
+            link(&body.name, Some(&body.inertia));
+            let _ = write!(
+                joints,
+                "  <joint name=\"{}\" type=\"fixed\">\n    <parent link=\"{}\"/>\n    <child link=\"{}\"/>\n    {}\n  </joint>\n",
+                xml_escape(&fresh(format!("{}_offset", body.name))),
+                xml_escape(&moving),
+                xml_escape(&body.name),
+                origin_tag(&Se3::from_translation(-offset))
+            );
+        } else {
+            link(&body.name, Some(&body.inertia));
+        }
+    }
+    for f in model.frames() {
+        if !matches!(f.kind, FrameKind::FixedLink | FrameKind::Extra) {
+            continue;
+        }
+        link(&f.name, None);
+        let _ = write!(
+            joints,
+            "  <joint name=\"{}\" type=\"fixed\">\n    <parent link=\"{}\"/>\n    <child link=\"{}\"/>\n    {}\n  </joint>\n",
+            xml_escape(&fresh(format!("{}_fixed", f.name))),
+            xml_escape(&body_link(f.body)),
+            xml_escape(&f.name),
+            origin_tag(&f.placement)
+        );
+    }
+    out += &links;
+    out += &joints;
+    out += "</robot>\n";
+    Ok(out)
+}

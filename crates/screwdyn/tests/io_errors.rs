@@ -1,0 +1,369 @@
+//! Every broken description is explained, never a panic: each message names the problem and
+//! its place (file and line, or the element's name).
+
+use screwdyn::io::{load_model, load_str, LoadOptions};
+
+fn err(text: &str, file: &str) -> String {
+    match load_str(text, file, &LoadOptions::default()) {
+        Ok(_) => panic!("{file} loaded but should not"),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn check(msg: &str, place: &str, words: &[&str]) {
+    assert!(
+        msg.starts_with(place),
+        "expected '{place}' at the start of: {msg}"
+    );
+    for w in words {
+        assert!(msg.contains(w), "expected '{w}' in: {msg}");
+    }
+    assert!(!msg.contains('\n'), "one line, one sentence: {msg}");
+}
+
+/// A URDF with `body` on lines 2.. after `<robot>` on line 1.
+fn urdf(body: &str) -> String {
+    format!("<robot name=\"r\">\n{body}\n</robot>\n")
+}
+
+const MASS: &str = "<inertial><mass value=\"1\"/><inertia ixx=\"0.1\" iyy=\"0.1\" izz=\"0.1\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial>";
+
+fn link(name: &str) -> String {
+    format!("<link name=\"{name}\">{MASS}</link>")
+}
+
+fn joint(name: &str, kind: &str, parent: &str, child: &str) -> String {
+    format!("<joint name=\"{name}\" type=\"{kind}\"><parent link=\"{parent}\"/><child link=\"{child}\"/></joint>")
+}
+
+#[test]
+fn xml_syntax_error_names_file_and_line() {
+    let e = err(
+        "<robot name=\"r\">\n<link name=\"a\">\n<link name=\"b\"/>\n</robot>",
+        "bad.urdf",
+    );
+    check(&e, "bad.urdf:", &["XML syntax error"]);
+    let line: usize = e.split(':').nth(1).unwrap().parse().unwrap();
+    assert!((2..=4).contains(&line), "{e}");
+}
+
+#[test]
+fn a_joint_naming_a_missing_link() {
+    let t = urdf(
+        &[
+            link("base"),
+            link("a"),
+            joint("j1", "revolute", "base", "a"),
+            joint("j2", "revolute", "a", "ghost"),
+        ]
+        .join("\n"),
+    );
+    check(
+        &err(&t, "m.urdf"),
+        "m.urdf:5:",
+        &["joint 'j2'", "'ghost'", "does not exist"],
+    );
+}
+
+#[test]
+fn two_parents_for_one_link() {
+    let t = urdf(
+        &[
+            link("base"),
+            link("a"),
+            link("b"),
+            joint("j1", "revolute", "base", "a"),
+            joint("j2", "revolute", "base", "b"),
+            joint("j3", "revolute", "b", "a"),
+        ]
+        .join("\n"),
+    );
+    check(
+        &err(&t, "m.urdf"),
+        "m.urdf:7:",
+        &["link 'a' has two parents", "j1", "j3"],
+    );
+}
+
+#[test]
+fn a_cycle() {
+    let t = urdf(
+        &[
+            link("base"),
+            link("b"),
+            link("c"),
+            joint("j1", "revolute", "b", "c"),
+            joint("j2", "revolute", "c", "b"),
+        ]
+        .join("\n"),
+    );
+    let e = err(&t, "m.urdf");
+    check(&e, "m.urdf:", &["cycle", "j1", "j2"]);
+}
+
+#[test]
+fn several_roots_and_no_root() {
+    let t = urdf(
+        &[
+            link("base"),
+            link("a"),
+            link("island"),
+            joint("j1", "revolute", "base", "a"),
+        ]
+        .join("\n"),
+    );
+    check(
+        &err(&t, "m.urdf"),
+        "m.urdf:4:",
+        &["several root links", "base", "island"],
+    );
+    let t = urdf(
+        &[
+            link("a"),
+            link("b"),
+            joint("j1", "revolute", "a", "b"),
+            joint("j2", "revolute", "b", "a"),
+        ]
+        .join("\n"),
+    );
+    check(&err(&t, "m.urdf"), "m.urdf:", &["cycle"]);
+}
+
+#[test]
+fn duplicate_link_and_joint_names() {
+    let t = urdf(&[link("base"), link("a"), link("a")].join("\n"));
+    check(
+        &err(&t, "m.urdf"),
+        "m.urdf:4:",
+        &["link 'a' is declared twice", "line 3"],
+    );
+    let t = urdf(
+        &[
+            link("base"),
+            link("a"),
+            link("b"),
+            joint("j", "revolute", "base", "a"),
+            joint("j", "revolute", "a", "b"),
+        ]
+        .join("\n"),
+    );
+    check(
+        &err(&t, "m.urdf"),
+        "m.urdf:6:",
+        &["joint 'j' is declared twice", "line 5"],
+    );
+}
+
+#[test]
+fn a_non_number() {
+    let t = urdf(
+        &[
+            link("base"),
+            link("a"),
+            "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"a\"/>".into(),
+            "<origin xyz=\"0 zero 0\"/></joint>".to_string(),
+        ]
+        .join("\n"),
+    );
+    check(
+        &err(&t, "m.urdf"),
+        "m.urdf:5:",
+        &["joint 'j'", "'zero' is not a finite number"],
+    );
+    let t = urdf(
+        &[
+            "<link name=\"base\"/>".to_string(),
+            "<link name=\"a\"><inertial><mass value=\"heavy\"/></inertial></link>".into(),
+            joint("j", "revolute", "base", "a"),
+        ]
+        .join("\n"),
+    );
+    check(&err(&t, "m.urdf"), "m.urdf:3:", &["link 'a'", "'heavy'"]);
+    let t = urdf(&[link("base"), link("a"), "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"a\"/><axis xyz=\"0 1\"/></joint>".into()].join("\n"));
+    check(
+        &err(&t, "m.urdf"),
+        "m.urdf:4:",
+        &["has 2 numbers, expected 3"],
+    );
+}
+
+#[test]
+fn negative_or_zero_mass_on_a_moving_leaf() {
+    let neg = "<link name=\"a\">\n<inertial><mass value=\"-1\"/></inertial></link>";
+    let t = urdf(
+        &[
+            "<link name=\"base\"/>",
+            neg,
+            &joint("j", "revolute", "base", "a"),
+        ]
+        .join("\n"),
+    );
+    check(
+        &err(&t, "m.urdf"),
+        "m.urdf:4:",
+        &["link 'a' has negative mass"],
+    );
+    let t = urdf(
+        &[
+            "<link name=\"base\"/>",
+            "<link name=\"a\"/>",
+            &joint("j", "revolute", "base", "a"),
+        ]
+        .join("\n"),
+    );
+    check(
+        &err(&t, "m.urdf"),
+        "m.urdf:3:",
+        &["link 'a'", "joint 'j'", "mass 0"],
+    );
+    // A massless moving link is fine when a fixed child carries mass.
+    let t = urdf(
+        &[
+            "<link name=\"base\"/>",
+            "<link name=\"a\"/>",
+            &link("tip"),
+            &joint("j", "revolute", "base", "a"),
+            &joint("f", "fixed", "a", "tip"),
+        ]
+        .join("\n"),
+    );
+    assert!(load_str(&t, "m.urdf", &LoadOptions::default()).is_ok());
+}
+
+#[test]
+fn non_physical_inertias_are_errors_unless_allowed() {
+    let bad = |ixx: f64, iyy: f64, izz: f64, ixy: f64| {
+        urdf(&[
+            "<link name=\"base\"/>".to_string(),
+            format!("<link name=\"a\">\n<inertial><mass value=\"1\"/><inertia ixx=\"{ixx}\" iyy=\"{iyy}\" izz=\"{izz}\" ixy=\"{ixy}\" ixz=\"0\" iyz=\"0\"/></inertial></link>"),
+            joint("j", "revolute", "base", "a"),
+        ].join("\n"))
+    };
+    // Not positive definite (a negative moment), breaking the triangle inequality (1 + 1 < 3).
+    let t = bad(-0.1, 0.1, 0.1, 0.0);
+    check(
+        &err(&t, "m.urdf"),
+        "m.urdf:4:",
+        &["inertia of link 'a'", "positive"],
+    );
+    let t2 = bad(1.0, 1.0, 3.0, 0.0);
+    check(
+        &err(&t2, "m.urdf"),
+        "m.urdf:4:",
+        &["inertia of link 'a'", "triangle inequality"],
+    );
+    let t3 = bad(1.0, 1.0, 1.0, 2.0);
+    check(&err(&t3, "m.urdf"), "m.urdf:4:", &["inertia of link 'a'"]);
+    let allow = LoadOptions {
+        allow_nonphysical: true,
+    };
+    for t in [t, t2, t3] {
+        assert!(load_str(&t, "m.urdf", &allow).is_ok());
+    }
+}
+
+#[test]
+fn a_zero_axis_and_unsupported_joint_types() {
+    let t = urdf(
+        &[
+            link("base"),
+            link("a"),
+            "<joint name=\"j\" type=\"prismatic\"><parent link=\"base\"/><child link=\"a\"/>"
+                .into(),
+            "<axis xyz=\"0 0 0\"/></joint>".to_string(),
+        ]
+        .join("\n"),
+    );
+    check(&err(&t, "m.urdf"), "m.urdf:5:", &["joint 'j'", "zero axis"]);
+    for kind in ["floating", "planar"] {
+        let t = urdf(&[link("base"), link("a"), joint("j", kind, "base", "a")].join("\n"));
+        check(
+            &err(&t, "m.urdf"),
+            "m.urdf:4:",
+            &["joint 'j'", kind, "not support"],
+        );
+    }
+    let t = urdf(&[link("base"), link("a"), joint("j", "hinge", "base", "a")].join("\n"));
+    check(&err(&t, "m.urdf"), "m.urdf:4:", &["unknown type 'hinge'"]);
+}
+
+#[test]
+fn toml_syntax_errors_and_unknown_keys_name_file_and_line() {
+    check(
+        &err("format = \"dh\"\n[[row]\n", "t.toml"),
+        "t.toml:2:",
+        &[],
+    );
+    let e = err(
+        "format = \"dh\"\n[[row]]\ntype = \"R\"\nalfa = 0.5\nmass = 1\n",
+        "t.toml",
+    );
+    check(&e, "t.toml:4:", &["alfa"]);
+    let e = err("format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"revolute\"\nscrew_in_child = [0, 0, 1, 0, 0, 0]\nmas = 1\n", "t.toml");
+    check(&e, "t.toml:7:", &["mas"]);
+    let e = err(
+        "format = \"dh\"\n[[row]]\ntype = \"R\"\na = \"long\"\n",
+        "t.toml",
+    );
+    check(&e, "t.toml:4:", &[]);
+    check(
+        &err("name = \"x\"\n", "t.toml"),
+        "t.toml:",
+        &["'format' is missing"],
+    );
+    check(
+        &err("format = \"sdf\"\n", "t.toml"),
+        "t.toml:",
+        &["unknown format 'sdf'"],
+    );
+}
+
+#[test]
+fn toml_model_errors_name_the_element() {
+    let e = err("format = \"dh\"\n[[row]]\ntype = \"X\"\n", "t.toml");
+    check(&e, "t.toml:", &["DH row 1", "'X'"]);
+    let e = err(
+        "format = \"dh\"\n[[row]]\ntype = \"R\"\nmass = 1\ninertia = [1, 0, 0, 1, 0, 3]\n",
+        "t.toml",
+    );
+    check(&e, "t.toml:", &["DH row 1", "triangle inequality"]);
+    let e = err("format = \"dh\"\n[[row]]\ntype = \"R\"\n", "t.toml");
+    check(&e, "t.toml:", &["link1", "mass 0"]);
+    let e = err("format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"revolute\"\nmass = 1\n", "t.toml");
+    check(&e, "t.toml:", &["body 'a'", "no screw axis"]);
+    let e = err("format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"revolute\"\nscrew_in_child = [0, 0, 0, 0, 0, 0]\nmass = 1\n", "t.toml");
+    check(&e, "t.toml:", &["joint 'a_joint'", "unit vector"]);
+    let e = err("format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"nowhere\"\ntype = \"revolute\"\nscrew_in_child = [0, 0, 1, 0, 0, 0]\nmass = 1\n", "t.toml");
+    check(&e, "t.toml:", &["'nowhere'", "does not exist"]);
+    let e = err(
+        "format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"floating\"\n",
+        "t.toml",
+    );
+    check(&e, "t.toml:", &["body 'a'", "floating", "not support"]);
+    let e = err("format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"fixed\"\nhome = { quaternion = [0, 0, 0, 0] }\n", "t.toml");
+    check(&e, "t.toml:", &["body 'a'", "zero quaternion"]);
+    let poe = "format = \"poe\"\nSlist = [[0, 0, 1, 0, 0, 0]]\nMlist = [[[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]]\nGlist = []\n";
+    check(
+        &err(poe, "p.toml"),
+        "p.toml:",
+        &["Glist has 0 entries", "Slist has 1"],
+    );
+    let poe = "format = \"poe\"\nSlist = [[0, 0, 1, 0, 0, 0]]\nMlist = [[[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]]\nGlist = [[[1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0], [0, 0, 1, 0, 0, 0], [0, 0, 0, 1, 0, 0], [0, 0, 0, 0, 2, 0], [0, 0, 0, 0, 0, 1]]]\n";
+    check(
+        &err(poe, "p.toml"),
+        "p.toml:",
+        &["Glist entry 1", "not a spatial inertia"],
+    );
+}
+
+#[test]
+fn files_that_cannot_be_read_or_have_no_known_format() {
+    let e = load_model("/nonexistent/robot.urdf")
+        .unwrap_err()
+        .to_string();
+    check(&e, "/nonexistent/robot.urdf:", &["cannot be read"]);
+    let e = load_model("robot.sdf").unwrap_err().to_string();
+    check(&e, "robot.sdf:", &["unknown model format"]);
+    let e = load_model("builtin:nope").unwrap_err().to_string();
+    assert!(e.contains("nope") && e.contains("planar2"), "{e}");
+}
