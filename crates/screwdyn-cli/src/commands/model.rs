@@ -5,15 +5,9 @@ use crate::output::resolve;
 use crate::CliError;
 use screwdyn::Model;
 
-/// Loads `builtin:<name>` or a description file.
+/// Loads `builtin:<name>` or a `.urdf` / `.toml` description file.
 pub fn load(spec: &str) -> Result<Model, CliError> {
-    if let Some(name) = spec.strip_prefix("builtin:") {
-        return Ok(screwdyn::builtin::load(name)?);
-    }
-    Err(CliError::input(format!(
-        "cannot load '{spec}': give builtin:<name> (one of {})",
-        screwdyn::builtin::NAMES.join(", ")
-    )))
+    Ok(screwdyn::io::load_model(spec)?)
 }
 
 fn tree(model: &Model, body: Option<usize>, depth: usize, out: &mut String) {

@@ -1,0 +1,172 @@
+//! Plots a person looks at: stacked panels of time series (PNG or SVG, by file extension),
+//! labelled axes with units, legends with joint names, optional horizontal limit lines.
+//!
+//! Text is drawn with the DejaVu Sans font embedded in the binary (its licence is in
+//! `assets/`), so plots look the same on machines without system fonts.
+
+use crate::CliError;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+use std::sync::Once;
+
+static FONT: Once = Once::new();
+
+fn register_font() {
+    FONT.call_once(|| {
+        let bytes: &'static [u8] = include_bytes!("../assets/DejaVuSans.ttf");
+        // The font is embedded and known good; a failure would only lose the text.
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, bytes);
+    });
+}
+
+/// One curve.
+pub struct Series {
+    /// Legend entry (a joint name, "kinetic", ...).
+    pub name: String,
+    /// `(x, y)` samples.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// One panel: a y axis with its label and units, its curves, and dashed horizontal lines.
+pub struct Panel {
+    /// Panel title.
+    pub title: String,
+    /// Y-axis label with units, e.g. "q (rad)".
+    pub y_label: String,
+    /// The curves.
+    pub series: Vec<Series>,
+    /// Horizontal reference lines `(label, y)`, e.g. effort limits.
+    pub lines: Vec<(String, f64)>,
+}
+
+/// Draws `panels` stacked vertically into `path` (`.png` or `.svg`); returns the image size.
+pub fn plot_panels(
+    path: &Path,
+    title: &str,
+    x_label: &str,
+    panels: &[Panel],
+) -> Result<(u32, u32), CliError> {
+    register_font();
+    let size = (1100u32, 60 + 300 * panels.len() as u32);
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    let result = match ext.as_str() {
+        "png" => draw(
+            BitMapBackend::new(path, size).into_drawing_area(),
+            title,
+            x_label,
+            panels,
+        ),
+        "svg" => draw(
+            SVGBackend::new(path, size).into_drawing_area(),
+            title,
+            x_label,
+            panels,
+        ),
+        _ => {
+            return Err(CliError::input(format!(
+                "--plot {}: the file name must end in .png or .svg",
+                path.display()
+            )))
+        }
+    };
+    result.map_err(|e| CliError::input(format!("cannot write plot {}: {e}", path.display())))?;
+    Ok(size)
+}
+
+fn draw<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    title: &str,
+    x_label: &str,
+    panels: &[Panel],
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
+    root.fill(&WHITE).map_err(e)?;
+    let root = root.titled(title, ("sans-serif", 26)).map_err(e)?;
+    let areas = root.split_evenly((panels.len().max(1), 1));
+    for (panel, area) in panels.iter().zip(areas.iter()) {
+        let (mut x0, mut x1, mut y0, mut y1) = (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        );
+        for s in &panel.series {
+            for &(x, y) in &s.points {
+                if x.is_finite() && y.is_finite() {
+                    x0 = x0.min(x);
+                    x1 = x1.max(x);
+                    y0 = y0.min(y);
+                    y1 = y1.max(y);
+                }
+            }
+        }
+        for (_, y) in &panel.lines {
+            y0 = y0.min(*y);
+            y1 = y1.max(*y);
+        }
+        if !x0.is_finite() {
+            (x0, x1, y0, y1) = (0.0, 1.0, -1.0, 1.0);
+        }
+        if x1 <= x0 {
+            x1 = x0 + 1.0;
+        }
+        let pad = ((y1 - y0) * 0.08).max(1e-9 * y1.abs().max(1.0)).max(1e-12);
+        let (y0, y1) = (y0 - pad, y1 + pad);
+        let mut chart = ChartBuilder::on(area)
+            .caption(&panel.title, ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(80)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(e)?;
+        chart
+            .configure_mesh()
+            .x_desc(x_label)
+            .y_desc(&panel.y_label)
+            .label_style(("sans-serif", 14))
+            .axis_desc_style(("sans-serif", 16))
+            .draw()
+            .map_err(e)?;
+        for (k, s) in panel.series.iter().enumerate() {
+            let color = Palette99::pick(k).to_rgba();
+            chart
+                .draw_series(LineSeries::new(
+                    s.points.iter().copied(),
+                    color.stroke_width(2),
+                ))
+                .map_err(e)?
+                .label(s.name.clone())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
+        }
+        for (k, (label, y)) in panel.lines.iter().enumerate() {
+            let color = Palette99::pick(k).to_rgba();
+            let dashes = (0..40).map(|i| {
+                let a = x0 + (x1 - x0) * (2 * i) as f64 / 80.0;
+                let b = x0 + (x1 - x0) * (2 * i + 1) as f64 / 80.0;
+                PathElement::new(vec![(a, *y), (b, *y)], color.stroke_width(1))
+            });
+            chart.draw_series(dashes).map_err(e)?;
+            let _ = label;
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 14))
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(e)?;
+    }
+    root.present().map_err(e)?;
+    Ok(())
+}
