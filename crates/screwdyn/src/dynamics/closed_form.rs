@@ -43,7 +43,7 @@ pub struct ClosedForm<T: Real = f64> {
     /// The seeds' `C = Sᵀ Lᵀ [−𝔍 L ad_{Sθ̇} A − ad_{L S θ̇}ᵀ 𝔍] L S`, literally.
     pub c: DMatrix<T>,
     /// The Christoffel-consistent factorisation of the same `C θ̇`:
-    /// `C♯ = Jᵀ 𝔍 (J̇ + ad_V J) + ½ Jᵀ [𝔍 ad_V − ad_Vᵀ 𝔍 + (𝔍V)⊼] J`, where `(h)⊼ X = −ad_Xᵀ h`.
+    /// `C♯ = Jᵀ 𝔍 (J̇ + ad_V J) + ½ Jᵀ [−ad_Vᵀ 𝔍 − 𝔍 ad_V + (𝔍V)⊼] J`, where `(h)⊼ X = −ad_Xᵀ h`.
     /// `C♯ θ̇ = C θ̇`, `Ṁ − 2C♯` is skew-symmetric and `C♯_ij = Σ_k Γ_ijk θ̇_k`; this is what
     /// [`coriolis_matrix`](super::coriolis_matrix) computes.
     pub c_christoffel: DMatrix<T>,
@@ -141,7 +141,7 @@ pub fn closed_form<T: Real>(model: &Model<T>, q: &[T], v: &[T]) -> Result<Closed
     let j_dot = -(&l * &ad_s_qdot * &a * &j);
     let psi = &j_dot + &ad_v * &j;
     let half: T = crate::scalar::real(0.5);
-    let sym = (&inertia * &ad_v - ad_v.transpose() * &inertia + bar) * half;
+    let sym = (bar - &inertia * &ad_v - ad_v.transpose() * &inertia) * half;
     let c_christoffel = &jt * &inertia * psi + &jt * sym * &j;
     let g = &jt * &inertia * &l * &vdot_base;
     Ok(ClosedForm {

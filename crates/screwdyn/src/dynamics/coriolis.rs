@@ -13,9 +13,13 @@ use nalgebra::DMatrix;
 /// `C_ij = Σ_k Γ_ijk q̇_k` (Christoffel symbols of the first kind, seed 004's `D_ijk`), so that
 /// `Ṁ − 2C` is skew-symmetric. Returns `ws.coriolis_matrix`.
 ///
-/// It is the seeds' closed form `C = Jᵀ 𝔍 J̇ − Jᵀ ad_Vᵀ 𝔍 J` (seed 001) with the per-body term
-/// `−ad_Vᵀ 𝔍` replaced by the factorisation `B(𝔍, V) = ½(𝔍 ad_V − ad_Vᵀ 𝔍 + (𝔍V)⊼)`, which has
-/// the same product with `V` (because `ad_V V = 0`) but makes `C` Christoffel-consistent
+/// The seeds' closed form `C = Jᵀ 𝔍 J̇ − Jᵀ ad_Vᵀ 𝔍 J` (seed 001) has the right product `C q̇`
+/// but in general **not** a skew-symmetric `Ṁ − 2C` (the tests show it on random trees). With
+/// `Ψ = J̇ + ad_V J` (the base-frame rate of the Jacobian columns, written in the link frames) it
+/// reads `C = Jᵀ 𝔍 Ψ + Jᵀ(−𝔍 ad_V − ad_Vᵀ 𝔍) J`; this function replaces the per-body term by
+/// `B(𝔍, V) = ½(−ad_Vᵀ 𝔍 − 𝔍 ad_V + (𝔍V)⊼)`, `(h)⊼ X = −ad_Xᵀ h` (the factorisation of
+/// Echeandia & Wensing), which has the same product with `V` (because `ad_V V = 0`) and makes
+/// `C` Christoffel-consistent
 /// (see [`ClosedForm::c_christoffel`](super::ClosedForm)). Computed in the base frame, where
 /// column `j` of every link Jacobian is the same screw `s_j = Ad_{H_j^0} S_j` with
 /// `ṡ_j = ad_{V_j} s_j`, and subtree sums of `𝔍` and `B` (composite bodies) give
@@ -51,7 +55,7 @@ pub fn coriolis_matrix<'w, T: Real>(
         let inertia = model.bodies()[i].inertia.transformed(x);
         let im = inertia.matrix();
         let adv = ad_matrix(&vs);
-        ws.cor_b[i] = (im * adv - adv.transpose() * im + bar_matrix(&inertia.apply(&vs))) * half;
+        ws.cor_b[i] = (bar_matrix(&inertia.apply(&vs)) - im * adv - adv.transpose() * im) * half;
         ws.cor_inertia[i] = im;
     }
     for i in (0..n).rev() {
