@@ -34,7 +34,10 @@ fn check<T: Real>(what: &str, values: &[(&str, T)]) -> Result<()> {
 /// A solid box of mass `m` and sides `w` (along x), `l` (y), `h` (z), about its centre of mass:
 /// `diag(m(l² + h²)/12, m(w² + h²)/12, m(w² + l²)/12)` (seed 003).
 pub fn cuboid<T: Real>(m: T, w: T, l: T, h: T) -> Result<Matrix3<T>> {
-    check("box", &[("mass", m), ("width", w), ("length", l), ("height", h)])?;
+    check(
+        "box",
+        &[("mass", m), ("width", w), ("length", l), ("height", h)],
+    )?;
     let k = m / real(12.0);
     Ok(Matrix3::from_diagonal(&Vector3::new(
         k * (l * l + h * h),
@@ -52,7 +55,10 @@ pub fn cuboid<T: Real>(m: T, w: T, l: T, h: T) -> Result<Matrix3<T>> {
 /// assert_eq!(i[(0, 1)], -3.0 * 2.0);        // −m/4 w l
 /// ```
 pub fn box_about_corner<T: Real>(m: T, w: T, l: T, h: T) -> Result<Matrix3<T>> {
-    check("box", &[("mass", m), ("width", w), ("length", l), ("height", h)])?;
+    check(
+        "box",
+        &[("mass", m), ("width", w), ("length", l), ("height", h)],
+    )?;
     let (t, q) = (m / real(3.0), m / real(4.0));
     Ok(Matrix3::new(
         t * (l * l + h * h),
@@ -79,7 +85,12 @@ pub fn solid_cylinder<T: Real>(m: T, r: T, h: T) -> Result<Matrix3<T>> {
 pub fn hollow_cylinder<T: Real>(m: T, r_in: T, r_out: T, h: T) -> Result<Matrix3<T>> {
     check(
         "cylinder",
-        &[("mass", m), ("inner radius", r_in), ("outer radius", r_out), ("height", h)],
+        &[
+            ("mass", m),
+            ("inner radius", r_in),
+            ("outer radius", r_out),
+            ("height", h),
+        ],
     )?;
     if r_in > r_out {
         return Err(Error::InvalidModel(format!(
@@ -88,7 +99,11 @@ pub fn hollow_cylinder<T: Real>(m: T, r_in: T, r_out: T, h: T) -> Result<Matrix3
     }
     let s = r_in * r_in + r_out * r_out;
     let a = m * (s * real(3.0) + h * h) / real(12.0);
-    Ok(Matrix3::from_diagonal(&Vector3::new(a, a, m * s / real(2.0))))
+    Ok(Matrix3::from_diagonal(&Vector3::new(
+        a,
+        a,
+        m * s / real(2.0),
+    )))
 }
 
 /// A solid sphere of mass `m` and radius `r`: `2/5 m r²` about every axis through the centre.
@@ -119,7 +134,7 @@ pub fn thin_rod<T: Real>(m: T, length: T) -> Result<Matrix3<T>> {
 /// use screwdyn::inertia::{parallel_axis, thin_rod};
 /// // A rod about its end: m L²/3.
 /// let end = parallel_axis(&thin_rod(3.0, 2.0).unwrap(), 3.0, &Vector3::new(0.0, 0.0, 1.0));
-/// assert!((end[(0, 0)] - 4.0).abs() < 1e-15);
+/// assert!((end[(0, 0)] - 4.0_f64).abs() < 1e-15);
 /// ```
 pub fn parallel_axis<T: Real>(i_com: &Matrix3<T>, m: T, p_c: &Vector3<T>) -> Matrix3<T> {
     i_com + parallel_axis_term(m, p_c)
@@ -157,7 +172,7 @@ pub fn rotate<T: Real>(i: &Matrix3<T>, r: &Matrix3<T>) -> Matrix3<T> {
 /// let c = combine(&[a, b]);
 /// assert_eq!(c.mass, 2.0);
 /// assert_eq!(c.com, Vector3::zeros());
-/// assert!((c.inertia_com[(1, 1)] - 2.0).abs() < 1e-15); // two unit masses at 1 m
+/// assert!((c.inertia_com[(1, 1)] - 2.0_f64).abs() < 1e-15); // two unit masses at 1 m
 /// ```
 pub fn combine<T: Real>(bodies: &[SpatialInertia<T>]) -> SpatialInertia<T> {
     bodies

@@ -46,7 +46,8 @@ fn random_external(model: &Model, rng: &mut StdRng) -> ExternalWrenches {
         }
     }
     let tool = model.frame_id("tool").unwrap();
-    ext.add_tip(model, tool, Vector6::from_vec(random_vec(rng, 6, 2.0))).unwrap();
+    ext.add_tip(model, tool, Vector6::from_vec(random_vec(rng, 6, 2.0)))
+        .unwrap();
     ext
 }
 
@@ -55,23 +56,49 @@ fn rnea_equals_the_closed_form() {
     for (model, mut rng) in models(1) {
         let n = model.nq();
         let mut ws = Workspace::new(&model);
-        let (q, v, a) = (random_vec(&mut rng, n, 2.0), random_vec(&mut rng, n, 2.0), random_vec(&mut rng, n, 2.0));
+        let (q, v, a) = (
+            random_vec(&mut rng, n, 2.0),
+            random_vec(&mut rng, n, 2.0),
+            random_vec(&mut rng, n, 2.0),
+        );
         let ext = random_external(&model, &mut rng);
         let cf = closed_form(&model, &q, &v).unwrap();
-        let tau = inverse_dynamics(&model, &mut ws, &q, &v, &a, Some(&ext)).unwrap().clone();
-        assert_close(tau.as_slice(), cf.inverse_dynamics(&a, Some(&ext)).as_slice(), 1e-9, "τ with W_ext");
+        let tau = inverse_dynamics(&model, &mut ws, &q, &v, &a, Some(&ext))
+            .unwrap()
+            .clone();
+        assert_close(
+            tau.as_slice(),
+            cf.inverse_dynamics(&a, Some(&ext)).as_slice(),
+            1e-9,
+            "τ with W_ext",
+        );
         let tau = rnea(&model, &mut ws, &q, &v, &a).unwrap().clone();
-        assert_close(tau.as_slice(), cf.inverse_dynamics(&a, None).as_slice(), 1e-9, "τ");
+        assert_close(
+            tau.as_slice(),
+            cf.inverse_dynamics(&a, None).as_slice(),
+            1e-9,
+            "τ",
+        );
         // Seed 000: V = L S θ̇ equals the recursion's body twists.
         for i in 0..n {
-            assert_close(ws.twist[i].as_slice(), cf.v.rows(6 * i, 6).as_slice(), 1e-9, "V");
+            assert_close(
+                ws.twist[i].as_slice(),
+                cf.v.rows(6 * i, 6).as_slice(),
+                1e-9,
+                "V",
+            );
         }
         // L(θ) = (I − A)⁻¹: the closed form is the inverse.
         let eye = DMatrix::<f64>::identity(6 * n, 6 * n);
         let prod = (&eye - &cf.a) * &cf.l;
         assert_close(&mat(&prod), &mat(&eye), 1e-9, "(I − A) L");
         // g(q) = Sᵀ Lᵀ 𝔍 L V̇_base and C q̇ + g = RNEA with q̈ = 0 (seeds' C, literally).
-        assert_close(gravity_torque(&model, &mut ws, &q).unwrap().as_slice(), cf.g.as_slice(), 1e-9, "g");
+        assert_close(
+            gravity_torque(&model, &mut ws, &q).unwrap().as_slice(),
+            cf.g.as_slice(),
+            1e-9,
+            "g",
+        );
         let h = nonlinear_effects(&model, &mut ws, &q, &v).unwrap().clone();
         let h_cf = &cf.c * &cf.qdot + &cf.g;
         assert_close(h.as_slice(), h_cf.as_slice(), 1e-9, "C q̇ + g (seed C)");
@@ -98,15 +125,29 @@ fn mass_matrix_crba_closed_form_walker_orin_and_link_sum() {
         for i in 0..n {
             link_jacobian(&model, &ws, i, &mut j);
             let ji = DMatrix::from_column_slice(6, n, j.as_slice());
-            let im = DMatrix::from_column_slice(6, 6, model.bodies()[i].inertia.matrix().as_slice());
+            let im =
+                DMatrix::from_column_slice(6, 6, model.bodies()[i].inertia.matrix().as_slice());
             sum += ji.transpose() * im * ji;
         }
         assert_close(&mat(&m), &mat(&sum), 1e-9, "M: CRBA vs Σ Jᵀ𝔍J");
         // Walker–Orin builds M column by column.
-        forward_dynamics(&model, &mut ws, &q, &vec![0.0; n], &vec![0.0; n], ForwardMethod::WalkerOrin).unwrap();
+        forward_dynamics(
+            &model,
+            &mut ws,
+            &q,
+            &vec![0.0; n],
+            &vec![0.0; n],
+            ForwardMethod::WalkerOrin,
+        )
+        .unwrap();
         assert_close(&mat(&ws.mass_matrix), &mat(&m), 1e-9, "M: Walker–Orin");
         let minv = mass_matrix_inverse(&model, &mut ws, &q).unwrap().clone();
-        assert_close(&mat(&(&m * minv)), &mat(&DMatrix::identity(n, n)), 1e-9, "M M⁻¹");
+        assert_close(
+            &mat(&(&m * minv)),
+            &mat(&DMatrix::identity(n, n)),
+            1e-9,
+            "M M⁻¹",
+        );
         // ½ q̇ᵀ M q̇ = ½ Σ Vᵀ 𝔍 V.
         let v = random_vec(&mut rng, n, 2.0);
         let k1 = kinetic_energy(&model, &mut ws, &q, &v).unwrap();
@@ -132,7 +173,12 @@ fn coriolis_matrix_is_christoffel_consistent_and_mdot_minus_2c_is_skew() {
         let (q, v) = (random_vec(&mut rng, n, 2.0), random_vec(&mut rng, n, 2.0));
         let c = coriolis_matrix(&model, &mut ws, &q, &v).unwrap().clone();
         let cf = closed_form(&model, &q, &v).unwrap();
-        assert_close(&mat(&c), &mat(&cf.c_christoffel), 1e-9, "C: recursion vs closed form C♯");
+        assert_close(
+            &mat(&c),
+            &mat(&cf.c_christoffel),
+            1e-9,
+            "C: recursion vs closed form C♯",
+        );
         // C q̇ = RNEA bias without gravity.
         let h = nonlinear_effects(&model, &mut ws, &q, &v).unwrap().clone();
         let g = gravity_torque(&model, &mut ws, &q).unwrap().clone();
@@ -142,7 +188,10 @@ fn coriolis_matrix_is_christoffel_consistent_and_mdot_minus_2c_is_skew() {
         let mdot = mass_fd(&model, &mut ws, &q, &v, 1e-5);
         let s = &mdot - &c * 2.0;
         let sym = (&s + s.transpose()) * 0.5;
-        assert!(sym.amax() < 1e-6 * (1.0 + mdot.amax()), "Ṁ − 2C not skew: {sym}");
+        assert!(
+            sym.amax() < 1e-6 * (1.0 + mdot.amax()),
+            "Ṁ − 2C not skew: {sym}"
+        );
         // C_ij = Σ_k D_ijk q̇_k with seed 004's Christoffel symbols.
         let d = lagrange_coefficients(&model, &q).unwrap();
         let from_d = DMatrix::from_fn(n, n, |i, j| (0..n).map(|k| d.d(i, j, k) * v[k]).sum());
@@ -156,7 +205,10 @@ fn coriolis_matrix_is_christoffel_consistent_and_mdot_minus_2c_is_skew() {
     // Finding: the seeds' literal C = Sᵀ Lᵀ[−𝔍 L ad_{Sθ̇} A − ad_Vᵀ 𝔍] L S has the right C q̇ (checked
     // in `rnea_equals_the_closed_form`) but Ṁ − 2C is not skew-symmetric for general inertias:
     // its symmetric part is Jᵀ(−ad_Vᵀ𝔍 − 𝔍 ad_V)J-like. This assertion documents it.
-    assert!(!seed_c_skew_everywhere, "the seeds' literal C turned out skew-consistent everywhere");
+    assert!(
+        !seed_c_skew_everywhere,
+        "the seeds' literal C turned out skew-consistent everywhere"
+    );
 }
 
 #[test]
@@ -177,11 +229,20 @@ fn christoffel_symbols_match_finite_differences_of_m() {
             for j in 0..n {
                 for k in 0..n {
                     let fd = 0.5 * (dm[k][(i, j)] + dm[j][(i, k)] - dm[i][(j, k)]);
-                    assert!((d.d(i, j, k) - fd).abs() < 1e-6 * (1.0 + fd.abs()), "D_{i}{j}{k}: {} vs {fd}", d.d(i, j, k));
+                    assert!(
+                        (d.d(i, j, k) - fd).abs() < 1e-6 * (1.0 + fd.abs()),
+                        "D_{i}{j}{k}: {} vs {fd}",
+                        d.d(i, j, k)
+                    );
                 }
             }
         }
-        assert_close(&mat(&d.d_ij), &mat(crba(&model, &mut ws, &q).unwrap()), 1e-12, "D_ij");
+        assert_close(
+            &mat(&d.d_ij),
+            &mat(crba(&model, &mut ws, &q).unwrap()),
+            1e-12,
+            "D_ij",
+        );
     }
 }
 
@@ -190,21 +251,46 @@ fn forward_dynamics_three_ways_invert_rnea() {
     for (model, mut rng) in models(5) {
         let n = model.nq();
         let mut ws = Workspace::new(&model);
-        let (q, v, tau) = (random_vec(&mut rng, n, 2.0), random_vec(&mut rng, n, 2.0), random_vec(&mut rng, n, 5.0));
+        let (q, v, tau) = (
+            random_vec(&mut rng, n, 2.0),
+            random_vec(&mut rng, n, 2.0),
+            random_vec(&mut rng, n, 5.0),
+        );
         let ext = random_external(&model, &mut rng);
         let mut results = Vec::new();
-        for method in [ForwardMethod::Aba, ForwardMethod::Crba, ForwardMethod::WalkerOrin] {
+        for method in [
+            ForwardMethod::Aba,
+            ForwardMethod::Crba,
+            ForwardMethod::WalkerOrin,
+        ] {
             for fext in [None, Some(&ext)] {
-                let qdd = forward_dynamics_with(&model, &mut ws, &q, &v, &tau, fext, method).unwrap().clone();
+                let qdd = forward_dynamics_with(&model, &mut ws, &q, &v, &tau, fext, method)
+                    .unwrap()
+                    .clone();
                 let back = inverse_dynamics(&model, &mut ws, &q, &v, qdd.as_slice(), fext).unwrap();
-                assert_close(back.as_slice(), &tau, 1e-9, &format!("RNEA(ABA) {method:?}"));
+                assert_close(
+                    back.as_slice(),
+                    &tau,
+                    1e-9,
+                    &format!("RNEA(ABA) {method:?}"),
+                );
                 if fext.is_none() {
                     results.push(qdd);
                 }
             }
         }
-        assert_close(results[0].as_slice(), results[1].as_slice(), 1e-9, "ABA vs CRBA");
-        assert_close(results[0].as_slice(), results[2].as_slice(), 1e-9, "ABA vs Walker–Orin");
+        assert_close(
+            results[0].as_slice(),
+            results[1].as_slice(),
+            1e-9,
+            "ABA vs CRBA",
+        );
+        assert_close(
+            results[0].as_slice(),
+            results[2].as_slice(),
+            1e-9,
+            "ABA vs Walker–Orin",
+        );
     }
 }
 
@@ -215,19 +301,32 @@ fn power_balance_without_gravity_and_energy_with_it() {
         for gravity in [Vector3::zeros(), model.gravity()] {
             let model = model.with_gravity(gravity);
             let mut ws = Workspace::new(&model);
-            let (q, v, tau) = (random_vec(&mut rng, n, 2.0), random_vec(&mut rng, n, 2.0), random_vec(&mut rng, n, 5.0));
-            let a = forward_dynamics(&model, &mut ws, &q, &v, &tau, ForwardMethod::Aba).unwrap().clone();
+            let (q, v, tau) = (
+                random_vec(&mut rng, n, 2.0),
+                random_vec(&mut rng, n, 2.0),
+                random_vec(&mut rng, n, 5.0),
+            );
+            let a = forward_dynamics(&model, &mut ws, &q, &v, &tau, ForwardMethod::Aba)
+                .unwrap()
+                .clone();
             // dE/dt = ∂E/∂q · q̇ + ∂E/∂q̇ · q̈ by central differences of the link-sum energy
             // (seed 001) plus the potential energy.
             let h = 1e-5;
             let mut e = |q: &[f64], v: &[f64]| {
-                kinetic_energy(&model, &mut ws, q, v).unwrap() + potential_energy(&model, &mut ws, q).unwrap()
+                kinetic_energy(&model, &mut ws, q, v).unwrap()
+                    + potential_energy(&model, &mut ws, q).unwrap()
             };
-            let shift = |x: &[f64], d: &[f64], s: f64| -> Vec<f64> { x.iter().zip(d).map(|(a, b)| a + s * b).collect() };
+            let shift = |x: &[f64], d: &[f64], s: f64| -> Vec<f64> {
+                x.iter().zip(d).map(|(a, b)| a + s * b).collect()
+            };
             let de = (e(&shift(&q, &v, h), &v) - e(&shift(&q, &v, -h), &v)) / (2.0 * h)
-                + (e(&q, &shift(&v, a.as_slice(), h)) - e(&q, &shift(&v, a.as_slice(), -h))) / (2.0 * h);
+                + (e(&q, &shift(&v, a.as_slice(), h)) - e(&q, &shift(&v, a.as_slice(), -h)))
+                    / (2.0 * h);
             let p: f64 = tau.iter().zip(&v).map(|(t, w)| t * w).sum();
-            assert!((de - p).abs() < 1e-6 * (1.0 + p.abs()), "dE/dt = {de}, τ·q̇ = {p}");
+            assert!(
+                (de - p).abs() < 1e-6 * (1.0 + p.abs()),
+                "dE/dt = {de}, τ·q̇ = {p}"
+            );
         }
     }
 }
@@ -250,7 +349,12 @@ fn gravity_by_jacobian_transpose_equals_gravity_by_base_acceleration() {
             link_jacobian(&model, &ws, i, &mut j);
             sum -= j.transpose() * w;
         }
-        assert_close(g.as_slice(), sum.as_slice(), 1e-9, "g: Jᵀ W_grv vs base acceleration");
+        assert_close(
+            g.as_slice(),
+            sum.as_slice(),
+            1e-9,
+            "g: Jᵀ W_grv vs base acceleration",
+        );
     }
 }
 
@@ -259,25 +363,43 @@ fn tip_and_world_wrenches_are_jacobian_transposes() {
     for (model, mut rng) in models(8) {
         let n = model.nq();
         let mut ws = Workspace::new(&model);
-        let (q, v, a) = (random_vec(&mut rng, n, 2.0), random_vec(&mut rng, n, 2.0), random_vec(&mut rng, n, 2.0));
+        let (q, v, a) = (
+            random_vec(&mut rng, n, 2.0),
+            random_vec(&mut rng, n, 2.0),
+            random_vec(&mut rng, n, 2.0),
+        );
         let free = rnea(&model, &mut ws, &q, &v, &a).unwrap().clone();
         let w = Vector6::from_vec(random_vec(&mut rng, 6, 3.0));
         let tool = model.frame_id("tool").unwrap();
         // Tip: τ = … + J_eᵀ W_tip (seed 000), J_e the body Jacobian of the tool frame.
         let mut ext = ExternalWrenches::new(&model);
         ext.add_tip(&model, tool, w).unwrap();
-        let with = inverse_dynamics(&model, &mut ws, &q, &v, &a, Some(&ext)).unwrap().clone();
+        let with = inverse_dynamics(&model, &mut ws, &q, &v, &a, Some(&ext))
+            .unwrap()
+            .clone();
         compute_joint_jacobians(&model, &mut ws, &q).unwrap();
         let mut je = Matrix6xX::zeros(n);
         frame_jacobian(&model, &ws, tool, Reference::Local, &mut je);
-        assert_close((with - &free).as_slice(), (je.transpose() * w).as_slice(), 1e-9, "tip");
+        assert_close(
+            (with - &free).as_slice(),
+            (je.transpose() * w).as_slice(),
+            1e-9,
+            "tip",
+        );
         // A world-frame wrench on body b: τ = … − J_bᵀ W with the space Jacobian.
         let b = rng.gen_range(0..n);
         let mut ext = ExternalWrenches::new(&model);
         ext.add_world(b, w).unwrap();
-        let with = inverse_dynamics(&model, &mut ws, &q, &v, &a, Some(&ext)).unwrap().clone();
+        let with = inverse_dynamics(&model, &mut ws, &q, &v, &a, Some(&ext))
+            .unwrap()
+            .clone();
         let mut js = Matrix6xX::zeros(n);
         frame_jacobian(&model, &ws, model.body_frame(b), Reference::World, &mut js);
-        assert_close((&free - with).as_slice(), (js.transpose() * w).as_slice(), 1e-9, "world wrench");
+        assert_close(
+            (&free - with).as_slice(),
+            (js.transpose() * w).as_slice(),
+            1e-9,
+            "world wrench",
+        );
     }
 }

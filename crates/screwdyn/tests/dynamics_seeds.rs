@@ -50,7 +50,12 @@ impl Planar2 {
 
 #[test]
 fn planar2_mass_coriolis_gravity_match_seed_003() {
-    let arm = Planar2 { l1: 0.7, l2: 0.4, m1: 1.3, m2: 0.8 };
+    let arm = Planar2 {
+        l1: 0.7,
+        l2: 0.4,
+        m1: 1.3,
+        m2: 0.8,
+    };
     let model = builtin::planar2_with(arm.l1, arm.l2, arm.m1, arm.m2);
     let mut ws = Workspace::new(&model);
     for &(q, qd, qdd) in &[
@@ -60,12 +65,27 @@ fn planar2_mass_coriolis_gravity_match_seed_003() {
     ] {
         let mm = arm.mass(q[1]);
         let m = crba(&model, &mut ws, &q).unwrap().clone();
-        assert_close(m.as_slice(), &[mm[0][0], mm[1][0], mm[0][1], mm[1][1]], 1e-12, "M");
+        assert_close(
+            m.as_slice(),
+            &[mm[0][0], mm[1][0], mm[0][1], mm[1][1]],
+            1e-12,
+            "M",
+        );
         let cv = arm.coriolis(q[1], qd);
         let g = arm.gravity(q);
-        assert_close(gravity_torque(&model, &mut ws, &q).unwrap().as_slice(), &g, 1e-12, "g");
+        assert_close(
+            gravity_torque(&model, &mut ws, &q).unwrap().as_slice(),
+            &g,
+            1e-12,
+            "g",
+        );
         let h = nonlinear_effects(&model, &mut ws, &q, &qd).unwrap().clone();
-        assert_close(h.as_slice(), &[cv[0] + g[0], cv[1] + g[1]], 1e-12, "C q̇ + g");
+        assert_close(
+            h.as_slice(),
+            &[cv[0] + g[0], cv[1] + g[1]],
+            1e-12,
+            "C q̇ + g",
+        );
         let c = coriolis_matrix(&model, &mut ws, &q, &qd).unwrap().clone();
         let cq = c * DVector::from_column_slice(&qd);
         assert_close(cq.as_slice(), &cv, 1e-12, "C(q, q̇) q̇");
@@ -73,10 +93,20 @@ fn planar2_mass_coriolis_gravity_match_seed_003() {
         let tau: Vec<f64> = (0..2)
             .map(|i| mm[i][0] * qdd[0] + mm[i][1] * qdd[1] + cv[i] + g[i])
             .collect();
-        assert_close(rnea(&model, &mut ws, &q, &qd, &qdd).unwrap().as_slice(), &tau, 1e-12, "τ");
+        assert_close(
+            rnea(&model, &mut ws, &q, &qd, &qdd).unwrap().as_slice(),
+            &tau,
+            1e-12,
+            "τ",
+        );
         // The closed form of seeds 000/001 too.
         let cf = closed_form(&model, &q, &qd).unwrap();
-        assert_close(cf.inverse_dynamics(&qdd, None).as_slice(), &tau, 1e-12, "closed-form τ");
+        assert_close(
+            cf.inverse_dynamics(&qdd, None).as_slice(),
+            &tau,
+            1e-12,
+            "closed-form τ",
+        );
         assert_close(cf.g.as_slice(), &g, 1e-12, "closed-form g");
     }
 }
@@ -95,7 +125,12 @@ fn seed_004_effective_inertia_table() {
     for (deg, d11, d21, d22, locked, free) in table {
         let q = [0.4, f64::to_radians(deg)];
         let m = crba(&model, &mut ws, &q).unwrap().clone();
-        assert_close(&[m[(0, 0)], m[(1, 0)], m[(1, 1)]], &[d11, d21, d22], 1e-12, "D");
+        assert_close(
+            &[m[(0, 0)], m[(1, 0)], m[(1, 1)]],
+            &[d11, d21, d22],
+            1e-12,
+            "D",
+        );
         let l = effective_inertia_locked(&model, &mut ws, &q, 0).unwrap();
         let f = effective_inertia_free(&model, &mut ws, &q, 0).unwrap();
         assert_close(&[l, f], &[locked, free], 1e-12, "effective inertia");
@@ -137,10 +172,18 @@ fn seed_004_christoffel_coefficients() {
 /// test applies that change of coordinate.
 #[test]
 fn modern_robotics_inverse_dynamics_example() {
-    let m01 = Matrix4::new(1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0.089159, 0., 0., 0., 1.);
-    let m12 = Matrix4::new(0., 0., 1., 0.28, 0., 1., 0., 0.13585, -1., 0., 0., 0., 0., 0., 0., 1.);
-    let m23 = Matrix4::new(1., 0., 0., 0., 0., 1., 0., -0.1197, 0., 0., 1., 0.395, 0., 0., 0., 1.);
-    let m34 = Matrix4::new(1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0.14225, 0., 0., 0., 1.);
+    let m01 = Matrix4::new(
+        1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0.089159, 0., 0., 0., 1.,
+    );
+    let m12 = Matrix4::new(
+        0., 0., 1., 0.28, 0., 1., 0., 0.13585, -1., 0., 0., 0., 0., 0., 0., 1.,
+    );
+    let m23 = Matrix4::new(
+        1., 0., 0., 0., 0., 1., 0., -0.1197, 0., 0., 1., 0.395, 0., 0., 0., 1.,
+    );
+    let m34 = Matrix4::new(
+        1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0.14225, 0., 0., 0., 1.,
+    );
     let homes = [m01, m12, m23].map(|m| Se3::from_matrix(&m));
     let glist = [
         (0.010267, 0.010267, 0.00666, 3.7),
@@ -160,13 +203,17 @@ fn modern_robotics_inverse_dynamics_example() {
     for i in 0..3 {
         m_i = m_i.compose(&homes[i]);
         let (ixx, iyy, izz, mass) = glist[i];
-        let inertia =
-            SpatialInertia::new(mass, Vector3::zeros(), Matrix3::from_diagonal(&Vector3::new(ixx, iyy, izz)));
+        let inertia = SpatialInertia::new(
+            mass,
+            Vector3::zeros(),
+            Matrix3::from_diagonal(&Vector3::new(ixx, iyy, izz)),
+        );
         let name = format!("link{}", i + 1);
         b.link(
             &name,
             &parent,
-            JointSpec::revolute(&format!("joint{}", i + 1)).screw_in_child(m_i.inverse().act_twist(&slist[i])),
+            JointSpec::revolute(&format!("joint{}", i + 1))
+                .screw_in_child(m_i.inverse().act_twist(&slist[i])),
             homes[i],
             inertia,
         );
@@ -175,14 +222,26 @@ fn modern_robotics_inverse_dynamics_example() {
     b.frame("ee", "link3", Se3::from_matrix(&m34));
     let model = b.build().unwrap();
     let mut ws = Workspace::new(&model);
-    let (q, v, a) = ([0.1 * k, 0.1, 0.1], [0.1 * k, 0.2, 0.3], [2.0 * k, 1.5, 1.0]);
+    let (q, v, a) = (
+        [0.1 * k, 0.1, 0.1],
+        [0.1 * k, 0.2, 0.3],
+        [2.0 * k, 1.5, 1.0],
+    );
     let mut ext = ExternalWrenches::new(&model);
-    ext.add_tip(&model, model.frame_id("ee").unwrap(), Vector6::repeat(1.0)).unwrap();
-    let mut tau = inverse_dynamics(&model, &mut ws, &q, &v, &a, Some(&ext)).unwrap().clone();
+    ext.add_tip(&model, model.frame_id("ee").unwrap(), Vector6::repeat(1.0))
+        .unwrap();
+    let mut tau = inverse_dynamics(&model, &mut ws, &q, &v, &a, Some(&ext))
+        .unwrap()
+        .clone();
     tau[0] *= k;
     let expected: [f64; 3] = [74.69616155, -33.06766016, -3.23057314];
     for i in 0..3 {
-        assert!((tau[i] - expected[i]).abs() < 1e-6, "τ{i} = {} vs {}", tau[i], expected[i]);
+        assert!(
+            (tau[i] - expected[i]).abs() < 1e-6,
+            "τ{i} = {} vs {}",
+            tau[i],
+            expected[i]
+        );
     }
     // The closed form with the same tip wrench agrees.
     let cf = closed_form(&model, &q, &v).unwrap();
@@ -199,15 +258,32 @@ fn bad_input_is_an_error_not_a_panic() {
     assert!(matches!(e, Error::DimensionMismatch { .. }), "{e}");
     let e = aba(&model, &mut ws, &[0.0, 0.0], &[f64::NAN, 0.0], &[0.0, 0.0]).unwrap_err();
     assert!(matches!(e, Error::NonFinite { .. }), "{e}");
-    let e = forward_dynamics(&model, &mut ws, &[0.0, 0.0], &[0.0, 0.0], &[0.0], ForwardMethod::Crba)
-        .unwrap_err();
+    let e = forward_dynamics(
+        &model,
+        &mut ws,
+        &[0.0, 0.0],
+        &[0.0, 0.0],
+        &[0.0],
+        ForwardMethod::Crba,
+    )
+    .unwrap_err();
     assert!(e.to_string().contains("tau has 1 values"), "{e}");
     let mut ext = ExternalWrenches::new(&model);
     assert!(ext.add_local(5, Vector6::zeros()).is_err());
-    assert!(ext.add_tip(&model, model.frame_id("base").unwrap(), Vector6::zeros()).is_err());
+    assert!(ext
+        .add_tip(&model, model.frame_id("base").unwrap(), Vector6::zeros())
+        .is_err());
     let other = builtin::pendulum();
     let ext1 = ExternalWrenches::new(&other);
-    assert!(inverse_dynamics(&model, &mut ws, &[0.0; 2], &[0.0; 2], &[0.0; 2], Some(&ext1)).is_err());
+    assert!(inverse_dynamics(
+        &model,
+        &mut ws,
+        &[0.0; 2],
+        &[0.0; 2],
+        &[0.0; 2],
+        Some(&ext1)
+    )
+    .is_err());
 }
 
 #[test]
@@ -229,9 +305,20 @@ fn massless_chain_is_a_numerical_error() {
     );
     let model = b.build().unwrap();
     let mut ws = Workspace::new(&model);
-    for method in [ForwardMethod::Aba, ForwardMethod::Crba, ForwardMethod::WalkerOrin] {
-        let e = forward_dynamics(&model, &mut ws, &[0.1, 0.2], &[0.0, 0.0], &[1.0, 1.0], method)
-            .unwrap_err();
+    for method in [
+        ForwardMethod::Aba,
+        ForwardMethod::Crba,
+        ForwardMethod::WalkerOrin,
+    ] {
+        let e = forward_dynamics(
+            &model,
+            &mut ws,
+            &[0.1, 0.2],
+            &[0.0, 0.0],
+            &[1.0, 1.0],
+            method,
+        )
+        .unwrap_err();
         assert!(matches!(e, Error::Numerical(_)), "{method:?}: {e}");
         assert!(e.to_string().contains("singular"), "{method:?}: {e}");
     }
@@ -243,8 +330,12 @@ fn f32_smoke() {
     let m32: screwdyn::Model<f32> = m64.cast();
     let mut w64 = Workspace::new(&m64);
     let mut w32 = Workspace::new(&m32);
-    let t64 = rnea(&m64, &mut w64, &[0.3, 0.4], &[1.0, -1.0], &[0.5, 0.2]).unwrap().clone();
-    let t32 = rnea(&m32, &mut w32, &[0.3, 0.4], &[1.0, -1.0], &[0.5, 0.2]).unwrap().clone();
+    let t64 = rnea(&m64, &mut w64, &[0.3, 0.4], &[1.0, -1.0], &[0.5, 0.2])
+        .unwrap()
+        .clone();
+    let t32 = rnea(&m32, &mut w32, &[0.3, 0.4], &[1.0, -1.0], &[0.5, 0.2])
+        .unwrap()
+        .clone();
     for i in 0..2 {
         assert!((t32[i] as f64 - t64[i]).abs() < 1e-4);
     }

@@ -75,7 +75,11 @@ fn check(model: &Model) {
         nonlinear_effects(model, ws, &q, &v).unwrap();
         aba(model, ws, &q, &v, &a).unwrap();
         aba_with(model, ws, &q, &v, &a, Some(&ext)).unwrap();
-        for m in [ForwardMethod::Aba, ForwardMethod::Crba, ForwardMethod::WalkerOrin] {
+        for m in [
+            ForwardMethod::Aba,
+            ForwardMethod::Crba,
+            ForwardMethod::WalkerOrin,
+        ] {
             forward_dynamics(model, ws, &q, &v, &a, m).unwrap();
             forward_dynamics_with(model, ws, &q, &v, &a, Some(&ext), m).unwrap();
         }

@@ -98,7 +98,8 @@ pub fn aba_with<'w, T: Real>(
             return Err(Error::Numerical(format!(
                 "forward dynamics failed: the articulated inertia seen by joint '{}' is {:?}, so \
                  the mass matrix is singular (is the chain beyond it massless?)",
-                model.joints()[i].name, d
+                model.joints()[i].name,
+                d
             )));
         }
         let small_u = tau[i] - s.dot(&ws.articulated_bias[i]);

@@ -92,7 +92,8 @@ impl<T: Real> CompositeInertia<T> {
     pub fn matrix(&self) -> nalgebra::Matrix6<T> {
         let mut m = nalgebra::Matrix6::zeros();
         let hh = hat(&self.first_moment);
-        m.fixed_view_mut::<3, 3>(0, 0).copy_from(&self.inertia_origin);
+        m.fixed_view_mut::<3, 3>(0, 0)
+            .copy_from(&self.inertia_origin);
         m.fixed_view_mut::<3, 3>(0, 3).copy_from(&hh);
         m.fixed_view_mut::<3, 3>(3, 0).copy_from(&hh.transpose());
         m.fixed_view_mut::<3, 3>(3, 3)

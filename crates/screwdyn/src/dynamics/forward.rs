@@ -95,7 +95,14 @@ fn prepare<T: Real>(
     }
     forward_kinematics(model, ws, q)?;
     // b = C q̇ + g − Σ Jᵀ W_ext: RNEA with q̈ = 0.
-    rnea_passes(model, ws, Some(v), |_| T::zero(), &base_acceleration(model), fext);
+    rnea_passes(
+        model,
+        ws,
+        Some(v),
+        |_| T::zero(),
+        &base_acceleration(model),
+        fext,
+    );
     ws.bias.copy_from(&ws.tau);
     Ok(())
 }

@@ -164,9 +164,9 @@ pub fn effective_inertia<T: Real>(
     }
     let mff = DMatrix::from_fn(f.len(), f.len(), |a, b| m[(f[a], f[b])]);
     let mfi = DVector::from_fn(f.len(), |a, _| m[(f[a], joint)]);
-    let chol = mff.cholesky().ok_or_else(|| {
-        Error::Numerical("the mass matrix of the free joints is singular".into())
-    })?;
+    let chol = mff
+        .cholesky()
+        .ok_or_else(|| Error::Numerical("the mass matrix of the free joints is singular".into()))?;
     let x = chol.solve(&mfi);
     Ok(mii - mfi.dot(&x))
 }

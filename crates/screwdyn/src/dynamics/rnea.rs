@@ -33,7 +33,10 @@ pub(crate) fn rnea_passes<T: Real>(
     for (i, joint) in model.joints().iter().enumerate() {
         let h = &ws.pose_in_parent[i];
         let (v_par, vd_par) = match model.parent(i) {
-            Some(p) => (h.inv_act_twist(&ws.twist[p]), h.inv_act_twist(&ws.twist_dot[p])),
+            Some(p) => (
+                h.inv_act_twist(&ws.twist[p]),
+                h.inv_act_twist(&ws.twist_dot[p]),
+            ),
             None => (Twist::zeros(), h.inv_act_twist(base)),
         };
         let s_qd = match v {
@@ -116,7 +119,14 @@ pub fn inverse_dynamics<'w, T: Real>(
         f.check(model)?;
     }
     forward_kinematics(model, ws, q)?;
-    rnea_passes(model, ws, Some(v), |i| a[i], &base_acceleration(model), fext);
+    rnea_passes(
+        model,
+        ws,
+        Some(v),
+        |i| a[i],
+        &base_acceleration(model),
+        fext,
+    );
     Ok(&ws.tau)
 }
 
@@ -137,7 +147,14 @@ pub fn gravity_torque<'w, T: Real>(
     q: &[T],
 ) -> Result<&'w DVector<T>> {
     forward_kinematics(model, ws, q)?;
-    rnea_passes(model, ws, None, |_| T::zero(), &base_acceleration(model), None);
+    rnea_passes(
+        model,
+        ws,
+        None,
+        |_| T::zero(),
+        &base_acceleration(model),
+        None,
+    );
     ws.gravity_torque.copy_from(&ws.tau);
     Ok(&ws.gravity_torque)
 }
@@ -161,7 +178,14 @@ pub fn nonlinear_effects<'w, T: Real>(
 ) -> Result<&'w DVector<T>> {
     model.check_vector(v, "v")?;
     forward_kinematics(model, ws, q)?;
-    rnea_passes(model, ws, Some(v), |_| T::zero(), &base_acceleration(model), None);
+    rnea_passes(
+        model,
+        ws,
+        Some(v),
+        |_| T::zero(),
+        &base_acceleration(model),
+        None,
+    );
     ws.nonlinear_effects.copy_from(&ws.tau);
     Ok(&ws.nonlinear_effects)
 }

@@ -68,7 +68,11 @@ pub fn random_tree(rng: &mut StdRng, n: usize, mixed: bool) -> Model {
         let (spec, screw) = match kind {
             0 => (
                 JointSpec::revolute(&format!("j{i}")),
-                Vector6::from_iterator(axis.iter().copied().chain((-axis.cross(&point)).iter().copied())),
+                Vector6::from_iterator(
+                    axis.iter()
+                        .copied()
+                        .chain((-axis.cross(&point)).iter().copied()),
+                ),
             ),
             1 => (
                 JointSpec::prismatic(&format!("j{i}")),
@@ -92,7 +96,11 @@ pub fn random_tree(rng: &mut StdRng, n: usize, mixed: bool) -> Model {
             random_inertia(rng),
         );
     }
-    b.frame("tool", &format!("l{}", n - 1), Se3::new(rotation(rng), vec3(rng, 0.3)));
+    b.frame(
+        "tool",
+        &format!("l{}", n - 1),
+        Se3::new(rotation(rng), vec3(rng, 0.3)),
+    );
     b.build().expect("random tree is valid")
 }
 
