@@ -94,7 +94,8 @@ pub fn aba_with<'w, T: Real>(
         let s = &model.joints()[i].screw;
         let u = ws.articulated_inertia[i] * s;
         let d = s.dot(&u);
-        if !(d > tiny) {
+        // Written to also catch NaN.
+        if d.partial_cmp(&tiny) != Some(std::cmp::Ordering::Greater) {
             return Err(Error::Numerical(format!(
                 "forward dynamics failed: the articulated inertia seen by joint '{}' is {:?}, so \
                  the mass matrix is singular (is the chain beyond it massless?)",

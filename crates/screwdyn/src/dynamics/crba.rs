@@ -174,7 +174,7 @@ pub(crate) fn cholesky_in_place<T: Real>(a: &mut DMatrix<T>) -> std::result::Res
         for k in 0..j {
             d -= a[(j, k)] * a[(j, k)];
         }
-        if !(d > tiny) {
+        if d.partial_cmp(&tiny) != Some(std::cmp::Ordering::Greater) {
             return Err(j);
         }
         let d = d.sqrt();

@@ -124,7 +124,7 @@ pub fn center_of_mass<T: Real>(
         m += b.inertia.mass;
         c += h.act_point(&b.inertia.com) * b.inertia.mass;
     }
-    if !(m > T::zero()) {
+    if m.partial_cmp(&T::zero()) != Some(std::cmp::Ordering::Greater) {
         return Err(Error::Numerical(
             "the centre of mass is undefined: the moving bodies have no mass".into(),
         ));

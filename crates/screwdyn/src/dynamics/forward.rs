@@ -110,8 +110,8 @@ fn prepare<T: Real>(
 fn solve<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, tau: &[T]) -> Result<()> {
     ws.cholesky.copy_from(&ws.mass_matrix);
     cholesky_in_place(&mut ws.cholesky).map_err(|j| singular_error(model, j))?;
-    for i in 0..model.nv() {
-        ws.qdd[i] = tau[i] - ws.bias[i];
+    for (i, t) in tau.iter().enumerate() {
+        ws.qdd[i] = *t - ws.bias[i];
     }
     cholesky_solve_in_place(&ws.cholesky, ws.qdd.column_mut(0));
     if ws.qdd.iter().all(|x| x.is_finite()) {

@@ -63,7 +63,7 @@ pub fn mass_matrix_derivatives<T: Real>(model: &Model<T>, q: &[T]) -> Result<Vec
     for k in 0..n {
         let adk = ad_matrix(&s[k]);
         let mut dm = DMatrix::zeros(n, n);
-        for i in 0..n {
+        for (i, inertia_i) in inertia.iter().enumerate() {
             if !model.supports(k, i) {
                 continue;
             }
@@ -77,8 +77,8 @@ pub fn mass_matrix_derivatives<T: Real>(model: &Model<T>, q: &[T]) -> Result<Vec
                     }
                 }
             }
-            let im = DMatrix::from_column_slice(6, 6, inertia[i].as_slice());
-            let d_im_f = -(adk.transpose() * inertia[i] + inertia[i] * adk);
+            let im = DMatrix::from_column_slice(6, 6, inertia_i.as_slice());
+            let d_im_f = -(adk.transpose() * inertia_i + inertia_i * adk);
             let d_im = DMatrix::from_column_slice(6, 6, d_im_f.as_slice());
             let a = dj_i.transpose() * &im * &j_i;
             dm += &a + a.transpose() + j_i.transpose() * d_im * &j_i;
