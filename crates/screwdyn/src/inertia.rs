@@ -1,1 +1,195 @@
-//! Inertia tensors of common shapes, the parallel-axis theorem and consistency checks (seed 003).
+//! Inertia tensors of common shapes, the parallel-axis theorem both ways, rotation and
+//! combination of inertias, and the physical-consistency check (seed 003, "Mass Distribution").
+//!
+//! Tensors are 3×3 rotational inertias `ᴬI = [Ixx −Ixy −Ixz; −Ixy Iyy −Iyz; −Ixz −Iyz Izz]`
+//! (seed 003's sign convention: products of inertia enter negated), in kg·m².
+//!
+//! ```
+//! use nalgebra::Vector3;
+//! use screwdyn::inertia;
+//! // Seed 003: a box of mass m and sides w (x), l (y), h (z) about its corner …
+//! let (m, w, l, h) = (2.0, 0.3, 0.2, 0.1);
+//! let corner = inertia::box_about_corner(m, w, l, h).unwrap();
+//! // … and about its centre of mass, by the parallel-axis theorem backwards.
+//! let com = inertia::parallel_axis_to_com(&corner, m, &Vector3::new(w / 2.0, l / 2.0, h / 2.0));
+//! assert!((com - inertia::cuboid(m, w, l, h).unwrap()).amax() < 1e-15);
+//! ```
+
+use crate::error::{Error, Result};
+use crate::scalar::{real, Real};
+use crate::spatial::{parallel_axis_term, SpatialInertia};
+use nalgebra::{Matrix3, Vector3};
+
+fn check<T: Real>(what: &str, values: &[(&str, T)]) -> Result<()> {
+    for (name, v) in values {
+        if !v.is_finite() || *v < T::zero() {
+            return Err(Error::InvalidModel(format!(
+                "the {name} of the {what} must be a finite non-negative number, got {v:?}"
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// A solid box of mass `m` and sides `w` (along x), `l` (y), `h` (z), about its centre of mass:
+/// `diag(m(l² + h²)/12, m(w² + h²)/12, m(w² + l²)/12)` (seed 003).
+pub fn cuboid<T: Real>(m: T, w: T, l: T, h: T) -> Result<Matrix3<T>> {
+    check(
+        "box",
+        &[("mass", m), ("width", w), ("length", l), ("height", h)],
+    )?;
+    let k = m / real(12.0);
+    Ok(Matrix3::from_diagonal(&Vector3::new(
+        k * (l * l + h * h),
+        k * (w * w + h * h),
+        k * (w * w + l * l),
+    )))
+}
+
+/// The same box about the corner at the origin, the body filling `[0,w]×[0,l]×[0,h]`
+/// (seed 003's worked example): `Ixx = m(l² + h²)/3`, `Ixy = m w l / 4` (entered negated), ….
+///
+/// ```
+/// let i = screwdyn::inertia::box_about_corner(12.0, 1.0, 2.0, 3.0).unwrap();
+/// assert_eq!(i[(0, 0)], 4.0 * (4.0 + 9.0)); // m/3 (l² + h²)
+/// assert_eq!(i[(0, 1)], -3.0 * 2.0);        // −m/4 w l
+/// ```
+pub fn box_about_corner<T: Real>(m: T, w: T, l: T, h: T) -> Result<Matrix3<T>> {
+    check(
+        "box",
+        &[("mass", m), ("width", w), ("length", l), ("height", h)],
+    )?;
+    let (t, q) = (m / real(3.0), m / real(4.0));
+    Ok(Matrix3::new(
+        t * (l * l + h * h),
+        -q * w * l,
+        -q * h * w,
+        -q * w * l,
+        t * (w * w + h * h),
+        -q * h * l,
+        -q * h * w,
+        -q * h * l,
+        t * (w * w + l * l),
+    ))
+}
+
+/// A solid cylinder of mass `m`, radius `r` and height `h`, axis along z, about its centre of
+/// mass: `Ixx = Iyy = m(3r² + h²)/12`, `Izz = m r²/2` (seed 003, tutorial question 1).
+pub fn solid_cylinder<T: Real>(m: T, r: T, h: T) -> Result<Matrix3<T>> {
+    hollow_cylinder(m, T::zero(), r, h)
+}
+
+/// A thick-walled tube of mass `m`, radii `r_in ≤ r_out` and height `h`, axis along z, about its
+/// centre of mass: `Ixx = Iyy = m(3(r_in² + r_out²) + h²)/12`, `Izz = m(r_in² + r_out²)/2`
+/// (`r_in = r_out` is a thin shell).
+pub fn hollow_cylinder<T: Real>(m: T, r_in: T, r_out: T, h: T) -> Result<Matrix3<T>> {
+    check(
+        "cylinder",
+        &[
+            ("mass", m),
+            ("inner radius", r_in),
+            ("outer radius", r_out),
+            ("height", h),
+        ],
+    )?;
+    if r_in > r_out {
+        return Err(Error::InvalidModel(format!(
+            "the inner radius of the cylinder ({r_in:?}) exceeds its outer radius ({r_out:?})"
+        )));
+    }
+    let s = r_in * r_in + r_out * r_out;
+    let a = m * (s * real(3.0) + h * h) / real(12.0);
+    Ok(Matrix3::from_diagonal(&Vector3::new(
+        a,
+        a,
+        m * s / real(2.0),
+    )))
+}
+
+/// A solid sphere of mass `m` and radius `r`: `2/5 m r²` about every axis through the centre.
+pub fn solid_sphere<T: Real>(m: T, r: T) -> Result<Matrix3<T>> {
+    check("sphere", &[("mass", m), ("radius", r)])?;
+    Ok(Matrix3::identity() * (m * r * r * real(0.4)))
+}
+
+/// A thin spherical shell: `2/3 m r²`.
+pub fn hollow_sphere<T: Real>(m: T, r: T) -> Result<Matrix3<T>> {
+    check("sphere", &[("mass", m), ("radius", r)])?;
+    Ok(Matrix3::identity() * (m * r * r * real(2.0 / 3.0)))
+}
+
+/// A thin rod of mass `m` and length `length` along z, about its centre:
+/// `Ixx = Iyy = m L²/12`, `Izz = 0`.
+pub fn thin_rod<T: Real>(m: T, length: T) -> Result<Matrix3<T>> {
+    check("rod", &[("mass", m), ("length", length)])?;
+    let a = m * length * length / real(12.0);
+    Ok(Matrix3::from_diagonal(&Vector3::new(a, a, T::zero())))
+}
+
+/// Parallel-axis theorem (seed 003): `ᴬI = ᶜI + m(P_Cᵀ P_C 1 − P_C P_Cᵀ)`, the inertia about a
+/// frame `{A}` in which the centre of mass sits at `p_c` (axes parallel to the CoM frame's).
+///
+/// ```
+/// use nalgebra::Vector3;
+/// use screwdyn::inertia::{parallel_axis, thin_rod};
+/// // A rod about its end: m L²/3.
+/// let end = parallel_axis(&thin_rod(3.0, 2.0).unwrap(), 3.0, &Vector3::new(0.0, 0.0, 1.0));
+/// assert!((end[(0, 0)] - 4.0_f64).abs() < 1e-15);
+/// ```
+pub fn parallel_axis<T: Real>(i_com: &Matrix3<T>, m: T, p_c: &Vector3<T>) -> Matrix3<T> {
+    i_com + parallel_axis_term(m, p_c)
+}
+
+/// The parallel-axis theorem backwards (seed 003): `ᶜI = ᴬI − m(P_Cᵀ P_C 1 − P_C P_Cᵀ)`.
+pub fn parallel_axis_to_com<T: Real>(i_a: &Matrix3<T>, m: T, p_c: &Vector3<T>) -> Matrix3<T> {
+    i_a - parallel_axis_term(m, p_c)
+}
+
+/// The inertia written in a rotated frame: `ᴮI = R ᴬI Rᵀ` with `R = R_A^B`, the orientation of
+/// frame `{A}` in frame `{B}`.
+///
+/// ```
+/// use nalgebra::{Matrix3, Vector3};
+/// use screwdyn::{inertia::{cuboid, rotate}, spatial::exp_so3};
+/// let i = cuboid(1.0, 1.0, 2.0, 3.0).unwrap();
+/// // Turning the box a quarter turn about z swaps Ixx and Iyy.
+/// let r = exp_so3(&Vector3::new(0.0, 0.0, std::f64::consts::FRAC_PI_2));
+/// let j = rotate(&i, &r);
+/// assert!((j[(0, 0)] - i[(1, 1)]).abs() < 1e-15);
+/// ```
+pub fn rotate<T: Real>(i: &Matrix3<T>, r: &Matrix3<T>) -> Matrix3<T> {
+    r * i * r.transpose()
+}
+
+/// The spatial inertia of several rigid bodies joined together, all given in the same frame
+/// (masses add, the CoM is mass-weighted, inertias about the origin add).
+///
+/// ```
+/// use nalgebra::Vector3;
+/// use screwdyn::{inertia::combine, spatial::SpatialInertia};
+/// let a = SpatialInertia::point_mass(1.0, Vector3::new(1.0, 0.0, 0.0));
+/// let b = SpatialInertia::point_mass(1.0, Vector3::new(-1.0, 0.0, 0.0));
+/// let c = combine(&[a, b]);
+/// assert_eq!(c.mass, 2.0);
+/// assert_eq!(c.com, Vector3::zeros());
+/// assert!((c.inertia_com[(1, 1)] - 2.0_f64).abs() < 1e-15); // two unit masses at 1 m
+/// ```
+pub fn combine<T: Real>(bodies: &[SpatialInertia<T>]) -> SpatialInertia<T> {
+    bodies
+        .iter()
+        .fold(SpatialInertia::zero(), |acc, b| acc.combined(b))
+}
+
+/// Physical consistency of a spatial inertia (non-negative mass, symmetric positive
+/// semi-definite rotational inertia obeying the triangle inequality); `Err` names the reason.
+///
+/// ```
+/// use nalgebra::{Matrix3, Vector3};
+/// use screwdyn::{inertia::check_physical, spatial::SpatialInertia};
+/// let bad = SpatialInertia::new(1.0, Vector3::zeros(), Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, 3.0)));
+/// assert!(check_physical(&bad).unwrap_err().to_string().contains("triangle"));
+/// ```
+pub fn check_physical<T: Real>(i: &SpatialInertia<T>) -> Result<()> {
+    i.check_physical()
+        .map_err(|why| Error::InvalidModel(format!("the inertia {why}")))
+}

@@ -1,8 +1,10 @@
 //! [`Workspace`]: everything an algorithm writes, allocated once per model (Pinocchio's `Data`).
 
+use crate::dynamics::CompositeInertia;
 use crate::model::Model;
 use crate::scalar::Real;
 use crate::spatial::{Se3, Twist, Wrench};
+use nalgebra::{DMatrix, DVector, Matrix6};
 
 /// Preallocated per-model buffers. Algorithms read a [`Model`] and write here; after
 /// `Workspace::new` no algorithm call allocates.
@@ -31,6 +33,50 @@ pub struct Workspace<T: Real = f64> {
     pub twist_dot: Vec<Twist<T>>,
     /// `W_{λ(i)}^{i,i}`: wrench of the parent on body `i`, in frame `i`.
     pub wrench: Vec<Wrench<T>>,
+
+    /// `τ`: joint torques from inverse dynamics ([`rnea`](crate::dynamics::rnea)).
+    pub tau: DVector<T>,
+    /// `M(q)`: the joint-space mass matrix (full, symmetric) from
+    /// [`crba`](crate::dynamics::crba).
+    pub mass_matrix: DMatrix<T>,
+    /// `M(q)⁻¹` from [`mass_matrix_inverse`](crate::dynamics::mass_matrix_inverse).
+    pub mass_matrix_inverse: DMatrix<T>,
+    /// `C(q, q̇)` from [`coriolis_matrix`](crate::dynamics::coriolis_matrix).
+    pub coriolis_matrix: DMatrix<T>,
+    /// `g(q)` from [`gravity_torque`](crate::dynamics::gravity_torque).
+    pub gravity_torque: DVector<T>,
+    /// `C(q, q̇) q̇ + g(q)` from [`nonlinear_effects`](crate::dynamics::nonlinear_effects).
+    pub nonlinear_effects: DVector<T>,
+    /// `q̈`: joint accelerations from forward dynamics.
+    pub qdd: DVector<T>,
+
+    /// CRBA: composite spatial inertia of the subtree rooted at body `i`, in frame `i`.
+    pub composite_inertia: Vec<CompositeInertia<T>>,
+    /// ABA: articulated-body inertia `𝔍ᴬ_i` in frame `i`.
+    pub articulated_inertia: Vec<Matrix6<T>>,
+    /// ABA: articulated bias wrench `pᴬ_i` in frame `i`.
+    pub articulated_bias: Vec<Wrench<T>>,
+    /// ABA: velocity-product acceleration `c_i = −ad_{S_i q̇_i}(Ad V_{λ(i)})`.
+    pub bias_acceleration: Vec<Twist<T>>,
+    /// ABA: `U_i = 𝔍ᴬ_i S_i`.
+    pub aba_u: Vec<Wrench<T>>,
+    /// ABA: `D_i = S_iᵀ U_i`.
+    pub aba_d: DVector<T>,
+    /// ABA: `u_i = τ_i − S_iᵀ pᴬ_i`.
+    pub aba_small_u: DVector<T>,
+    /// Forward dynamics by CRBA: the Cholesky factor of `M` (lower triangle).
+    pub cholesky: DMatrix<T>,
+    /// Forward dynamics: the bias `b = C q̇ + g − Σ Jᵀ W_ext` (seed 004 §6.4).
+    pub bias: DVector<T>,
+
+    /// Coriolis matrix: joint screw `s_j = Ad_{H_j^0} S_j` in the base frame.
+    pub(crate) cor_s: Vec<Twist<T>>,
+    /// Coriolis matrix: its time derivative `ṡ_j = ad_{V_j^{0,0}} s_j`.
+    pub(crate) cor_sdot: Vec<Twist<T>>,
+    /// Coriolis matrix: composite world-frame inertia of the subtree of `j`.
+    pub(crate) cor_inertia: Vec<Matrix6<T>>,
+    /// Coriolis matrix: composite world-frame `B(𝔍, V)` of the subtree of `j`.
+    pub(crate) cor_b: Vec<Matrix6<T>>,
 }
 
 impl<T: Real> Workspace<T> {
@@ -44,6 +90,26 @@ impl<T: Real> Workspace<T> {
             twist: vec![Twist::zeros(); n],
             twist_dot: vec![Twist::zeros(); n],
             wrench: vec![Wrench::zeros(); n],
+            tau: DVector::zeros(n),
+            mass_matrix: DMatrix::zeros(n, n),
+            mass_matrix_inverse: DMatrix::zeros(n, n),
+            coriolis_matrix: DMatrix::zeros(n, n),
+            gravity_torque: DVector::zeros(n),
+            nonlinear_effects: DVector::zeros(n),
+            qdd: DVector::zeros(n),
+            composite_inertia: vec![CompositeInertia::zero(); n],
+            articulated_inertia: vec![Matrix6::zeros(); n],
+            articulated_bias: vec![Wrench::zeros(); n],
+            bias_acceleration: vec![Twist::zeros(); n],
+            aba_u: vec![Wrench::zeros(); n],
+            aba_d: DVector::zeros(n),
+            aba_small_u: DVector::zeros(n),
+            cholesky: DMatrix::zeros(n, n),
+            bias: DVector::zeros(n),
+            cor_s: vec![Twist::zeros(); n],
+            cor_sdot: vec![Twist::zeros(); n],
+            cor_inertia: vec![Matrix6::zeros(); n],
+            cor_b: vec![Matrix6::zeros(); n],
         }
     }
 }

@@ -29,7 +29,7 @@ use nalgebra::{Matrix3, Matrix6, Vector3};
 /// assert_eq!(j[(0, 0)], 0.0);
 /// // Kinetic energy of a pure translation at 3 m/s: ½ m v².
 /// let v = Vector6::new(0.0, 0.0, 0.0, 3.0, 0.0, 0.0);
-/// assert!((i.kinetic_energy(&v) - 9.0).abs() < 1e-15);
+/// assert!((i.kinetic_energy(&v) - 9.0_f64).abs() < 1e-15);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SpatialInertia<T: Real = f64> {

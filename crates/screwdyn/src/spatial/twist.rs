@@ -85,7 +85,8 @@ pub fn ad<T: Real>(v: &Twist<T>, x: &Twist<T>) -> Twist<T> {
 /// let (v, x, w) = (Vector6::new(0.1_f64, -0.2, 0.3, 1.0, 2.0, 3.0),
 ///                  Vector6::new(0.5, 0.1, -0.7, 0.2, 0.0, 1.0),
 ///                  Vector6::new(1.0, 2.0, 3.0, -1.0, 0.5, 0.2));
-/// assert!((ad_transpose(&v, &w).dot(&x) - w.dot(&ad(&v, &x))).abs() < 1e-14);
+/// let r: f64 = ad_transpose(&v, &w).dot(&x) - w.dot(&ad(&v, &x));
+/// assert!(r.abs() < 1e-14);
 /// ```
 #[inline]
 pub fn ad_transpose<T: Real>(v: &Twist<T>, w: &Wrench<T>) -> Wrench<T> {

@@ -1,0 +1,248 @@
+//! The joint-space mass matrix by the composite-rigid-body algorithm (O(n²) on a tree), and its
+//! inverse.
+
+use crate::error::{Error, Result};
+use crate::kinematics::forward_kinematics;
+use crate::model::Model;
+use crate::scalar::Real;
+use crate::spatial::{hat, Se3, SpatialInertia, Twist, Wrench};
+use crate::workspace::Workspace;
+use nalgebra::{DMatrix, Matrix3, Vector3, Vector6};
+
+/// A spatial inertia stored by the parameters it is linear in — mass `m`, first moment `h = m c`
+/// and rotational inertia `I_o` about the frame origin — so that the inertias of several bodies
+/// add exactly (composite bodies of the CRBA). `𝔍 = [I_o [h]; [h]ᵀ m·1]`.
+///
+/// ```
+/// use nalgebra::{Matrix3, Vector3};
+/// use screwdyn::{dynamics::CompositeInertia, spatial::{Se3, SpatialInertia}};
+/// let a = SpatialInertia::new(2.0, Vector3::new(0.1, 0.0, 0.3), Matrix3::identity() * 0.2);
+/// let h = Se3::from_rpy(0.1, 0.2, 0.3).with_translation(Vector3::new(1.0, 2.0, 3.0));
+/// let c = CompositeInertia::from(&a).transformed(&h);
+/// assert!((c.matrix() - a.transformed(&h).matrix()).amax() < 1e-12);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CompositeInertia<T: Real = f64> {
+    /// `m`.
+    pub mass: T,
+    /// `h = m c`.
+    pub first_moment: Vector3<T>,
+    /// `I_o = I_c + m([c]ᵀ[c])`: rotational inertia about the frame origin.
+    pub inertia_origin: Matrix3<T>,
+}
+
+impl<T: Real> From<&SpatialInertia<T>> for CompositeInertia<T> {
+    fn from(i: &SpatialInertia<T>) -> Self {
+        CompositeInertia {
+            mass: i.mass,
+            first_moment: i.com * i.mass,
+            inertia_origin: i.inertia_about_origin(),
+        }
+    }
+}
+
+impl<T: Real> CompositeInertia<T> {
+    /// Nothing.
+    pub fn zero() -> Self {
+        CompositeInertia {
+            mass: T::zero(),
+            first_moment: Vector3::zeros(),
+            inertia_origin: Matrix3::zeros(),
+        }
+    }
+
+    /// The sum of two inertias given in the same frame.
+    #[inline]
+    pub fn add(&mut self, o: &CompositeInertia<T>) {
+        self.mass += o.mass;
+        self.first_moment += o.first_moment;
+        self.inertia_origin += o.inertia_origin;
+    }
+
+    /// This inertia, given in frame `b`, written in frame `a`, where `h = H_b^a`:
+    /// `Ad_{H_a^b}ᵀ 𝔍 Ad_{H_a^b}`.
+    #[inline]
+    pub fn transformed(&self, h: &Se3<T>) -> Self {
+        let r = &h.rotation;
+        let p = &h.translation;
+        let rh = r * self.first_moment;
+        let hp = hat(p);
+        let hrh = hat(&rh);
+        CompositeInertia {
+            mass: self.mass,
+            first_moment: rh + p * self.mass,
+            inertia_origin: r * self.inertia_origin * r.transpose()
+                - hrh * hp
+                - hp * hrh
+                - hp * hp * self.mass,
+        }
+    }
+
+    /// `𝔍 V = (I_o ω + h × v, m v − h × ω)`.
+    #[inline]
+    pub fn apply(&self, v: &Twist<T>) -> Wrench<T> {
+        let w = Vector3::new(v[0], v[1], v[2]);
+        let l = Vector3::new(v[3], v[4], v[5]);
+        let a = self.inertia_origin * w + self.first_moment.cross(&l);
+        let f = l * self.mass - self.first_moment.cross(&w);
+        Vector6::new(a.x, a.y, a.z, f.x, f.y, f.z)
+    }
+
+    /// The 6×6 matrix `𝔍`.
+    pub fn matrix(&self) -> nalgebra::Matrix6<T> {
+        let mut m = nalgebra::Matrix6::zeros();
+        let hh = hat(&self.first_moment);
+        m.fixed_view_mut::<3, 3>(0, 0)
+            .copy_from(&self.inertia_origin);
+        m.fixed_view_mut::<3, 3>(0, 3).copy_from(&hh);
+        m.fixed_view_mut::<3, 3>(3, 0).copy_from(&hh.transpose());
+        m.fixed_view_mut::<3, 3>(3, 3)
+            .copy_from(&(Matrix3::identity() * self.mass));
+        m
+    }
+}
+
+/// The mass matrix `M(q)` by the composite-rigid-body algorithm: composite inertias
+/// `𝔍ᶜ_i = 𝔍_i + Σ_children Ad_{H_i^c}ᵀ 𝔍ᶜ_c Ad_{H_i^c}` (backward), then
+/// `M_ij = S_iᵀ Ad_{H_i^j}ᵀ 𝔍ᶜ_j S_j` for every `i` supporting `j`, walking up the tree. Equal
+/// to the seeds' `M = Sᵀ Lᵀ 𝔍 L S` (seed 000) and to seed 001's `Σ_i J_iᵀ 𝔍^{i,i} J_i`.
+/// Returns `ws.mass_matrix` (both triangles filled).
+///
+/// ```
+/// use screwdyn::{builtin, dynamics::crba, Workspace};
+/// let m = builtin::planar2();
+/// let mut ws = Workspace::new(&m);
+/// let mm = crba(&m, &mut ws, &[0.0, 0.0]).unwrap();
+/// // Seed 004: D11 = 5, D12 = 2, D22 = 1 at θ2 = 0 (all masses and lengths 1).
+/// assert!((mm[(0, 0)] - 5.0).abs() < 1e-12 && (mm[(0, 1)] - 2.0).abs() < 1e-12);
+/// ```
+pub fn crba<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+) -> Result<&'w DMatrix<T>> {
+    forward_kinematics(model, ws, q)?;
+    crba_given_poses(model, ws);
+    Ok(&ws.mass_matrix)
+}
+
+/// Alias of [`crba`]: the joint-space mass matrix `M(q)`.
+pub fn mass_matrix<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+) -> Result<&'w DMatrix<T>> {
+    crba(model, ws, q)
+}
+
+pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) {
+    let n = model.nbodies();
+    for i in 0..n {
+        ws.composite_inertia[i] = CompositeInertia::from(&model.bodies()[i].inertia);
+    }
+    for i in (0..n).rev() {
+        if let Some(p) = model.parent(i) {
+            let c = ws.composite_inertia[i].transformed(&ws.pose_in_parent[i]);
+            ws.composite_inertia[p].add(&c);
+        }
+    }
+    // Bodies on different branches do not couple: those entries stay zero.
+    ws.mass_matrix.fill(T::zero());
+    for i in 0..n {
+        let si = &model.joints()[i].screw;
+        let mut f = ws.composite_inertia[i].apply(si);
+        ws.mass_matrix[(i, i)] = si.dot(&f);
+        let mut k = i;
+        while let Some(p) = model.parent(k) {
+            f = ws.pose_in_parent[k].inv_act_transpose_wrench(&f);
+            k = p;
+            let mij = model.joints()[k].screw.dot(&f);
+            ws.mass_matrix[(k, i)] = mij;
+            ws.mass_matrix[(i, k)] = mij;
+        }
+    }
+}
+
+/// In-place Cholesky factorisation `M = L Lᵀ` of the symmetric matrix in `a` (lower triangle
+/// overwritten with `L`). `Err(pivot index)` when `M` is not positive definite.
+pub(crate) fn cholesky_in_place<T: Real>(a: &mut DMatrix<T>) -> std::result::Result<(), usize> {
+    let n = a.nrows();
+    let scale = (0..n).fold(T::zero(), |s, i| s.max(a[(i, i)].abs()));
+    let tiny = scale * T::default_epsilon() * crate::scalar::real(64.0);
+    for j in 0..n {
+        let mut d = a[(j, j)];
+        for k in 0..j {
+            d -= a[(j, k)] * a[(j, k)];
+        }
+        if d.partial_cmp(&tiny) != Some(std::cmp::Ordering::Greater) {
+            return Err(j);
+        }
+        let d = d.sqrt();
+        a[(j, j)] = d;
+        for i in j + 1..n {
+            let mut s = a[(i, j)];
+            for k in 0..j {
+                s -= a[(i, k)] * a[(j, k)];
+            }
+            a[(i, j)] = s / d;
+        }
+    }
+    Ok(())
+}
+
+/// Solves `L Lᵀ x = b` in place, with `L` in the lower triangle of `l`.
+pub(crate) fn cholesky_solve_in_place<T: Real>(
+    l: &DMatrix<T>,
+    mut b: nalgebra::DVectorViewMut<'_, T>,
+) {
+    let n = l.nrows();
+    for i in 0..n {
+        let mut s = b[i];
+        for k in 0..i {
+            s -= l[(i, k)] * b[k];
+        }
+        b[i] = s / l[(i, i)];
+    }
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for k in i + 1..n {
+            s -= l[(k, i)] * b[k];
+        }
+        b[i] = s / l[(i, i)];
+    }
+}
+
+pub(crate) fn singular_error<T: Real>(model: &Model<T>, j: usize) -> Error {
+    Error::Numerical(format!(
+        "the mass matrix is singular or not positive definite at joint '{}' (is the chain \
+         beyond it massless?)",
+        model.joints()[j].name
+    ))
+}
+
+/// `M(q)⁻¹` by CRBA and a Cholesky factorisation. Returns `ws.mass_matrix_inverse`;
+/// `Error::Numerical` when `M` is singular (e.g. a massless chain).
+///
+/// ```
+/// use screwdyn::{builtin, dynamics::mass_matrix_inverse, Workspace};
+/// let m = builtin::planar2();
+/// let mut ws = Workspace::new(&m);
+/// let minv = mass_matrix_inverse(&m, &mut ws, &[0.0, 1.0]).unwrap().clone();
+/// let eye = &ws.mass_matrix * minv;
+/// assert!((eye - nalgebra::DMatrix::<f64>::identity(2, 2)).amax() < 1e-12);
+/// ```
+pub fn mass_matrix_inverse<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+) -> Result<&'w DMatrix<T>> {
+    crba(model, ws, q)?;
+    ws.cholesky.copy_from(&ws.mass_matrix);
+    cholesky_in_place(&mut ws.cholesky).map_err(|j| singular_error(model, j))?;
+    ws.mass_matrix_inverse.fill(T::zero());
+    ws.mass_matrix_inverse.fill_diagonal(T::one());
+    for c in 0..model.nv() {
+        cholesky_solve_in_place(&ws.cholesky, ws.mass_matrix_inverse.column_mut(c));
+    }
+    Ok(&ws.mass_matrix_inverse)
+}

@@ -1,0 +1,133 @@
+//! Kinetic, potential and total energy, mechanical power and the centre of mass (seeds 001, 004).
+
+use super::crba::crba;
+use crate::error::{Error, Result};
+use crate::kinematics::{forward_kinematics, forward_velocity};
+use crate::model::Model;
+use crate::scalar::{real, Real};
+use crate::workspace::Workspace;
+use nalgebra::Vector3;
+
+/// Kinetic energy as the sum over links, `E_kin = ½ Σ_i V_iᵀ 𝔍^{i,i} V_i` (seed 001).
+///
+/// ```
+/// use screwdyn::{builtin, dynamics::kinetic_energy, Workspace};
+/// let m = builtin::pendulum();
+/// let mut ws = Workspace::new(&m);
+/// // ½ m l² q̇² for the 1 kg, 1 m pendulum.
+/// assert!((kinetic_energy(&m, &mut ws, &[0.3], &[2.0]).unwrap() - 2.0).abs() < 1e-12);
+/// ```
+pub fn kinetic_energy<T: Real>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+) -> Result<T> {
+    forward_velocity(model, ws, q, v)?;
+    Ok(model
+        .bodies()
+        .iter()
+        .zip(&ws.twist)
+        .fold(T::zero(), |e, (b, vi)| e + b.inertia.kinetic_energy(vi)))
+}
+
+/// Kinetic energy from the mass matrix, `½ q̇ᵀ M(q) q̇` (seed 001, seed 003).
+///
+/// ```
+/// use screwdyn::{builtin, dynamics::{kinetic_energy, kinetic_energy_mass_matrix}, Workspace};
+/// let m = builtin::planar2();
+/// let mut ws = Workspace::new(&m);
+/// let a = kinetic_energy_mass_matrix(&m, &mut ws, &[0.2, 0.4], &[1.0, -2.0]).unwrap();
+/// let b = kinetic_energy(&m, &mut ws, &[0.2, 0.4], &[1.0, -2.0]).unwrap();
+/// assert!((a - b).abs() < 1e-12);
+/// ```
+pub fn kinetic_energy_mass_matrix<T: Real>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+) -> Result<T> {
+    model.check_vector(v, "v")?;
+    let m = crba(model, ws, q)?;
+    let mut e = T::zero();
+    for i in 0..v.len() {
+        for j in 0..v.len() {
+            e += v[i] * m[(i, j)] * v[j];
+        }
+    }
+    Ok(e * real(0.5))
+}
+
+/// Potential energy of gravity, `P = −Σ_i m_i g⁰ · p_{c,i}⁰` (seed 004: `P = m g l sin θ` terms),
+/// zero with every centre of mass at the base origin.
+///
+/// ```
+/// use screwdyn::{builtin, dynamics::potential_energy, Workspace};
+/// let m = builtin::planar2();
+/// let mut ws = Workspace::new(&m);
+/// let (q1, q2) = (0.4_f64, 0.5_f64);
+/// // Seed 004: P = (m1 + m2) g l1 sin θ1 + m2 g l2 sin(θ1 + θ2).
+/// let p = potential_energy(&m, &mut ws, &[q1, q2]).unwrap();
+/// assert!((p - 9.81 * (2.0 * q1.sin() + (q1 + q2).sin())).abs() < 1e-12);
+/// ```
+pub fn potential_energy<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) -> Result<T> {
+    forward_kinematics(model, ws, q)?;
+    let g = model.gravity();
+    Ok(model
+        .bodies()
+        .iter()
+        .zip(&ws.pose_in_world)
+        .fold(T::zero(), |e, (b, h)| {
+            e - g.dot(&h.act_point(&b.inertia.com)) * b.inertia.mass
+        }))
+}
+
+/// Total mechanical energy `E_kin + P`.
+pub fn total_energy<T: Real>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+) -> Result<T> {
+    let k = kinetic_energy(model, ws, q, v)?;
+    let p = potential_energy(model, ws, q)?;
+    Ok(k + p)
+}
+
+/// Mechanical power delivered by the joints, `τ · q̇` (seed 001: `Wᵀ V = τ q̇`); with no gravity
+/// it equals `dE_kin/dt`.
+pub fn power<T: Real>(model: &Model<T>, tau: &[T], v: &[T]) -> Result<T> {
+    model.check_vector(tau, "tau")?;
+    model.check_vector(v, "v")?;
+    Ok(tau.iter().zip(v).fold(T::zero(), |s, (t, w)| s + *t * *w))
+}
+
+/// The centre of mass of the moving bodies in the base frame, `Σ m_i p_{c,i}⁰ / Σ m_i`;
+/// `Error::Numerical` when the robot has no mass.
+///
+/// ```
+/// use screwdyn::{builtin, dynamics::center_of_mass, Workspace};
+/// let m = builtin::planar2();
+/// let mut ws = Workspace::new(&m);
+/// let c = center_of_mass(&m, &mut ws, &[0.0, 0.0]).unwrap();
+/// assert!((c.x - 1.5).abs() < 1e-15); // masses at x = 1 and x = 2
+/// ```
+pub fn center_of_mass<T: Real>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    q: &[T],
+) -> Result<Vector3<T>> {
+    forward_kinematics(model, ws, q)?;
+    let mut m = T::zero();
+    let mut c = Vector3::zeros();
+    for (b, h) in model.bodies().iter().zip(&ws.pose_in_world) {
+        m += b.inertia.mass;
+        c += h.act_point(&b.inertia.com) * b.inertia.mass;
+    }
+    if m.partial_cmp(&T::zero()) != Some(std::cmp::Ordering::Greater) {
+        return Err(Error::Numerical(
+            "the centre of mass is undefined: the moving bodies have no mass".into(),
+        ));
+    }
+    Ok(c / m)
+}

@@ -1,0 +1,169 @@
+//! Forward dynamics three ways: ABA, CRBA + Cholesky, and the Walker–Orin simulator method of
+//! seed 004 §6.4.
+
+use super::aba::aba_with;
+use super::crba::{cholesky_in_place, cholesky_solve_in_place, crba_given_poses, singular_error};
+use super::rnea::{base_acceleration, rnea_passes};
+use super::wrenches::ExternalWrenches;
+use crate::error::{Error, Result};
+use crate::kinematics::forward_kinematics;
+use crate::model::Model;
+use crate::scalar::Real;
+use crate::spatial::Twist;
+use crate::workspace::Workspace;
+use nalgebra::DVector;
+
+/// How [`forward_dynamics`] solves `M q̈ = τ − b`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ForwardMethod {
+    /// Featherstone's articulated-body algorithm, O(n).
+    #[default]
+    Aba,
+    /// `M` by CRBA, `b` by RNEA, then a Cholesky solve, O(n³).
+    Crba,
+    /// Seed 004 §6.4 (Walker–Orin): `b` by RNEA with `q̈ = 0`, `M` column by column by RNEA with
+    /// `q̈ = e_j` and no velocity, gravity or external wrench, then solve `M q̈ = τ − b`.
+    WalkerOrin,
+}
+
+impl std::str::FromStr for ForwardMethod {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        match s {
+            "aba" => Ok(ForwardMethod::Aba),
+            "crba" => Ok(ForwardMethod::Crba),
+            "walker-orin" | "walker_orin" => Ok(ForwardMethod::WalkerOrin),
+            _ => Err(format!(
+                "unknown forward-dynamics method '{s}' (use aba, crba or walker-orin)"
+            )),
+        }
+    }
+}
+
+/// Forward dynamics `q̈ = M(q)⁻¹ (τ − C(q, q̇) q̇ − g(q))` by the chosen method (all three agree to
+/// round-off). Returns `ws.qdd`.
+///
+/// ```
+/// use screwdyn::{builtin, dynamics::{forward_dynamics, ForwardMethod}, Workspace};
+/// let m = builtin::planar2();
+/// let mut ws = Workspace::new(&m);
+/// let (q, v, tau) = ([0.3, 0.9], [0.5, -1.0], [2.0, 1.0]);
+/// let a = forward_dynamics(&m, &mut ws, &q, &v, &tau, ForwardMethod::Aba).unwrap().clone();
+/// let b = forward_dynamics(&m, &mut ws, &q, &v, &tau, ForwardMethod::WalkerOrin).unwrap().clone();
+/// assert!((a - b).amax() < 1e-12);
+/// ```
+pub fn forward_dynamics<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+    tau: &[T],
+    method: ForwardMethod,
+) -> Result<&'w DVector<T>> {
+    forward_dynamics_with(model, ws, q, v, tau, None, method)
+}
+
+/// [`forward_dynamics`] with external wrenches (seed 004 §6.4: `b = C q̇ + G + Kᵀ f_ext`).
+pub fn forward_dynamics_with<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+    tau: &[T],
+    fext: Option<&ExternalWrenches<T>>,
+    method: ForwardMethod,
+) -> Result<&'w DVector<T>> {
+    match method {
+        ForwardMethod::Aba => aba_with(model, ws, q, v, tau, fext),
+        ForwardMethod::Crba => forward_dynamics_crba(model, ws, q, v, tau, fext),
+        ForwardMethod::WalkerOrin => forward_dynamics_walker_orin(model, ws, q, v, tau, fext),
+    }
+}
+
+fn prepare<T: Real>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+    tau: &[T],
+    fext: Option<&ExternalWrenches<T>>,
+) -> Result<()> {
+    model.check_vector(v, "v")?;
+    model.check_vector(tau, "tau")?;
+    if let Some(f) = fext {
+        f.check(model)?;
+    }
+    forward_kinematics(model, ws, q)?;
+    // b = C q̇ + g − Σ Jᵀ W_ext: RNEA with q̈ = 0.
+    rnea_passes(
+        model,
+        ws,
+        Some(v),
+        |_| T::zero(),
+        &base_acceleration(model),
+        fext,
+    );
+    ws.bias.copy_from(&ws.tau);
+    Ok(())
+}
+
+fn solve<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, tau: &[T]) -> Result<()> {
+    ws.cholesky.copy_from(&ws.mass_matrix);
+    cholesky_in_place(&mut ws.cholesky).map_err(|j| singular_error(model, j))?;
+    for (i, t) in tau.iter().enumerate() {
+        ws.qdd[i] = *t - ws.bias[i];
+    }
+    cholesky_solve_in_place(&ws.cholesky, ws.qdd.column_mut(0));
+    if ws.qdd.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::Numerical(
+            "forward dynamics produced a non-finite acceleration (the mass matrix is nearly singular)"
+                .into(),
+        ))
+    }
+}
+
+/// Forward dynamics by CRBA (`M`), RNEA with `q̈ = 0` (`b`) and a Cholesky solve of
+/// `M q̈ = τ − b`. Returns `ws.qdd`.
+pub fn forward_dynamics_crba<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+    tau: &[T],
+    fext: Option<&ExternalWrenches<T>>,
+) -> Result<&'w DVector<T>> {
+    prepare(model, ws, q, v, tau, fext)?;
+    crba_given_poses(model, ws);
+    solve(model, ws, tau)?;
+    Ok(&ws.qdd)
+}
+
+/// Seed 004 §6.4, the Walker–Orin simulator: ① `b` = SUB1(q, q̇, q̈ = 0, f_ext) (RNEA);
+/// ② column `j` of `H(q)` = SUB2(q, q̈ = e_j) (RNEA without velocity, gravity or external
+/// wrenches); ③ solve `H q̈ = τ − b`. Returns `ws.qdd` (and leaves `M` in `ws.mass_matrix`).
+pub fn forward_dynamics_walker_orin<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+    tau: &[T],
+    fext: Option<&ExternalWrenches<T>>,
+) -> Result<&'w DVector<T>> {
+    prepare(model, ws, q, v, tau, fext)?;
+    let zero = Twist::zeros();
+    for j in 0..model.nv() {
+        rnea_passes(
+            model,
+            ws,
+            None,
+            |i| if i == j { T::one() } else { T::zero() },
+            &zero,
+            None,
+        );
+        ws.mass_matrix.set_column(j, &ws.tau);
+    }
+    solve(model, ws, tau)?;
+    Ok(&ws.qdd)
+}

@@ -1,0 +1,191 @@
+//! Inverse dynamics by the recursive Newton–Euler algorithm in the seeds' Lie-group form
+//! (seeds 000–002), with gravity as a base acceleration and external wrenches.
+
+use super::wrenches::ExternalWrenches;
+use crate::error::Result;
+use crate::kinematics::forward_kinematics;
+use crate::model::Model;
+use crate::scalar::Real;
+use crate::spatial::{ad, ad_transpose, twist, Twist};
+use crate::workspace::Workspace;
+use nalgebra::{DVector, Vector3};
+
+/// `V̇_base = (0, −g⁰)`: the base frame accelerating upwards stands in for gravity (seed 000,
+/// "Einstein's equivalence principle").
+#[inline]
+pub fn base_acceleration<T: Real>(model: &Model<T>) -> Twist<T> {
+    twist(Vector3::zeros(), -model.gravity())
+}
+
+/// Both passes of the RNEA given `ws.pose_in_parent`; `v = None` means `q̇ = 0`, `qdd(i)` gives
+/// `q̈_i`. Writes `ws.twist`, `ws.twist_dot`, `ws.wrench` and `ws.tau`.
+pub(crate) fn rnea_passes<T: Real>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    v: Option<&[T]>,
+    qdd: impl Fn(usize) -> T,
+    base: &Twist<T>,
+    fext: Option<&ExternalWrenches<T>>,
+) {
+    // Forward pass (seed 002):
+    //   V_i = Ad_{H_λ^i} V_λ + S_i q̇_i,  V̇_i = Ad_{H_λ^i} V̇_λ − ad_{S_i q̇_i}(Ad_{H_λ^i} V_λ) + S_i q̈_i
+    // and the Newton–Euler equation of each body W_i = 𝔍_i V̇_i − ad_{V_i}ᵀ 𝔍_i V_i − W_ext,i.
+    for (i, joint) in model.joints().iter().enumerate() {
+        let h = &ws.pose_in_parent[i];
+        let (v_par, vd_par) = match model.parent(i) {
+            Some(p) => (
+                h.inv_act_twist(&ws.twist[p]),
+                h.inv_act_twist(&ws.twist_dot[p]),
+            ),
+            None => (Twist::zeros(), h.inv_act_twist(base)),
+        };
+        let s_qd = match v {
+            Some(v) => joint.screw * v[i],
+            None => Twist::zeros(),
+        };
+        let vi = v_par + s_qd;
+        let vdi = vd_par - ad(&s_qd, &v_par) + joint.screw * qdd(i);
+        let inertia = &model.bodies()[i].inertia;
+        let mut w = inertia.apply(&vdi) - ad_transpose(&vi, &inertia.apply(&vi));
+        if let Some(f) = fext {
+            w -= f.on_body(ws, i);
+        }
+        ws.twist[i] = vi;
+        ws.twist_dot[i] = vdi;
+        ws.wrench[i] = w;
+    }
+    // Backward pass (seed 000): W_λ += Ad_{H_λ^i}ᵀ W_i, τ_i = S_iᵀ W_i.
+    for i in (0..model.nbodies()).rev() {
+        ws.tau[i] = model.joints()[i].screw.dot(&ws.wrench[i]);
+        if let Some(p) = model.parent(i) {
+            let back = ws.pose_in_parent[i].inv_act_transpose_wrench(&ws.wrench[i]);
+            ws.wrench[p] += back;
+        }
+    }
+}
+
+/// Inverse dynamics `τ = M(q) q̈ + C(q, q̇) q̇ + g(q)` by the recursive Newton–Euler algorithm
+/// (seeds 001/002; gravity as the base acceleration `(0, −g)` of seed 000). Trees are handled:
+/// the backward pass sums `Ad_{H_λ^i}ᵀ W_i` over all children. Returns `ws.tau`.
+///
+/// Forward pass: `V_i = Ad_{H_{λ(i)}^i} V_{λ(i)} + S_i q̇_i`,
+/// `V̇_i = Ad V̇_{λ(i)} − ad_{S_i q̇_i}(Ad V_{λ(i)}) + S_i q̈_i`.
+/// Backward pass: `W_i = 𝔍_i V̇_i − ad_{V_i}ᵀ 𝔍_i V_i + Σ_children Ad_{H_i^c}ᵀ W_c`, `τ_i = S_iᵀ W_i`.
+///
+/// ```
+/// use screwdyn::{builtin, dynamics::rnea, Workspace};
+/// let m = builtin::planar2(); // point masses, gravity −9.81 ŷ
+/// let mut ws = Workspace::new(&m);
+/// let tau = rnea(&m, &mut ws, &[0.0, 0.0], &[0.0, 0.0], &[0.0, 0.0]).unwrap();
+/// // Seed 003: g = [m2 g L2 c12 + (m1 + m2) g L1 c1, m2 g L2 c12] = [3g, g] at q = 0.
+/// assert!((tau[0] - 3.0 * 9.81).abs() < 1e-12 && (tau[1] - 9.81).abs() < 1e-12);
+/// ```
+pub fn rnea<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+    a: &[T],
+) -> Result<&'w DVector<T>> {
+    inverse_dynamics(model, ws, q, v, a, None)
+}
+
+/// [`rnea`] with external wrenches: `τ = M q̈ + C q̇ + g − Σ_i J_iᵀ W_ext,i (+ J_eᵀ W_tip)`
+/// (seed 000, "Adding External Wrenches"). Returns `ws.tau`.
+///
+/// ```
+/// use nalgebra::Vector6;
+/// use screwdyn::{builtin, dynamics::{inverse_dynamics, ExternalWrenches}, Workspace};
+/// let m = builtin::pendulum();
+/// let mut ws = Workspace::new(&m);
+/// // Hold the bob up against gravity from outside: the motor then needs no torque anywhere.
+/// let mut ext = ExternalWrenches::new(&m);
+/// ext.add_world(0, Vector6::new(0.0, 0.0, 0.0, 0.0, 9.81, 0.0)
+///     + Vector6::new(0.0, 0.0, 0.3_f64.sin() * 9.81, 0.0, 0.0, 0.0)).unwrap(); // f = m g ŷ at r = (sin q, −cos q, 0)
+/// let tau = inverse_dynamics(&m, &mut ws, &[0.3], &[0.0], &[0.0], Some(&ext)).unwrap();
+/// assert!(tau[0].abs() < 1e-12);
+/// ```
+pub fn inverse_dynamics<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+    a: &[T],
+    fext: Option<&ExternalWrenches<T>>,
+) -> Result<&'w DVector<T>> {
+    model.check_vector(v, "v")?;
+    model.check_vector(a, "a")?;
+    if let Some(f) = fext {
+        f.check(model)?;
+    }
+    forward_kinematics(model, ws, q)?;
+    rnea_passes(
+        model,
+        ws,
+        Some(v),
+        |i| a[i],
+        &base_acceleration(model),
+        fext,
+    );
+    Ok(&ws.tau)
+}
+
+/// Gravity torques `g(q)`: RNEA with `q̇ = q̈ = 0` (seed 000,
+/// `g(θ) = Sᵀ Lᵀ 𝔍 L V̇_base`). Returns `ws.gravity_torque`.
+///
+/// ```
+/// use screwdyn::{builtin, dynamics::gravity_torque, Workspace};
+/// let m = builtin::pendulum();
+/// let mut ws = Workspace::new(&m);
+/// // m g l sin q for a pendulum hanging along −y at q = 0.
+/// let g = gravity_torque(&m, &mut ws, &[0.5]).unwrap();
+/// assert!((g[0] - 9.81 * 0.5_f64.sin()).abs() < 1e-12);
+/// ```
+pub fn gravity_torque<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+) -> Result<&'w DVector<T>> {
+    forward_kinematics(model, ws, q)?;
+    rnea_passes(
+        model,
+        ws,
+        None,
+        |_| T::zero(),
+        &base_acceleration(model),
+        None,
+    );
+    ws.gravity_torque.copy_from(&ws.tau);
+    Ok(&ws.gravity_torque)
+}
+
+/// Nonlinear effects `C(q, q̇) q̇ + g(q)`: RNEA with `q̈ = 0`. Returns `ws.nonlinear_effects`.
+///
+/// ```
+/// use screwdyn::{builtin, dynamics::nonlinear_effects, Workspace};
+/// let m = builtin::planar2().with_gravity(nalgebra::Vector3::zeros());
+/// let mut ws = Workspace::new(&m);
+/// let (q2, qd1) = (0.4_f64, 1.5_f64);
+/// let h = nonlinear_effects(&m, &mut ws, &[0.0, q2], &[qd1, 0.0]).unwrap();
+/// // Seed 003: the centrifugal torque at joint 2 is m2 L1 L2 s2 θ̇1².
+/// assert!((h[1] - q2.sin() * qd1 * qd1).abs() < 1e-12);
+/// ```
+pub fn nonlinear_effects<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+) -> Result<&'w DVector<T>> {
+    model.check_vector(v, "v")?;
+    forward_kinematics(model, ws, q)?;
+    rnea_passes(
+        model,
+        ws,
+        Some(v),
+        |_| T::zero(),
+        &base_acceleration(model),
+        None,
+    );
+    ws.nonlinear_effects.copy_from(&ws.tau);
+    Ok(&ws.nonlinear_effects)
+}

@@ -1,0 +1,121 @@
+//! Shared helpers for the integration tests: random kinematic trees with physical inertias.
+#![allow(dead_code)]
+
+use nalgebra::{Matrix3, Vector3, Vector6};
+use rand::rngs::StdRng;
+use rand::Rng;
+use screwdyn::model::{JointSpec, ModelBuilder};
+use screwdyn::spatial::{exp_so3, Se3, SpatialInertia};
+use screwdyn::Model;
+
+fn unit(rng: &mut StdRng) -> Vector3<f64> {
+    loop {
+        let v = Vector3::new(
+            rng.gen_range(-1.0..1.0),
+            rng.gen_range(-1.0..1.0),
+            rng.gen_range(-1.0..1.0),
+        );
+        let n = v.norm();
+        if n > 0.2 && n < 1.0 {
+            return v / n;
+        }
+    }
+}
+
+fn vec3(rng: &mut StdRng, r: f64) -> Vector3<f64> {
+    Vector3::new(
+        rng.gen_range(-r..r),
+        rng.gen_range(-r..r),
+        rng.gen_range(-r..r),
+    )
+}
+
+fn rotation(rng: &mut StdRng) -> Matrix3<f64> {
+    exp_so3(&(unit(rng) * rng.gen_range(0.0..3.0)))
+}
+
+/// A random physical inertia: a box of random size and mass, rotated, CoM off the origin.
+pub fn random_inertia(rng: &mut StdRng) -> SpatialInertia {
+    let m = rng.gen_range(0.5..3.0);
+    let (a, b, c) = (
+        rng.gen_range(0.05..0.6),
+        rng.gen_range(0.05..0.6),
+        rng.gen_range(0.05..0.6),
+    );
+    let d = Matrix3::from_diagonal(&Vector3::new(
+        m / 12.0 * (b * b + c * c),
+        m / 12.0 * (a * a + c * c),
+        m / 12.0 * (a * a + b * b),
+    ));
+    let r = rotation(rng);
+    SpatialInertia::new(m, vec3(rng, 0.3), r * d * r.transpose())
+}
+
+/// A random tree of `n` moving bodies: revolute joints (and, if `mixed`, prismatic and helical
+/// ones), random home poses and axes, random physical inertias, branching at random.
+pub fn random_tree(rng: &mut StdRng, n: usize, mixed: bool) -> Model {
+    let mut b = ModelBuilder::new("random");
+    b.gravity(Vector3::new(0.3, -0.5, -9.81));
+    for i in 0..n {
+        let parent = if i == 0 || rng.gen_bool(0.15) {
+            "base".to_string()
+        } else {
+            format!("l{}", rng.gen_range(0..i))
+        };
+        let axis = unit(rng);
+        let point = vec3(rng, 0.2);
+        let kind = if mixed { rng.gen_range(0..3) } else { 0 };
+        let (spec, screw) = match kind {
+            0 => (
+                JointSpec::revolute(&format!("j{i}")),
+                Vector6::from_iterator(
+                    axis.iter()
+                        .copied()
+                        .chain((-axis.cross(&point)).iter().copied()),
+                ),
+            ),
+            1 => (
+                JointSpec::prismatic(&format!("j{i}")),
+                Vector6::new(0.0, 0.0, 0.0, axis.x, axis.y, axis.z),
+            ),
+            _ => {
+                let pitch = rng.gen_range(-0.2..0.2);
+                let l = -axis.cross(&point) + axis * pitch;
+                (
+                    JointSpec::helical(&format!("j{i}"), pitch),
+                    Vector6::new(axis.x, axis.y, axis.z, l.x, l.y, l.z),
+                )
+            }
+        };
+        let home = Se3::new(rotation(rng), vec3(rng, 0.6));
+        b.link(
+            &format!("l{i}"),
+            &parent,
+            spec.screw_in_child(screw),
+            home,
+            random_inertia(rng),
+        );
+    }
+    b.frame(
+        "tool",
+        &format!("l{}", n - 1),
+        Se3::new(rotation(rng), vec3(rng, 0.3)),
+    );
+    b.build().expect("random tree is valid")
+}
+
+pub fn random_vec(rng: &mut StdRng, n: usize, r: f64) -> Vec<f64> {
+    (0..n).map(|_| rng.gen_range(-r..r)).collect()
+}
+
+/// `|a − b| ≤ tol · max(1, |b|)` entrywise, with a message.
+pub fn assert_close(a: &[f64], b: &[f64], tol: f64, what: &str) {
+    assert_eq!(a.len(), b.len(), "{what}: lengths differ");
+    let scale = b.iter().fold(1.0_f64, |s, x| s.max(x.abs()));
+    for (i, (x, y)) in a.iter().zip(b).enumerate() {
+        assert!(
+            (x - y).abs() <= tol * scale,
+            "{what}[{i}]: {x} vs {y} (tol {tol} × {scale})\n{a:?}\n{b:?}"
+        );
+    }
+}

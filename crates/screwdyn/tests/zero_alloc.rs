@@ -1,0 +1,105 @@
+//! Per-call algorithms allocate nothing once the workspace exists (DESIGN §2), checked with a
+//! counting global allocator that counts allocations made on the test's own thread.
+
+mod common;
+
+use nalgebra::{Matrix6xX, Vector6};
+use rand::rngs::StdRng;
+use rand::SeedableRng;
+use screwdyn::dynamics::*;
+use screwdyn::kinematics::*;
+use screwdyn::{builtin, Model, Workspace};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+struct Counting;
+
+thread_local! {
+    static ACTIVE: Cell<bool> = const { Cell::new(false) };
+    static COUNT: Cell<usize> = const { Cell::new(0) };
+}
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if ACTIVE.with(|a| a.get()) {
+            COUNT.with(|c| c.set(c.get() + 1));
+        }
+        System.alloc(layout)
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        System.dealloc(ptr, layout)
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if ACTIVE.with(|a| a.get()) {
+            COUNT.with(|c| c.set(c.get() + 1));
+        }
+        System.realloc(ptr, layout, new_size)
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn allocations(f: impl FnOnce()) -> usize {
+    COUNT.with(|c| c.set(0));
+    ACTIVE.with(|a| a.set(true));
+    f();
+    ACTIVE.with(|a| a.set(false));
+    COUNT.with(|c| c.get())
+}
+
+fn check(model: &Model) {
+    let n = model.nq();
+    let mut ws = Workspace::new(model);
+    let q: Vec<f64> = (0..n).map(|i| 0.1 + 0.2 * i as f64).collect();
+    let v: Vec<f64> = (0..n).map(|i| 0.3 - 0.1 * i as f64).collect();
+    let a: Vec<f64> = (0..n).map(|i| -0.2 + 0.05 * i as f64).collect();
+    let mut ext = ExternalWrenches::new(model);
+    ext.add_local(0, Vector6::repeat(0.5)).unwrap();
+    ext.add_world(n - 1, Vector6::repeat(-0.25)).unwrap();
+    let mut jac = Matrix6xX::zeros(n);
+    let tip = model.body_frame(n - 1);
+    // Warm up once (nothing lazily allocated should remain), then count.
+    let mut run = |ws: &mut Workspace| {
+        forward_kinematics(model, ws, &q).unwrap();
+        compute_joint_jacobians(model, ws, &q).unwrap();
+        frame_jacobian(model, ws, tip, Reference::World, &mut jac);
+        forward_velocity(model, ws, &q, &v).unwrap();
+        forward_acceleration(model, ws, &q, &v, &a).unwrap();
+        rnea(model, ws, &q, &v, &a).unwrap();
+        inverse_dynamics(model, ws, &q, &v, &a, Some(&ext)).unwrap();
+        crba(model, ws, &q).unwrap();
+        mass_matrix_inverse(model, ws, &q).unwrap();
+        coriolis_matrix(model, ws, &q, &v).unwrap();
+        gravity_torque(model, ws, &q).unwrap();
+        nonlinear_effects(model, ws, &q, &v).unwrap();
+        aba(model, ws, &q, &v, &a).unwrap();
+        aba_with(model, ws, &q, &v, &a, Some(&ext)).unwrap();
+        for m in [
+            ForwardMethod::Aba,
+            ForwardMethod::Crba,
+            ForwardMethod::WalkerOrin,
+        ] {
+            forward_dynamics(model, ws, &q, &v, &a, m).unwrap();
+            forward_dynamics_with(model, ws, &q, &v, &a, Some(&ext), m).unwrap();
+        }
+        kinetic_energy(model, ws, &q, &v).unwrap();
+        kinetic_energy_mass_matrix(model, ws, &q, &v).unwrap();
+        potential_energy(model, ws, &q).unwrap();
+        total_energy(model, ws, &q, &v).unwrap();
+        center_of_mass(model, ws, &q).unwrap();
+        power(model, &a, &v).unwrap();
+    };
+    run(&mut ws);
+    let count = allocations(|| run(&mut ws));
+    assert_eq!(count, 0, "{} allocated {count} times", model.name());
+}
+
+#[test]
+fn per_call_algorithms_do_not_allocate() {
+    // The counter must see allocations at all (guards against a vacuous pass).
+    assert!(allocations(|| drop(std::hint::black_box(vec![1u8; 16]))) > 0);
+    check(&builtin::planar2());
+    let mut rng = StdRng::seed_from_u64(42);
+    check(&common::random_tree(&mut rng, 7, true));
+}
