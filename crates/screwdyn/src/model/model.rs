@@ -128,6 +128,30 @@ impl<T: Real> Model<T> {
         m.gravity = g;
         m
     }
+    /// A copy of the model with these viscous damping and Coulomb friction coefficients, one
+    /// per joint (non-negative and finite).
+    ///
+    /// ```
+    /// let m = screwdyn::builtin::planar2().with_joint_friction(&[0.5, 0.2], &[0.0, 0.1]).unwrap();
+    /// assert_eq!(m.joints()[1].damping, 0.2);
+    /// assert!(screwdyn::builtin::planar2().with_joint_friction(&[-1.0, 0.0], &[0.0, 0.0]).is_err());
+    /// ```
+    pub fn with_joint_friction(&self, damping: &[T], friction: &[T]) -> Result<Self> {
+        self.check_vector(damping, "damping")?;
+        self.check_vector(friction, "friction")?;
+        let mut m = self.clone();
+        for (i, j) in m.joints.iter_mut().enumerate() {
+            if damping[i] < T::zero() || friction[i] < T::zero() {
+                return Err(Error::InvalidModel(format!(
+                    "joint '{}': damping and friction must be non-negative (got {:?} and {:?})",
+                    j.name, damping[i], friction[i]
+                )));
+            }
+            j.damping = damping[i];
+            j.friction = friction[i];
+        }
+        Ok(m)
+    }
     /// Joint names in coordinate order.
     pub fn joint_names(&self) -> Vec<&str> {
         self.joints.iter().map(|j| j.name.as_str()).collect()

@@ -1,19 +1,31 @@
-//! Simulation: integrators, trajectories, controllers, joint effects and recording.
+//! Simulation (seed 004 §6.4, "Dynamic Simulator"): integrators, trajectories, controllers,
+//! joint effects, disturbances, recording and torque profiles.
 //!
 //! ```
-//! use screwdyn::sim::{Integrator, Stepper};
-//! // A unit harmonic oscillator q̈ = −q over one period with RK4 returns to its start.
-//! let mut f = |_t: f64, q: &[f64], _v: &[f64], a: &mut [f64]| { a[0] = -q[0]; Ok(()) };
-//! let mut s = Stepper::new(Integrator::Rk4, 1);
-//! let (mut q, mut v) = ([1.0], [0.0]);
-//! let n = 1000;
-//! let h = 2.0 * std::f64::consts::PI / n as f64;
-//! for k in 0..n { s.advance(&mut f, k as f64 * h, h, &mut q, &mut v).unwrap(); }
-//! assert!((q[0] - 1.0).abs() < 1e-10 && v[0].abs() < 1e-10);
+//! use screwdyn::sim::{simulate, PdGravity, SimOptions};
+//! // PD + gravity compensation brings the two-link arm to rest at its target.
+//! let m = screwdyn::builtin::planar2();
+//! let mut pd = PdGravity::new(m.clone(), vec![0.5, -0.3], vec![50.0, 50.0], vec![15.0, 15.0]).unwrap();
+//! let opts = SimOptions { duration: 3.0, dt: 1e-3, record_every: 100, ..Default::default() };
+//! let run = simulate(&m, &[0.0, 0.0], &[0.0, 0.0], &mut pd, &[], &opts, &mut |_| {}).unwrap();
+//! let q = run.q.last().unwrap();
+//! assert!((q[0] - 0.5).abs() < 1e-3 && (q[1] + 0.3).abs() < 1e-3);
 //! ```
 
+mod controller;
+mod effects;
 mod integrate;
+mod profile;
+mod record;
+mod simulate;
 mod trajectory;
 
+pub use controller::{
+    ComputedTorque, ConstantTorque, Controller, PdGravity, TorqueSeries, ZeroTorque,
+};
+pub use effects::JointEffects;
 pub use integrate::{AccelFn, Integrator, Stepper};
+pub use profile::{torque_profile, TorqueProfile, Violation};
+pub use record::Recording;
+pub use simulate::{simulate, Disturbance, SimOptions};
 pub use trajectory::{Quintic, Trajectory, Trapezoid, Waypoints};

@@ -1,0 +1,362 @@
+//! Simulation against physics: the small-angle pendulum period, energy conservation and decay,
+//! integrator agreement, computed-torque tracking, and torque profiles equal to RNEA.
+
+use screwdyn::dynamics::{inverse_dynamics, ForwardMethod};
+use screwdyn::sim::*;
+use screwdyn::{builtin, Workspace};
+use std::f64::consts::PI;
+
+fn passive(duration: f64, dt: f64, integrator: Integrator, every: usize) -> SimOptions {
+    SimOptions {
+        duration,
+        dt,
+        integrator,
+        effects: JointEffects::none(),
+        record_every: every,
+        ..Default::default()
+    }
+}
+
+#[test]
+fn pendulum_small_amplitude_period_matches_two_pi_sqrt_l_over_g() {
+    let (l, g) = (0.8, 9.81);
+    let m = builtin::pendulum_with(l, 1.0);
+    let run = simulate(
+        &m,
+        &[0.01],
+        &[0.0],
+        &mut ZeroTorque,
+        &[],
+        &passive(6.0, 1e-3, Integrator::Rk4, 1),
+        &mut |_| {},
+    )
+    .unwrap();
+    // Downward zero crossings of q, linearly interpolated.
+    let mut crossings = Vec::new();
+    for k in 1..run.len() {
+        let (a, b) = (run.q[k - 1][0], run.q[k][0]);
+        if a > 0.0 && b <= 0.0 {
+            crossings.push(run.t[k - 1] + (run.t[k] - run.t[k - 1]) * a / (a - b));
+        }
+    }
+    let period = (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as f64;
+    let expected = 2.0 * PI * (l / g).sqrt();
+    assert!(
+        ((period - expected) / expected).abs() < 1e-3,
+        "{period} vs {expected}"
+    );
+}
+
+fn ur5_start() -> (Vec<f64>, Vec<f64>) {
+    (
+        vec![0.3, -1.2, 1.0, -0.5, 0.7, 0.2],
+        vec![1.5, -1.3, 1.8, 1.2, -1.6, 2.0],
+    )
+}
+
+fn max_energy_deviation(run: &Recording) -> f64 {
+    let e0 = run.total_energy[0];
+    run.total_energy
+        .iter()
+        .map(|e| (e - e0).abs())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn passive_ur5_conserves_energy_with_rk4() {
+    // Without gravity the energy is all kinetic, so the relative drift |E − E0| / E0 is well
+    // defined; RK4 at 1 ms for 10 s from a non-trivial state (joints at up to 2 rad/s).
+    let m = builtin::load("ur5")
+        .unwrap()
+        .with_gravity(nalgebra::Vector3::zeros());
+    let (q0, v0) = ur5_start();
+    let run = simulate(
+        &m,
+        &q0,
+        &v0,
+        &mut ZeroTorque,
+        &[],
+        &passive(10.0, 1e-3, Integrator::Rk4, 100),
+        &mut |_| {},
+    )
+    .unwrap();
+    let drift = max_energy_deviation(&run) / run.total_energy[0];
+    assert!(drift < 1e-6, "RK4 relative energy drift {drift}");
+}
+
+#[test]
+fn falling_ur5_conserves_energy_with_rk4() {
+    // With gravity the arm falls from rest and its 0.19 kg wrist whips past 140 rad/s; the
+    // potential's zero is arbitrary, so the drift is measured against the largest kinetic
+    // energy of the motion. At 1 ms RK4 drifts by about 8e-6 of it here (the wrist turns
+    // 0.14 rad per step); its fourth order brings that under 1e-6 at 0.5 ms.
+    let m = builtin::load("ur5").unwrap();
+    let q0 = [0.0, -1.57, 0.0, -1.57, 0.0, 0.0];
+    let run = simulate(
+        &m,
+        &q0,
+        &[0.0; 6],
+        &mut ZeroTorque,
+        &[],
+        &passive(10.0, 5e-4, Integrator::Rk4, 100),
+        &mut |_| {},
+    )
+    .unwrap();
+    let scale = run.kinetic_energy.iter().cloned().fold(0.0, f64::max);
+    let drift = max_energy_deviation(&run) / scale;
+    assert!(
+        drift < 1e-6,
+        "RK4 energy drift {drift} of the kinetic scale {scale}"
+    );
+}
+
+#[test]
+fn symplectic_euler_energy_error_does_not_grow() {
+    // Symplectic Euler at 1 ms: the energy error oscillates but shows no secular growth: the
+    // second half of a 10 s run is no worse than the first half (with a 2× margin).
+    let m = builtin::load("ur5")
+        .unwrap()
+        .with_gravity(nalgebra::Vector3::zeros());
+    let (q0, v0) = ur5_start();
+    let run = simulate(
+        &m,
+        &q0,
+        &v0,
+        &mut ZeroTorque,
+        &[],
+        &passive(10.0, 1e-3, Integrator::SymplecticEuler, 10),
+        &mut |_| {},
+    )
+    .unwrap();
+    let e0 = run.total_energy[0];
+    let half = run.len() / 2;
+    let err = |r: std::ops::Range<usize>| {
+        r.map(|k| (run.total_energy[k] - e0).abs())
+            .fold(0.0, f64::max)
+    };
+    let (first, second) = (err(0..half), err(half..run.len()));
+    assert!(
+        second < 2.0 * first,
+        "Euler energy error grows: {first} then {second}"
+    );
+    assert!(
+        first / e0 < 0.05,
+        "Euler energy error too large: {}",
+        first / e0
+    );
+}
+
+#[test]
+fn dormand_prince_meets_its_tolerance_against_fine_rk4() {
+    let m = builtin::load("ur5").unwrap();
+    let (q0, v0) = ur5_start();
+    let fine = simulate(
+        &m,
+        &q0,
+        &v0,
+        &mut ZeroTorque,
+        &[],
+        &passive(1.0, 1e-4, Integrator::Rk4, 10_000),
+        &mut |_| {},
+    )
+    .unwrap();
+    let tol = 1e-8;
+    let dp = passive(
+        1.0,
+        1e-2,
+        Integrator::DormandPrince {
+            rtol: tol,
+            atol: tol,
+        },
+        100,
+    );
+    let run = simulate(&m, &q0, &v0, &mut ZeroTorque, &[], &dp, &mut |_| {}).unwrap();
+    let (a, b) = (fine.q.last().unwrap(), run.q.last().unwrap());
+    let err = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(err < 1e-6, "Dormand-Prince differs from fine RK4 by {err}");
+}
+
+#[test]
+fn damping_makes_energy_decrease_monotonically() {
+    let m =
+        with_damping(&builtin::load("ur5").unwrap(), 0.05).with_gravity(nalgebra::Vector3::zeros());
+    let (q0, v0) = ur5_start();
+    let opts = SimOptions {
+        duration: 3.0,
+        dt: 1e-3,
+        effects: JointEffects {
+            damping: true,
+            ..JointEffects::none()
+        },
+        record_every: 10,
+        ..Default::default()
+    };
+    let run = simulate(&m, &q0, &v0, &mut ZeroTorque, &[], &opts, &mut |_| {}).unwrap();
+    for k in 1..run.len() {
+        assert!(
+            run.total_energy[k] < run.total_energy[k - 1] + 1e-12,
+            "energy rose at t = {}",
+            run.t[k]
+        );
+    }
+    // Power balance: the energy lost equals the work of the damping torques, ∫ Σ b q̇ᵢ² dt
+    // (trapezoidal rule over the 10 ms samples).
+    let power = |k: usize| run.v[k].iter().map(|x| 0.05 * x * x).sum::<f64>();
+    let dissipated: f64 = (1..run.len())
+        .map(|k| 0.5 * (power(k) + power(k - 1)) * (run.t[k] - run.t[k - 1]))
+        .sum();
+    let lost = run.total_energy[0] - run.total_energy[run.len() - 1];
+    assert!(lost > 0.1 * run.total_energy[0]);
+    assert!(
+        (lost - dissipated).abs() < 1e-3 * lost,
+        "lost {lost}, dissipated {dissipated}"
+    );
+}
+
+fn with_damping(m: &screwdyn::Model, b: f64) -> screwdyn::Model {
+    m.with_joint_friction(&vec![b; m.nq()], &vec![0.0; m.nq()])
+        .unwrap()
+}
+
+#[test]
+fn computed_torque_tracks_a_quintic_on_the_panda() {
+    let m = builtin::load("panda").unwrap();
+    let n = m.nq();
+    let q0 = vec![0.0, -0.5, 0.0, -2.0, 0.0, 1.5, 0.7][..n.min(7)].to_vec();
+    let mut q0 = q0;
+    q0.resize(n, 0.01);
+    let qf: Vec<f64> = q0
+        .iter()
+        .enumerate()
+        .map(|(i, x)| x + 0.3 * if i % 2 == 0 { 1.0 } else { -1.0 })
+        .collect();
+    let reference = Quintic::rest_to_rest(&q0, &qf, 2.0).unwrap();
+    let mut ctrl = ComputedTorque::new(
+        m.clone(),
+        Box::new(reference.clone()),
+        vec![100.0; n],
+        vec![20.0; n],
+    )
+    .unwrap();
+    let opts = SimOptions {
+        duration: 2.5,
+        dt: 1e-3,
+        effects: JointEffects::none(),
+        ..Default::default()
+    };
+    let run = simulate(&m, &q0, &vec![0.0; n], &mut ctrl, &[], &opts, &mut |_| {}).unwrap();
+    let (mut qd, mut vd, mut ad) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let mut sum = 0.0;
+    for k in 0..run.len() {
+        reference.sample(run.t[k], &mut qd, &mut vd, &mut ad);
+        sum += (0..n).map(|i| (run.q[k][i] - qd[i]).powi(2)).sum::<f64>() / n as f64;
+    }
+    let rms = (sum / run.len() as f64).sqrt();
+    assert!(rms < 1e-6, "tracking RMS error {rms}");
+}
+
+#[test]
+fn trapezoid_torque_profile_equals_rnea_and_flags_a_too_fast_profile() {
+    let m = builtin::load("ur5").unwrap();
+    let n = m.nq();
+    let q0 = vec![0.0; n];
+    let qf = vec![1.0, -0.8, 0.6, 0.4, -0.3, 0.2];
+    let gentle = Trapezoid::new(&q0, &qf, &vec![0.5; n], &vec![0.5; n], true).unwrap();
+    let p = torque_profile(&m, &gentle, 0.01).unwrap();
+    let mut ws = Workspace::new(&m);
+    for k in (0..p.samples.len()).step_by(7) {
+        let s = &p.samples;
+        let tau = inverse_dynamics(&m, &mut ws, &s.q[k], &s.v[k], &s.a[k], None).unwrap();
+        for i in 0..n {
+            assert!((tau[i] - s.tau[k][i]).abs() < 1e-12);
+        }
+    }
+    for i in 0..n {
+        let rms = (p.samples.tau.iter().map(|t| t[i] * t[i]).sum::<f64>() / p.samples.len() as f64)
+            .sqrt();
+        assert!((rms - p.rms[i]).abs() < 1e-9 * (1.0 + rms));
+        assert!(p.samples.tau.iter().all(|t| t[i].abs() <= p.peak[i]));
+    }
+    assert!(
+        p.violations.is_empty(),
+        "gentle profile flagged: {:?}",
+        &p.violations[..1]
+    );
+    // Far too fast: 50 rad/s², surely beyond the shoulder's effort limit.
+    let brutal = Trapezoid::new(&q0, &qf, &vec![10.0; n], &vec![50.0; n], true).unwrap();
+    let p = torque_profile(&m, &brutal, 0.005).unwrap();
+    assert!(!p.violations.is_empty());
+    let v = &p.violations[0];
+    assert!(v.tau.abs() > v.limit && v.limit == m.joints()[v.joint].limits.effort);
+}
+
+#[test]
+fn all_three_forward_methods_give_the_same_motion() {
+    let m = builtin::load("ur5").unwrap();
+    let (q0, v0) = ur5_start();
+    let runs: Vec<_> = [
+        ForwardMethod::Aba,
+        ForwardMethod::Crba,
+        ForwardMethod::WalkerOrin,
+    ]
+    .iter()
+    .map(|&method| {
+        simulate(
+            &m,
+            &q0,
+            &v0,
+            &mut ZeroTorque,
+            &[],
+            &SimOptions {
+                method,
+                ..passive(0.2, 1e-3, Integrator::Rk4, 200)
+            },
+            &mut |_| {},
+        )
+        .unwrap()
+    })
+    .collect();
+    for r in &runs[1..] {
+        for (a, b) in r.q.last().unwrap().iter().zip(runs[0].q.last().unwrap()) {
+            assert!((a - b).abs() < 1e-9);
+        }
+    }
+}
+
+#[test]
+fn a_disturbance_wrench_pushes_the_arm_only_while_active() {
+    let m = builtin::planar2();
+    let push = Disturbance {
+        body: 1,
+        wrench: nalgebra::Vector6::new(0.0, 0.0, 0.0, 0.0, 5.0, 0.0),
+        in_world: true,
+        start: 0.1,
+        end: 0.2,
+    };
+    let opts = SimOptions {
+        duration: 0.3,
+        effects: JointEffects::none(),
+        ..Default::default()
+    };
+    let g = m.with_gravity(nalgebra::Vector3::zeros());
+    let run = simulate(
+        &g,
+        &[0.0, 0.0],
+        &[0.0, 0.0],
+        &mut ZeroTorque,
+        &[push],
+        &opts,
+        &mut |_| {},
+    )
+    .unwrap();
+    // Nothing moves before the push; afterwards the tip has been pushed towards +y.
+    assert!(run.q[90].iter().all(|x| x.abs() < 1e-15));
+    assert!(run.q[300][0] > 0.0);
+    // After the push the energy is constant again (no gravity, no effects).
+    let e = &run.total_energy;
+    assert!((e[250] - e[300]).abs() < 1e-9 * e[300]);
+}
