@@ -21,6 +21,8 @@ pub enum Command {
     Fk(FkArgs),
     /// The 6×n Jacobian of --frame at --q (angular rows first).
     Jacobian(JacobianArgs),
+    /// Per-call timing (median ns) of the core algorithms on random states.
+    Bench(BenchArgs),
 }
 
 #[derive(Args, Debug)]
@@ -74,4 +76,24 @@ pub enum ReferenceArg {
     Local,
     /// Frame-origin velocity with base-frame axes.
     WorldAligned,
+}
+
+/// `screwdyn bench MODEL`: per-call medians over batches of random states (DESIGN §5).
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// A .urdf or .toml file, or builtin:<name>.
+    pub model: String,
+    /// Algorithms to time, comma-separated: fk, jacobians, rnea, crba, aba, gravity, nle,
+    /// coriolis, minv, forward_crba.
+    #[arg(long, default_value = "fk,jacobians,rnea,crba,aba")]
+    pub algorithms: String,
+    /// Number of timed batches (the median is reported).
+    #[arg(long, default_value_t = 21)]
+    pub batches: usize,
+    /// Calls per batch (cycling through 1000 random states).
+    #[arg(long, default_value_t = 20000)]
+    pub calls: usize,
+    /// Output format.
+    #[arg(long, value_enum)]
+    pub format: Option<Format>,
 }

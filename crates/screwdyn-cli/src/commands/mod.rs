@@ -1,5 +1,6 @@
 //! One module per family of commands; `run` dispatches.
 
+mod bench;
 mod kinematics;
 mod model;
 
@@ -14,6 +15,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Info(a) => model::info(&a),
         Command::Fk(a) => kinematics::fk(&a),
         Command::Jacobian(a) => kinematics::jacobian(&a),
+        Command::Bench(a) => bench::bench(&a),
     }
 }
 

@@ -1,0 +1,136 @@
+// Per-call timing of Pinocchio's core algorithms on a fixed-base URDF, for the side-by-side
+// comparison with `screwdyn bench` (bench/compare.sh). Written for screwdyn; the measurement
+// protocol is the same as screwdyn-cli's `bench` command:
+//
+//   * states: q uniform within the position limits (an infinite limit is clamped to ±π),
+//     v, a and τ uniform in [-1, 1]; NSTATES states drawn once before timing;
+//   * one batch = CALLS calls cycling through the states, timed as a whole with a monotonic
+//     clock; ns per call = elapsed / CALLS;
+//   * the reported figure is the median over BATCHES batches (after one warm-up batch).
+//
+// Usage: pinocchio_bench URDF [BATCHES] [CALLS]   → one JSON line on stdout:
+//   {"model": "...", "nq": n, "ns_per_call": {"fk": ..., "jacobians": ..., ...}}
+//
+// Pinocchio's algorithms are compiled here from its headers (inline templates, no
+// PINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION), so they get the same -O3 and CPU flags as this file.
+// Only the URDF parser comes from the wheel's shared library.
+
+#include <pinocchio/parsers/urdf.hpp>
+
+#include <pinocchio/algorithm/aba.hpp>
+#include <pinocchio/algorithm/crba.hpp>
+#include <pinocchio/algorithm/jacobian.hpp>
+#include <pinocchio/algorithm/joint-configuration.hpp>
+#include <pinocchio/algorithm/kinematics.hpp>
+#include <pinocchio/algorithm/rnea.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace
+{
+  // Keeps the optimiser from dropping a computed result.
+  template<typename T>
+  inline void keep(const T & x)
+  {
+    asm volatile("" : : "g"(&x) : "memory");
+  }
+
+  double median(std::vector<double> xs)
+  {
+    std::sort(xs.begin(), xs.end());
+    const size_t n = xs.size();
+    return n % 2 ? xs[n / 2] : 0.5 * (xs[n / 2 - 1] + xs[n / 2]);
+  }
+
+  // Median ns per call of `call(k)` over `batches` batches of `calls` calls each.
+  template<typename F>
+  double time_it(int batches, int calls, int nstates, F && call)
+  {
+    std::vector<double> per_call;
+    for (int b = -1; b < batches; ++b)
+    {
+      const auto t0 = std::chrono::steady_clock::now();
+      for (int c = 0; c < calls; ++c)
+        call(c % nstates);
+      const auto t1 = std::chrono::steady_clock::now();
+      if (b >= 0)
+        per_call.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count() / calls);
+    }
+    return median(per_call);
+  }
+} // namespace
+
+int main(int argc, char ** argv)
+{
+  if (argc < 2)
+  {
+    std::fprintf(stderr, "usage: %s URDF [BATCHES] [CALLS]\n", argv[0]);
+    return 2;
+  }
+  const std::string urdf = argv[1];
+  const int batches = argc > 2 ? std::atoi(argv[2]) : 21;
+  const int calls = argc > 3 ? std::atoi(argv[3]) : 20000;
+  const int nstates = 1000;
+
+  pinocchio::Model model;
+  pinocchio::urdf::buildModel(urdf, model); // fixed base
+  pinocchio::Data data(model);
+  const int n = model.nq;
+
+  // Random states, uniform within the limits (see the header).
+  std::mt19937_64 rng(12345);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), u01(0.0, 1.0);
+  std::vector<Eigen::VectorXd> qs, vs, as, taus;
+  for (int k = 0; k < nstates; ++k)
+  {
+    Eigen::VectorXd q(n), v(n), a(n), tau(n);
+    for (int i = 0; i < n; ++i)
+    {
+      double lo = model.lowerPositionLimit[i], hi = model.upperPositionLimit[i];
+      if (!std::isfinite(lo) || lo < -M_PI)
+        lo = -M_PI;
+      if (!std::isfinite(hi) || hi > M_PI)
+        hi = M_PI;
+      q[i] = lo + (hi - lo) * u01(rng);
+      v[i] = unit(rng);
+      a[i] = unit(rng);
+      tau[i] = unit(rng);
+    }
+    qs.push_back(q);
+    vs.push_back(v);
+    as.push_back(a);
+    taus.push_back(tau);
+  }
+
+  const double fk = time_it(batches, calls, nstates, [&](int k) {
+    pinocchio::forwardKinematics(model, data, qs[k]);
+    keep(data.oMi.back());
+  });
+  const double jac = time_it(batches, calls, nstates, [&](int k) {
+    pinocchio::computeJointJacobians(model, data, qs[k]);
+    keep(data.J);
+  });
+  const double rnea = time_it(batches, calls, nstates, [&](int k) {
+    keep(pinocchio::rnea(model, data, qs[k], vs[k], as[k]));
+  });
+  // Pinocchio's crba fills the upper triangle only.
+  const double crba = time_it(batches, calls, nstates, [&](int k) {
+    keep(pinocchio::crba(model, data, qs[k]));
+  });
+  const double aba = time_it(batches, calls, nstates, [&](int k) {
+    keep(pinocchio::aba(model, data, qs[k], vs[k], taus[k]));
+  });
+
+  std::printf(
+    "{\"model\": \"%s\", \"nq\": %d, \"ns_per_call\": {\"fk\": %.2f, \"jacobians\": %.2f, "
+    "\"rnea\": %.2f, \"crba\": %.2f, \"aba\": %.2f}}\n",
+    model.name.c_str(), n, fk, jac, rnea, crba, aba);
+  return 0;
+}
