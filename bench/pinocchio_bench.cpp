@@ -8,14 +8,16 @@
 //     clock; ns per call = elapsed / CALLS;
 //   * the reported figure is the median over BATCHES batches (after one warm-up batch).
 //
-// Usage: pinocchio_bench URDF [BATCHES] [CALLS]   → one JSON line on stdout:
+// Usage: pinocchio_bench MODEL.txt [BATCHES] [CALLS]   → one JSON line on stdout:
 //   {"model": "...", "nq": n, "ns_per_call": {"fk": ..., "jacobians": ..., ...}}
 //
-// Pinocchio's algorithms are compiled here from its headers (inline templates, no
-// PINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION), so they get the same -O3 and CPU flags as this file.
-// Only the URDF parser comes from the wheel's shared library.
+// MODEL.txt is the URDF's joint tree as written by bench/export_model.py (Pinocchio's own URDF
+// parser, run from Python); the model is rebuilt here with Model::addJoint. Pinocchio's
+// algorithms are compiled from its headers (inline templates, no
+// PINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION), so they get the same -O3 and CPU flags as this file,
+// and nothing is linked from the wheel's compiled libraries.
 
-#include <pinocchio/parsers/urdf.hpp>
+#include <pinocchio/multibody.hpp>
 
 #include <pinocchio/algorithm/aba.hpp>
 #include <pinocchio/algorithm/crba.hpp>
@@ -29,12 +31,79 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace
 {
+  // Rebuilds the model written by export_model.py.
+  pinocchio::Model load(const std::string & path)
+  {
+    std::ifstream in(path);
+    if (!in)
+      throw std::runtime_error("cannot read " + path);
+    pinocchio::Model model;
+    std::getline(in, model.name);
+    std::string line;
+    std::vector<std::pair<double, double>> limits;
+    while (std::getline(in, line))
+    {
+      if (line.empty())
+        continue;
+      std::istringstream ss(line);
+      std::string kind;
+      double v[31];
+      ss >> kind;
+      for (double & x : v)
+        ss >> x;
+      if (!ss)
+        throw std::runtime_error("bad line in " + path + ": " + line);
+      const auto parent = static_cast<pinocchio::JointIndex>(v[0]);
+      Eigen::Matrix3d r, ic;
+      for (int k = 0; k < 9; ++k)
+      {
+        r(k / 3, k % 3) = v[4 + k];
+        ic(k / 3, k % 3) = v[17 + k];
+      }
+      const pinocchio::SE3 placement(r, Eigen::Vector3d(v[1], v[2], v[3]));
+      const pinocchio::Inertia inertia(v[13], Eigen::Vector3d(v[14], v[15], v[16]), ic);
+      const Eigen::Vector3d axis(v[26], v[27], v[28]);
+      pinocchio::JointModel joint;
+      if (kind == "JointModelRX")
+        joint = pinocchio::JointModelRX();
+      else if (kind == "JointModelRY")
+        joint = pinocchio::JointModelRY();
+      else if (kind == "JointModelRZ")
+        joint = pinocchio::JointModelRZ();
+      else if (kind == "JointModelPX")
+        joint = pinocchio::JointModelPX();
+      else if (kind == "JointModelPY")
+        joint = pinocchio::JointModelPY();
+      else if (kind == "JointModelPZ")
+        joint = pinocchio::JointModelPZ();
+      else if (kind == "JointModelRevoluteUnaligned")
+        joint = pinocchio::JointModelRevoluteUnaligned(axis);
+      else if (kind == "JointModelPrismaticUnaligned")
+        joint = pinocchio::JointModelPrismaticUnaligned(axis);
+      else
+        throw std::runtime_error("unsupported joint type " + kind);
+      const auto id =
+        model.addJoint(parent, joint, placement, "joint" + std::to_string(model.njoints));
+      model.appendBodyToJoint(id, inertia, pinocchio::SE3::Identity());
+      limits.emplace_back(v[29], v[30]);
+    }
+    for (size_t i = 0; i < limits.size(); ++i)
+    {
+      model.lowerPositionLimit[i] = limits[i].first;
+      model.upperPositionLimit[i] = limits[i].second;
+    }
+    return model;
+  }
+
   // Keeps the optimiser from dropping a computed result.
   template<typename T>
   inline void keep(const T & x)
@@ -71,16 +140,15 @@ int main(int argc, char ** argv)
 {
   if (argc < 2)
   {
-    std::fprintf(stderr, "usage: %s URDF [BATCHES] [CALLS]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s MODEL.txt [BATCHES] [CALLS]\n", argv[0]);
     return 2;
   }
-  const std::string urdf = argv[1];
+  const std::string path = argv[1];
   const int batches = argc > 2 ? std::atoi(argv[2]) : 21;
   const int calls = argc > 3 ? std::atoi(argv[3]) : 20000;
   const int nstates = 1000;
 
-  pinocchio::Model model;
-  pinocchio::urdf::buildModel(urdf, model); // fixed base
+  const pinocchio::Model model = load(path); // fixed base
   pinocchio::Data data(model);
   const int n = model.nq;
 

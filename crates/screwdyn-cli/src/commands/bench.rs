@@ -138,7 +138,14 @@ fn run(model: &Model, s: &States, name: &str, batches: usize, calls: usize) -> O
             let _ = black_box(mass_matrix_inverse(m, w, black_box(&s.q[k])).is_ok());
         }),
         "forward_crba" => time_it(b, c, |k| {
-            let r = forward_dynamics(m, w, black_box(&s.q[k]), &s.v[k], &s.tau[k], ForwardMethod::Crba);
+            let r = forward_dynamics(
+                m,
+                w,
+                black_box(&s.q[k]),
+                &s.v[k],
+                &s.tau[k],
+                ForwardMethod::Crba,
+            );
             let _ = black_box(r.is_ok());
         }),
         _ => return None,
@@ -178,7 +185,12 @@ pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
         Format::Json => {
             let ns: serde_json::Map<String, serde_json::Value> = results
                 .iter()
-                .map(|(n, t)| (n.to_string(), serde_json::json!((t * 100.0).round() / 100.0)))
+                .map(|(n, t)| {
+                    (
+                        n.to_string(),
+                        serde_json::json!((t * 100.0).round() / 100.0),
+                    )
+                })
                 .collect();
             let v = serde_json::json!({"model": model.name(), "nq": model.nq(), "ns_per_call": ns});
             println!("{v}");

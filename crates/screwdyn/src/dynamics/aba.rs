@@ -6,16 +6,54 @@ use crate::error::{Error, Result};
 use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::{real, Real};
-use crate::spatial::{ad, ad_transpose, Twist};
+use crate::spatial::{ad_transpose, Twist};
 use crate::workspace::Workspace;
-use nalgebra::{DVector, Matrix6};
+use nalgebra::{DVector, Matrix3, Matrix6, Vector3};
 
-/// `Ad_{H_λ^i}ᵀ 𝔍 Ad_{H_λ^i}`: a 6×6 inertia in child frame `i` written in the parent frame, with
-/// `h = H_i^λ`.
+/// `𝔍_λ += Ad_{H_λ^i}ᵀ 𝔍 Ad_{H_λ^i}`: adds a symmetric 6×6 inertia given in child frame `i`,
+/// written in the parent frame, with `h = H_i^λ = (R, p)`. By blocks, with `𝔍 = [A B; Bᵀ C]`
+/// rotated to `A' = R A Rᵀ`, `B' = R B Rᵀ`, `C' = R C Rᵀ` and then shifted by `p`:
+/// `C_λ = C'`, `B_λ = B' + [p] C'`, `A_λ = A' + [p] B'ᵀ − B' [p] − [p] C' [p]`
+/// (no 6×6 product; only the upper triangles of the symmetric blocks are formed).
 #[inline]
-fn to_parent<T: Real>(h: &crate::spatial::Se3<T>, m: &Matrix6<T>) -> Matrix6<T> {
-    let x = h.inverse().adjoint_matrix();
-    x.transpose() * m * x
+fn add_to_parent<T: Real>(h: &crate::spatial::Se3<T>, m: &Matrix6<T>, out: &mut Matrix6<T>) {
+    let r = &h.rotation;
+    let p = &h.translation;
+    let a: Matrix3<T> = m.fixed_view::<3, 3>(0, 0).into_owned();
+    let b: Matrix3<T> = m.fixed_view::<3, 3>(0, 3).into_owned();
+    let c: Matrix3<T> = m.fixed_view::<3, 3>(3, 3).into_owned();
+    let rt = r.transpose();
+    let a1 = r * a * rt;
+    let b1 = r * b * rt;
+    let c1 = r * c * rt;
+    // [p] X column by column is p × X_col; X [p] = −([p] Xᵀ)ᵀ.
+    let pc = cross_cols(p, &c1); // [p] C'
+    let b2 = b1 + pc;
+    let pbt = cross_cols(p, &b1.transpose()); // [p] B'ᵀ
+                                              // −B'[p] = ([p] B'ᵀ)ᵀ and −[p] C' [p] = [p] ([p] C')ᵀ (C' symmetric).
+    let pcp = cross_cols(p, &pc.transpose());
+    let a2 = a1 + pbt + pbt.transpose() + pcp;
+    for i in 0..3 {
+        for j in 0..3 {
+            out[(i, j)] += a2[(i, j)];
+            out[(i, j + 3)] += b2[(i, j)];
+            out[(j + 3, i)] += b2[(i, j)];
+            out[(i + 3, j + 3)] += c1[(i, j)];
+        }
+    }
+}
+
+/// `[p] X`: `p ×` each column of `X`.
+#[inline(always)]
+fn cross_cols<T: Real>(p: &Vector3<T>, x: &Matrix3<T>) -> Matrix3<T> {
+    let mut out = Matrix3::zeros();
+    for k in 0..3 {
+        let (x0, x1, x2) = (x[(0, k)], x[(1, k)], x[(2, k)]);
+        out[(0, k)] = p.y * x2 - p.z * x1;
+        out[(1, k)] = p.z * x0 - p.x * x2;
+        out[(2, k)] = p.x * x1 - p.y * x0;
+    }
+    out
 }
 
 /// Forward dynamics `q̈ = M⁻¹(τ − C q̇ − g)` by the articulated-body algorithm (Featherstone),
@@ -66,17 +104,18 @@ pub fn aba_with<'w, T: Real>(
     }
     forward_kinematics(model, ws, q)?;
     let n = model.nbodies();
+    let (motions, parents, bodies) = (model.motions(), model.parents(), model.bodies());
     // Pass 1: twists, velocity-product accelerations, rigid-body inertias and bias wrenches.
-    for (i, joint) in model.joints().iter().enumerate() {
-        let v_par = match model.parent(i) {
+    for i in 0..n {
+        let m = &motions[i];
+        let mut vi = match parents[i] {
             Some(p) => ws.pose_in_parent[i].inv_act_twist(&ws.twist[p]),
             None => Twist::zeros(),
         };
-        let s_qd = joint.screw * v[i];
-        let vi = v_par + s_qd;
+        ws.bias_acceleration[i] = -m.ad_scaled(v[i], &vi);
+        m.add_scaled(&mut vi, v[i]);
         ws.twist[i] = vi;
-        ws.bias_acceleration[i] = -ad(&s_qd, &v_par);
-        let inertia = &model.bodies()[i].inertia;
+        let inertia = &bodies[i].inertia;
         ws.articulated_inertia[i] = inertia.matrix();
         let mut p = -ad_transpose(&vi, &inertia.apply(&vi));
         if let Some(f) = fext {
@@ -85,15 +124,11 @@ pub fn aba_with<'w, T: Real>(
         ws.articulated_bias[i] = p;
     }
     // Pass 2: articulated inertias, from the leaves to the root.
-    let scale = ws
-        .articulated_inertia
-        .iter()
-        .fold(T::zero(), |s, m| s.max(m.amax()));
-    let tiny = scale * T::default_epsilon() * real(64.0);
+    let tiny = model.inertia_scale() * T::default_epsilon() * real(64.0);
     for i in (0..n).rev() {
-        let s = &model.joints()[i].screw;
-        let u = ws.articulated_inertia[i] * s;
-        let d = s.dot(&u);
+        let m = &motions[i];
+        let u = m.inertia_column(&ws.articulated_inertia[i]);
+        let d = m.dot(&u);
         // Written to also catch NaN.
         if d.partial_cmp(&tiny) != Some(std::cmp::Ordering::Greater) {
             return Err(Error::Numerical(format!(
@@ -103,16 +138,22 @@ pub fn aba_with<'w, T: Real>(
                 d
             )));
         }
-        let small_u = tau[i] - s.dot(&ws.articulated_bias[i]);
+        let small_u = tau[i] - m.dot(&ws.articulated_bias[i]);
         ws.aba_u[i] = u;
         ws.aba_d[i] = d;
         ws.aba_small_u[i] = small_u;
-        if let Some(p) = model.parent(i) {
-            let ia = ws.articulated_inertia[i] - u * u.transpose() / d;
-            let pa = ws.articulated_bias[i] + ia * ws.bias_acceleration[i] + u * (small_u / d);
-            let h = &ws.pose_in_parent[i];
-            let ia_par = to_parent(h, &ia);
-            ws.articulated_inertia[p] += ia_par;
+        if let Some(p) = parents[i] {
+            // 𝔍ᵃ = 𝔍ᴬ − U Uᵀ / D, symmetric.
+            let mut ia = ws.articulated_inertia[i];
+            let ud = u / d;
+            for c in 0..6 {
+                for r in 0..6 {
+                    ia[(r, c)] -= ud[r] * u[c];
+                }
+            }
+            let pa = ws.articulated_bias[i] + ia * ws.bias_acceleration[i] + ud * small_u;
+            let h = ws.pose_in_parent[i];
+            add_to_parent(&h, &ia, &mut ws.articulated_inertia[p]);
             let pa_par = h.inv_act_transpose_wrench(&pa);
             ws.articulated_bias[p] += pa_par;
         }
@@ -121,13 +162,15 @@ pub fn aba_with<'w, T: Real>(
     let base = base_acceleration(model);
     for i in 0..n {
         let h = &ws.pose_in_parent[i];
-        let a_par = match model.parent(i) {
+        let a_par = match parents[i] {
             Some(p) => h.inv_act_twist(&ws.twist_dot[p]),
             None => h.inv_act_twist(&base),
         } + ws.bias_acceleration[i];
         let qdd = (ws.aba_small_u[i] - ws.aba_u[i].dot(&a_par)) / ws.aba_d[i];
         ws.qdd[i] = qdd;
-        ws.twist_dot[i] = a_par + model.joints()[i].screw * qdd;
+        let mut vd = a_par;
+        motions[i].add_scaled(&mut vd, qdd);
+        ws.twist_dot[i] = vd;
     }
     Ok(&ws.qdd)
 }

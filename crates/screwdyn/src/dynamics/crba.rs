@@ -63,18 +63,30 @@ impl<T: Real> CompositeInertia<T> {
     /// `Ad_{H_a^b}ᵀ 𝔍 Ad_{H_a^b}`.
     #[inline]
     pub fn transformed(&self, h: &Se3<T>) -> Self {
+        // With h' = R h: I_o' = R I_o Rᵀ − [h'][p] − [p][h'] − m [p][p], and
+        // [a][b] = b aᵀ − (a·b) 1, so the three translation terms are the symmetric
+        // 2(h'·p) 1 − p h'ᵀ − h' pᵀ + m (|p|² 1 − p pᵀ) (no 3×3 products).
         let r = &h.rotation;
         let p = &h.translation;
         let rh = r * self.first_moment;
-        let hp = hat(p);
-        let hrh = hat(&rh);
+        let ri = r * self.inertia_origin;
+        let m = self.mass;
+        let diag = (rh.dot(p) * crate::scalar::real(2.0)) + p.dot(p) * m;
+        let mut io = Matrix3::zeros();
+        for a in 0..3 {
+            for b in a..3 {
+                // (R I Rᵀ)_ab = Σ_k (R I)_ak R_bk
+                let rir = ri[(a, 0)] * r[(b, 0)] + ri[(a, 1)] * r[(b, 1)] + ri[(a, 2)] * r[(b, 2)];
+                let t = rir - p[a] * rh[b] - rh[a] * p[b] - p[a] * p[b] * m;
+                io[(a, b)] = t;
+                io[(b, a)] = t;
+            }
+            io[(a, a)] += diag;
+        }
         CompositeInertia {
-            mass: self.mass,
-            first_moment: rh + p * self.mass,
-            inertia_origin: r * self.inertia_origin * r.transpose()
-                - hrh * hp
-                - hp * hrh
-                - hp * hp * self.mass,
+            mass: m,
+            first_moment: rh + p * m,
+            inertia_origin: io,
         }
     }
 
@@ -148,15 +160,15 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
     }
     // Bodies on different branches do not couple: those entries stay zero.
     ws.mass_matrix.fill(T::zero());
+    let (motions, parents) = (model.motions(), model.parents());
     for i in 0..n {
-        let si = &model.joints()[i].screw;
-        let mut f = ws.composite_inertia[i].apply(si);
-        ws.mass_matrix[(i, i)] = si.dot(&f);
+        let mut f = ws.composite_inertia[i].apply(&motions[i].screw());
+        ws.mass_matrix[(i, i)] = motions[i].dot(&f);
         let mut k = i;
-        while let Some(p) = model.parent(k) {
+        while let Some(p) = parents[k] {
             f = ws.pose_in_parent[k].inv_act_transpose_wrench(&f);
             k = p;
-            let mij = model.joints()[k].screw.dot(&f);
+            let mij = motions[k].dot(&f);
             ws.mass_matrix[(k, i)] = mij;
             ws.mass_matrix[(i, k)] = mij;
         }

@@ -6,7 +6,7 @@ use crate::error::Result;
 use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::Real;
-use crate::spatial::{ad, ad_transpose, twist, Twist};
+use crate::spatial::{ad_transpose, twist, Twist};
 use crate::workspace::Workspace;
 use nalgebra::{DVector, Vector3};
 
@@ -30,22 +30,25 @@ pub(crate) fn rnea_passes<T: Real>(
     // Forward pass (seed 002):
     //   V_i = Ad_{H_λ^i} V_λ + S_i q̇_i,  V̇_i = Ad_{H_λ^i} V̇_λ − ad_{S_i q̇_i}(Ad_{H_λ^i} V_λ) + S_i q̈_i
     // and the Newton–Euler equation of each body W_i = 𝔍_i V̇_i − ad_{V_i}ᵀ 𝔍_i V_i − W_ext,i.
-    for (i, joint) in model.joints().iter().enumerate() {
+    let n = model.nbodies();
+    let (motions, parents, bodies) = (model.motions(), model.parents(), model.bodies());
+    for i in 0..n {
         let h = &ws.pose_in_parent[i];
-        let (v_par, vd_par) = match model.parent(i) {
+        let m = &motions[i];
+        let (mut vi, mut vdi) = match parents[i] {
             Some(p) => (
                 h.inv_act_twist(&ws.twist[p]),
                 h.inv_act_twist(&ws.twist_dot[p]),
             ),
             None => (Twist::zeros(), h.inv_act_twist(base)),
         };
-        let s_qd = match v {
-            Some(v) => joint.screw * v[i],
-            None => Twist::zeros(),
-        };
-        let vi = v_par + s_qd;
-        let vdi = vd_par - ad(&s_qd, &v_par) + joint.screw * qdd(i);
-        let inertia = &model.bodies()[i].inertia;
+        if let Some(v) = v {
+            // ad_{S q̇}(Ad V_λ) is taken before S q̇ is added (ad_{S q̇} S q̇ = 0 anyway).
+            vdi -= m.ad_scaled(v[i], &vi);
+            m.add_scaled(&mut vi, v[i]);
+        }
+        m.add_scaled(&mut vdi, qdd(i));
+        let inertia = &bodies[i].inertia;
         let mut w = inertia.apply(&vdi) - ad_transpose(&vi, &inertia.apply(&vi));
         if let Some(f) = fext {
             w -= f.on_body(ws, i);
@@ -55,9 +58,9 @@ pub(crate) fn rnea_passes<T: Real>(
         ws.wrench[i] = w;
     }
     // Backward pass (seed 000): W_λ += Ad_{H_λ^i}ᵀ W_i, τ_i = S_iᵀ W_i.
-    for i in (0..model.nbodies()).rev() {
-        ws.tau[i] = model.joints()[i].screw.dot(&ws.wrench[i]);
-        if let Some(p) = model.parent(i) {
+    for i in (0..n).rev() {
+        ws.tau[i] = motions[i].dot(&ws.wrench[i]);
+        if let Some(p) = parents[i] {
             let back = ws.pose_in_parent[i].inv_act_transpose_wrench(&ws.wrench[i]);
             ws.wrench[p] += back;
         }

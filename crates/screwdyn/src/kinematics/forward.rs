@@ -23,11 +23,15 @@ use crate::workspace::Workspace;
 /// ```
 pub fn forward_kinematics<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) -> Result<()> {
     model.check_vector(q, "q")?;
-    for (i, joint) in model.joints().iter().enumerate() {
-        let h = joint.pose_in_parent(q[i]);
-        ws.pose_in_parent[i] = h;
-        ws.pose_in_world[i] = match model.parent(i) {
-            Some(p) => ws.pose_in_world[p].compose(&h),
+    // `check_vector` made `q.len() == n`; the workspace was made for this model.
+    let n = model.nq();
+    let (joints, motions, parents) = (model.joints(), model.motions(), model.parents());
+    let (pip, piw) = (&mut ws.pose_in_parent[..n], &mut ws.pose_in_world[..n]);
+    for i in 0..n {
+        let h = motions[i].pose_in_parent(&joints[i].home, q[i]);
+        pip[i] = h;
+        piw[i] = match parents[i] {
+            Some(p) => piw[p].compose(&h),
             None => h,
         };
     }

@@ -46,8 +46,8 @@ pub fn compute_joint_jacobians<T: Real>(
     q: &[T],
 ) -> Result<()> {
     forward_kinematics(model, ws, q)?;
-    for (j, joint) in model.joints().iter().enumerate() {
-        ws.screw_in_world[j] = ws.pose_in_world[j].act_twist(&joint.screw);
+    for (j, motion) in model.motions().iter().enumerate() {
+        ws.screw_in_world[j] = motion.act(&ws.pose_in_world[j]);
     }
     Ok(())
 }

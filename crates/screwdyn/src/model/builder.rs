@@ -428,7 +428,10 @@ impl<T: Real> ModelBuilder<T> {
             gravity: self.gravity,
             base,
             meshes: self.meshes.clone(),
-        })
+            motions: Vec::new(),
+            inertia_scale: T::zero(),
+        }
+        .with_motions())
     }
 
     fn child_screw(&self, l: &LinkDecl<T>, kind: JointKind<T>) -> Result<Twist<T>> {

@@ -15,7 +15,9 @@ mod builder;
 mod joint;
 #[allow(clippy::module_inception)]
 mod model;
+mod motion;
 
 pub use builder::{JointSpec, ModelBuilder};
 pub use joint::{Joint, JointKind, JointLimits, Mimic};
 pub use model::{Body, Frame, FrameKind, Model};
+pub use motion::JointMotion;

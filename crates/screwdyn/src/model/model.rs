@@ -1,6 +1,7 @@
 //! The immutable [`Model`].
 
 use super::joint::Joint;
+use super::motion::JointMotion;
 use crate::error::{Error, Result};
 use crate::scalar::Real;
 use crate::spatial::{Se3, SpatialInertia};
@@ -57,6 +58,10 @@ pub struct Model<T: Real = f64> {
     pub(crate) gravity: Vector3<T>,
     pub(crate) base: Body<T>,
     pub(crate) meshes: Vec<(String, String)>,
+    /// Derived from `joints` at build time (see [`Model::motions`]).
+    pub(crate) motions: Vec<JointMotion<T>>,
+    /// Derived: the largest entry of any body's 6×6 spatial inertia (ABA's singularity scale).
+    pub(crate) inertia_scale: T,
 }
 
 fn list(names: impl Iterator<Item = String>) -> String {
@@ -88,6 +93,31 @@ impl<T: Real> Model<T> {
     /// The moving joints in coordinate order.
     pub fn joints(&self) -> &[Joint<T>] {
         &self.joints
+    }
+    /// The joints' screw axes classified for the per-call algorithms (axis-aligned revolute
+    /// and prismatic joints get cheap special cases), in coordinate order.
+    #[inline]
+    pub fn motions(&self) -> &[JointMotion<T>] {
+        &self.motions
+    }
+    /// Fills `motions` from the joints' screw axes.
+    pub(crate) fn with_motions(mut self) -> Self {
+        self.motions = self
+            .joints
+            .iter()
+            .map(|j| JointMotion::classify(&j.screw))
+            .collect();
+        self.inertia_scale = self
+            .bodies
+            .iter()
+            .fold(T::zero(), |s, b| s.max(b.inertia.matrix().amax()));
+        self
+    }
+    /// The largest entry of any moving body's 6×6 spatial inertia (a scale for singularity
+    /// tests).
+    #[inline]
+    pub fn inertia_scale(&self) -> T {
+        self.inertia_scale
     }
     /// The moving bodies; body `i` is moved by joint `i`.
     pub fn bodies(&self) -> &[Body<T>] {
@@ -327,6 +357,9 @@ impl Model<f64> {
                 inertia: self.base.inertia.cast(),
             },
             meshes: self.meshes.clone(),
+            motions: Vec::new(),
+            inertia_scale: U::zero(),
         }
+        .with_motions()
     }
 }
