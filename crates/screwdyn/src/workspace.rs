@@ -50,7 +50,7 @@ pub struct Workspace<T: Real = f64> {
     /// `q̈`: joint accelerations from forward dynamics.
     pub qdd: DVector<T>,
 
-    /// CRBA: composite spatial inertia of the subtree rooted at body `i`, in frame `i`.
+    /// CRBA: composite spatial inertia of the subtree rooted at body `i`, in the base frame.
     pub composite_inertia: Vec<CompositeInertia<T>>,
     /// ABA: articulated-body inertia `𝔍ᴬ_i` in frame `i`.
     pub articulated_inertia: Vec<Matrix6<T>>,

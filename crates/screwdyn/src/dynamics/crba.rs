@@ -115,9 +115,14 @@ impl<T: Real> CompositeInertia<T> {
 }
 
 /// The mass matrix `M(q)` by the composite-rigid-body algorithm: composite inertias
-/// `𝔍ᶜ_i = 𝔍_i + Σ_children Ad_{H_i^c}ᵀ 𝔍ᶜ_c Ad_{H_i^c}` (backward), then
-/// `M_ij = S_iᵀ Ad_{H_i^j}ᵀ 𝔍ᶜ_j S_j` for every `i` supporting `j`, walking up the tree. Equal
-/// to the seeds' `M = Sᵀ Lᵀ 𝔍 L S` (seed 000) and to seed 001's `Σ_i J_iᵀ 𝔍^{i,i} J_i`.
+/// `𝔍ᶜ_i = 𝔍_i + Σ_children 𝔍ᶜ_c` (backward), then `M_ij = S_iᵀ 𝔍ᶜ_j S_j` for every `i`
+/// supporting `j`, walking up the tree. Equal to the seeds' `M = Sᵀ Lᵀ 𝔍 L S` (seed 000) and to
+/// seed 001's `Σ_i J_iᵀ 𝔍^{i,i} J_i`.
+///
+/// Everything is written in the base frame {0}: `𝔍ᶜ_i` is summed from the bodies' inertias
+/// `Ad_{H_0^i}ᵀ 𝔍^{i,i} Ad_{H_0^i}`, and `S_i` is the space-Jacobian column
+/// `Ad_{H_i^0} S_i^{i,λ(i)}`, so each off-diagonal entry is a single 6-vector dot product (no
+/// per-ancestor change of frame). Also fills `ws.screw_in_world`.
 /// Returns `ws.mass_matrix` (both triangles filled).
 ///
 /// ```
@@ -149,28 +154,34 @@ pub fn mass_matrix<'w, T: Real>(
 
 pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) {
     let n = model.nbodies();
+    let (motions, parents, bodies) = (model.motions(), model.parents(), model.bodies());
+    let ci = &mut ws.composite_inertia[..n];
+    let piw = &ws.pose_in_world[..n];
     for i in 0..n {
-        ws.composite_inertia[i] = CompositeInertia::from(&model.bodies()[i].inertia);
+        ci[i] = CompositeInertia::from(&bodies[i].inertia).transformed(&piw[i]);
     }
     for i in (0..n).rev() {
-        if let Some(p) = model.parent(i) {
-            let c = ws.composite_inertia[i].transformed(&ws.pose_in_parent[i]);
-            ws.composite_inertia[p].add(&c);
+        if let Some(p) = parents[i] {
+            let c = ci[i];
+            ci[p].add(&c);
         }
     }
-    // Bodies on different branches do not couple: those entries stay zero.
-    ws.mass_matrix.fill(T::zero());
-    let (motions, parents) = (model.motions(), model.parents());
+    let s = &mut ws.screw_in_world[..n];
     for i in 0..n {
-        let mut f = ws.composite_inertia[i].apply(&motions[i].screw());
-        ws.mass_matrix[(i, i)] = motions[i].dot(&f);
+        s[i] = motions[i].act(&piw[i]);
+    }
+    // Bodies on different branches do not couple: those entries stay zero.
+    let mm = &mut ws.mass_matrix;
+    mm.fill(T::zero());
+    for i in 0..n {
+        let f = ci[i].apply(&s[i]);
+        mm[(i, i)] = s[i].dot(&f);
         let mut k = i;
         while let Some(p) = parents[k] {
-            f = ws.pose_in_parent[k].inv_act_transpose_wrench(&f);
             k = p;
-            let mij = motions[k].dot(&f);
-            ws.mass_matrix[(k, i)] = mij;
-            ws.mass_matrix[(i, k)] = mij;
+            let mij = s[k].dot(&f);
+            mm[(k, i)] = mij;
+            mm[(i, k)] = mij;
         }
     }
 }
