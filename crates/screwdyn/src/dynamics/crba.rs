@@ -154,11 +154,11 @@ pub fn mass_matrix<'w, T: Real>(
 
 pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) {
     let n = model.nbodies();
-    let (motions, parents, bodies) = (model.motions(), model.parents(), model.bodies());
+    let (motions, parents, bodies) = (model.motions(), model.parents(), &model.body_composite);
     let ci = &mut ws.composite_inertia[..n];
     let piw = &ws.pose_in_world[..n];
     for i in 0..n {
-        ci[i] = CompositeInertia::from(&bodies[i].inertia).transformed(&piw[i]);
+        ci[i] = bodies[i].transformed(&piw[i]);
     }
     for i in (0..n).rev() {
         if let Some(p) = parents[i] {
@@ -170,18 +170,29 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
     for i in 0..n {
         s[i] = motions[i].act(&piw[i]);
     }
-    // Bodies on different branches do not couple: those entries stay zero.
+    // Bodies on different branches do not couple: those entries stay zero (on a chain every
+    // entry is written below).
     let mm = &mut ws.mass_matrix;
-    mm.fill(T::zero());
+    assert!(
+        mm.nrows() == n && mm.ncols() == n,
+        "workspace made for another model"
+    );
+    if !model.is_chain {
+        mm.as_mut_slice().fill(T::zero());
+    }
     for i in 0..n {
         let f = ci[i].apply(&s[i]);
-        mm[(i, i)] = s[i].dot(&f);
+        // SAFETY: i < n and every ancestor k < i, and `mm` is n × n (asserted above).
+        unsafe { *mm.get_unchecked_mut((i, i)) = s[i].dot(&f) };
         let mut k = i;
         while let Some(p) = parents[k] {
             k = p;
+            debug_assert!(k < i);
             let mij = s[k].dot(&f);
-            mm[(k, i)] = mij;
-            mm[(i, k)] = mij;
+            unsafe {
+                *mm.get_unchecked_mut((k, i)) = mij;
+                *mm.get_unchecked_mut((i, k)) = mij;
+            }
         }
     }
 }

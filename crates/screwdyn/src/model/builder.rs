@@ -430,6 +430,8 @@ impl<T: Real> ModelBuilder<T> {
             meshes: self.meshes.clone(),
             motions: Vec::new(),
             inertia_scale: T::zero(),
+            body_composite: Vec::new(),
+            is_chain: false,
         }
         .with_motions())
     }

@@ -62,6 +62,10 @@ pub struct Model<T: Real = f64> {
     pub(crate) motions: Vec<JointMotion<T>>,
     /// Derived: the largest entry of any body's 6×6 spatial inertia (ABA's singularity scale).
     pub(crate) inertia_scale: T,
+    /// Derived: each body's inertia in the parameters CRBA sums (`m`, `m c`, `I_o`).
+    pub(crate) body_composite: Vec<crate::dynamics::CompositeInertia<T>>,
+    /// Derived: the tree is a single chain (`λ(i) = i − 1`).
+    pub(crate) is_chain: bool,
 }
 
 fn list(names: impl Iterator<Item = String>) -> String {
@@ -107,6 +111,16 @@ impl<T: Real> Model<T> {
             .iter()
             .map(|j| JointMotion::classify(&j.screw))
             .collect();
+        self.body_composite = self
+            .bodies
+            .iter()
+            .map(|b| crate::dynamics::CompositeInertia::from(&b.inertia))
+            .collect();
+        self.is_chain = self
+            .parents
+            .iter()
+            .enumerate()
+            .all(|(i, p)| *p == i.checked_sub(1));
         self.inertia_scale = self
             .bodies
             .iter()
@@ -359,6 +373,8 @@ impl Model<f64> {
             meshes: self.meshes.clone(),
             motions: Vec::new(),
             inertia_scale: U::zero(),
+            body_composite: Vec::new(),
+            is_chain: false,
         }
         .with_motions()
     }

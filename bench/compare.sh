@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# Side-by-side per-call timing of screwdyn and Pinocchio on the same URDFs (issue 7).
+#
+#   bash bench/compare.sh [ROUNDS]        # ROUNDS comparison rounds (default 3)
+#
+# Environment: BATCHES (default 21) and CALLS (default 20000) per algorithm and round.
+#
+# 1. Creates a throwaway venv .venv-bench (git-ignored) and installs from PyPI: pin (Pinocchio 4),
+#    example-robot-data (the UR5 and Panda URDFs), cmeel-eigen and cmeel-urdfdom-headers
+#    (headers the pin wheel's own headers need).
+# 2. Exports each URDF's joint tree with Pinocchio's Python URDF parser (bench/export_model.py)
+#    and compiles bench/pinocchio_bench.cpp — ours — against Pinocchio's headers only, with
+#    g++ -O3 -march=native -DNDEBUG.
+# 3. Builds `screwdyn` in release (lto = "fat", codegen-units = 1) with
+#    RUSTFLAGS="-C target-cpu=native" into target/bench-native (the normal build stays
+#    portable: target-cpu=native is only used here, so both sides get the same CPU flags).
+# 4. Runs, ROUNDS times and alternating, `pinocchio_bench` and `screwdyn bench` on UR5 and Panda
+#    (fixed base), then prints per-call medians (median over rounds of the per-round medians)
+#    and the ratio ours / Pinocchio for fk, jacobians, rnea, crba and aba.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+ROUNDS=${1:-3}
+BATCHES=${BATCHES:-21}
+CALLS=${CALLS:-20000}
+VENV=$ROOT/.venv-bench
+OUT=$ROOT/target/bench-compare
+mkdir -p "$OUT"
+
+if [ ! -x "$VENV/bin/python" ]; then
+    python3 -m venv "$VENV"
+fi
+"$VENV/bin/pip" install -q pin example-robot-data cmeel-eigen cmeel-urdfdom-headers
+SITE=$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')
+PREFIX=$SITE/cmeel.prefix
+ROBOTS=$PREFIX/share/example-robot-data/robots
+declare -A URDF=(
+    [ur5]=$ROBOTS/ur_description/urdf/ur5_robot.urdf
+    [panda]=$ROBOTS/panda_description/urdf/panda.urdf
+)
+for r in ur5 panda; do
+    "$VENV/bin/python" bench/export_model.py "${URDF[$r]}" "$OUT/$r.txt"
+done
+
+CXXFLAGS="-std=c++17 -O3 -march=native -DNDEBUG"
+PINBENCH=$OUT/pinocchio_bench
+if [ ! -x "$PINBENCH" ] || [ bench/pinocchio_bench.cpp -nt "$PINBENCH" ]; then
+    echo "compiling bench/pinocchio_bench.cpp (about two minutes) ..." >&2
+    # The BOOST_* definitions are the ones Pinocchio's CMake config exports to its users.
+    g++ $CXXFLAGS -w \
+        -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 \
+        -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -DBOOST_FUSION_INVOKE_MAX_ARITY=12 \
+        -I"$PREFIX/include" -I"$PREFIX/include/eigen3" \
+        bench/pinocchio_bench.cpp -o "$PINBENCH"
+fi
+
+echo "building screwdyn (release, target-cpu=native) ..." >&2
+RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR=$ROOT/target/bench-native \
+    cargo build --release -q -p screwdyn-cli
+OURS=$ROOT/target/bench-native/release/screwdyn
+
+: > "$OUT/runs.jsonl"
+for round in $(seq 1 "$ROUNDS"); do
+    for r in ur5 panda; do
+        echo "round $round/$ROUNDS: $r" >&2
+        p=$("$PINBENCH" "$OUT/$r.txt" "$BATCHES" "$CALLS")
+        o=$("$OURS" bench "${URDF[$r]}" --format json --batches "$BATCHES" --calls "$CALLS")
+        echo "{\"robot\": \"$r\", \"round\": $round, \"pinocchio\": $p, \"screwdyn\": $o}" >> "$OUT/runs.jsonl"
+    done
+done
+
+"$VENV/bin/python" - "$OUT/runs.jsonl" <<'EOF'
+import json, statistics, sys
+runs = [json.loads(l) for l in open(sys.argv[1])]
+algos = ["fk", "jacobians", "rnea", "crba", "aba"]
+print(f"{'robot':<7}{'algorithm':<11}{'screwdyn ns':>13}{'Pinocchio ns':>14}{'ratio':>8}   per-round ratios")
+for robot in ["ur5", "panda"]:
+    rs = [r for r in runs if r["robot"] == robot]
+    nq = rs[0]["screwdyn"]["nq"]
+    assert nq == rs[0]["pinocchio"]["nq"], "both sides must load the same joints"
+    for a in algos:
+        ours = statistics.median(r["screwdyn"]["ns_per_call"][a] for r in rs)
+        pin = statistics.median(r["pinocchio"]["ns_per_call"][a] for r in rs)
+        per = " ".join(f"{r['screwdyn']['ns_per_call'][a] / r['pinocchio']['ns_per_call'][a]:.2f}" for r in rs)
+        print(f"{robot + ' ' + str(nq):<7}{a:<11}{ours:>13.1f}{pin:>14.1f}{ours / pin:>8.2f}   {per}")
+EOF
