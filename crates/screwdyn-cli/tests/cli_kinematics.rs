@@ -99,3 +99,22 @@ fn bad_input_is_one_sentence_and_exit_2() {
         "no frame named 'hand'",
     );
 }
+
+#[test]
+fn bench_json_has_every_default_algorithm() {
+    let v = run_json(&["bench", "builtin:ur5", "--batches", "3", "--calls", "100"]);
+    assert_eq!(v["model"], "ur5");
+    assert_eq!(v["nq"], 6);
+    for key in ["fk", "jacobians", "rnea", "crba", "aba"] {
+        let ns = v["ns_per_call"][key].as_f64().unwrap_or(-1.0);
+        assert!(ns > 0.0, "{key}: {ns}");
+    }
+}
+
+#[test]
+fn bench_rejects_an_unknown_algorithm() {
+    fails(
+        &["bench", "builtin:ur5", "--algorithms", "fk,warp"],
+        "unknown algorithm 'warp'",
+    );
+}
