@@ -4,9 +4,6 @@
 //! Text is drawn with the DejaVu Sans font embedded in the binary (its licence is in
 //! `assets/`), so plots look the same on machines without system fonts.
 
-// Used by `simulate` and `torque-profile`, which arrive with the CLI issue; remove then.
-#![allow(dead_code)]
-
 use crate::CliError;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -14,6 +11,14 @@ use std::path::Path;
 use std::sync::Once;
 
 static FONT: Once = Once::new();
+
+/// Colours of the dashed reference lines (dark, distinct from the series palette's first hues).
+const LIMIT_COLORS: [RGBColor; 4] = [
+    RGBColor(200, 0, 0),
+    RGBColor(90, 90, 90),
+    RGBColor(150, 0, 150),
+    RGBColor(0, 110, 110),
+];
 
 fn register_font() {
     FONT.call_once(|| {
@@ -151,15 +156,30 @@ where
                     PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
                 });
         }
-        for (k, (label, y)) in panel.lines.iter().enumerate() {
-            let color = Palette99::pick(k).to_rgba();
+        // Reference lines: dashed, one colour and one legend entry per distinct label.
+        let mut labels: Vec<&str> = Vec::new();
+        for (label, y) in &panel.lines {
+            let (k, first) = match labels.iter().position(|l| l == label) {
+                Some(k) => (k, false),
+                None => {
+                    labels.push(label);
+                    (labels.len() - 1, true)
+                }
+            };
+            let color = LIMIT_COLORS[k % LIMIT_COLORS.len()];
             let dashes = (0..40).map(|i| {
                 let a = x0 + (x1 - x0) * (2 * i) as f64 / 80.0;
                 let b = x0 + (x1 - x0) * (2 * i + 1) as f64 / 80.0;
-                PathElement::new(vec![(a, *y), (b, *y)], color.stroke_width(1))
+                PathElement::new(vec![(a, *y), (b, *y)], color.stroke_width(2))
             });
-            chart.draw_series(dashes).map_err(e)?;
-            let _ = label;
+            let drawn = chart.draw_series(dashes).map_err(e)?;
+            if first {
+                drawn.label(label.clone()).legend(move |(x, y)| {
+                    EmptyElement::at((x, y))
+                        + PathElement::new(vec![(0, 0), (7, 0)], color.stroke_width(2))
+                        + PathElement::new(vec![(12, 0), (19, 0)], color.stroke_width(2))
+                });
+            }
         }
         chart
             .configure_series_labels()
