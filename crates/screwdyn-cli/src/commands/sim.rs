@@ -324,7 +324,7 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
             },
             Panel {
                 title: "Joint velocities".into(),
-                y_label: "q̇ (rad/s)".into(),
+                y_label: "dq/dt (rad/s)".into(),
                 series: joint_series(&rec, &rec.v),
                 lines: vec![],
             },
@@ -548,18 +548,19 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
     ));
     if let Some(path) = &a.plot {
         let mut lines = Vec::new();
-        let mut limits: Vec<(f64, Vec<&str>)> = Vec::new();
+        let mut limits: Vec<(f64, Vec<String>)> = Vec::new();
         for (i, l) in p.effort_limit.iter().enumerate() {
             if !l.is_finite() {
                 continue;
             }
             match limits.iter_mut().find(|(x, _)| x == l) {
-                Some((_, js)) => js.push(&j[i]),
-                None => limits.push((*l, vec![&j[i]])),
+                Some((_, js)) => js.push((i + 1).to_string()),
+                None => limits.push((*l, vec![(i + 1).to_string()])),
             }
         }
         for (l, js) in &limits {
-            let label = format!("±{} N·m limit ({})", fmt_short(*l), js.join(", "));
+            let which = if js.len() == 1 { "joint" } else { "joints" };
+            let label = format!("effort limit ±{} N·m ({which} {})", fmt_short(*l), js.join(", "));
             lines.push((label.clone(), *l));
             lines.push((label, -*l));
         }
@@ -572,7 +573,7 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
             },
             Panel {
                 title: "Joint velocities".into(),
-                y_label: "q̇ (rad/s)".into(),
+                y_label: "dq/dt (rad/s)".into(),
                 series: joint_series(rec, &rec.v),
                 lines: vec![],
             },
@@ -583,7 +584,15 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
                 lines: vec![],
             },
         ];
-        let title = format!("{}: torque profile, {what}", m.name());
+        let kind = match a.trajectory {
+            TrajectoryArg::Trapezoid => "trapezoid",
+            TrajectoryArg::Quintic => "quintic",
+        };
+        let title = format!(
+            "{}: torques for a {kind} motion of {} s",
+            m.name(),
+            fmt_short(traj.duration())
+        );
         plot_panels(path, &title, "t (s)", &panels)?;
     }
     crate::output::print(&[r], resolve(a.model.format), false)
