@@ -13,10 +13,7 @@ const G: f64 = 9.81;
 fn planar2(q: [f64; 2], v: [f64; 2]) -> ([[f64; 2]; 2], [f64; 2], [f64; 2]) {
     let (c1, c2, s2, c12) = (q[0].cos(), q[1].cos(), q[1].sin(), (q[0] + q[1]).cos());
     let m = [[3.0 + 2.0 * c2, 1.0 + c2], [1.0 + c2, 1.0]];
-    let cv = [
-        -s2 * v[1] * v[1] - 2.0 * s2 * v[0] * v[1],
-        s2 * v[0] * v[0],
-    ];
+    let cv = [-s2 * v[1] * v[1] - 2.0 * s2 * v[0] * v[1], s2 * v[0] * v[0]];
     let g = [2.0 * G * c1 + G * c12, G * c12];
     (m, cv, g)
 }
@@ -32,7 +29,16 @@ fn inverse_dynamics_matches_seed_closed_form() {
         .map(|i| m[i][0] * A[0] + m[i][1] * A[1] + cv[i] + g[i])
         .collect();
     for cmd in ["inverse-dynamics", "rnea"] {
-        let v = json(&[cmd, "builtin:planar2", "--q", &csv(&Q), "--v", &csv(&V), "--a", &csv(&A)]);
+        let v = json(&[
+            cmd,
+            "builtin:planar2",
+            "--q",
+            &csv(&Q),
+            "--v",
+            &csv(&V),
+            "--a",
+            &csv(&A),
+        ]);
         assert_eq!(v["joints"], serde_json::json!(["joint1", "joint2"]));
         close(&vec(&v["tau"]), &expect, 1e-12);
     }
@@ -41,10 +47,20 @@ fn inverse_dynamics_matches_seed_closed_form() {
     close(&vec(&v["tau"]), &g, 1e-12);
     // --gravity overrides the model's: none at all gives M q̈ + C q̇.
     let v = json(&[
-        "rnea", "builtin:planar2", "--q", &csv(&Q), "--v", &csv(&V), "--a", &csv(&A),
-        "--gravity", "0,0,0",
+        "rnea",
+        "builtin:planar2",
+        "--q",
+        &csv(&Q),
+        "--v",
+        &csv(&V),
+        "--a",
+        &csv(&A),
+        "--gravity",
+        "0,0,0",
     ]);
-    let expect: Vec<f64> = (0..2).map(|i| m[i][0] * A[0] + m[i][1] * A[1] + cv[i]).collect();
+    let expect: Vec<f64> = (0..2)
+        .map(|i| m[i][0] * A[0] + m[i][1] * A[1] + cv[i])
+        .collect();
     close(&vec(&v["tau"]), &expect, 1e-12);
 }
 
@@ -65,11 +81,22 @@ fn matrices_and_energy_match_seed_closed_form() {
     let gt = json(&["gravity", "builtin:planar2", "--q", &q]);
     close(&vec(&gt["gravity_torque"]), &g, 1e-12);
     let h = json(&["nonlinear-effects", "builtin:planar2", "--q", &q, "--v", &v]);
-    close(&vec(&h["nonlinear_effects"]), &[cv[0] + g[0], cv[1] + g[1]], 1e-12);
+    close(
+        &vec(&h["nonlinear_effects"]),
+        &[cv[0] + g[0], cv[1] + g[1]],
+        1e-12,
+    );
     let e = json(&["energy", "builtin:planar2", "--q", &q, "--v", &v]);
-    let ke = 0.5 * (0..2).map(|i| (0..2).map(|j| V[i] * m[i][j] * V[j]).sum::<f64>()).sum::<f64>();
+    let ke = 0.5
+        * (0..2)
+            .map(|i| (0..2).map(|j| V[i] * m[i][j] * V[j]).sum::<f64>())
+            .sum::<f64>();
     let pe = G * (2.0 * Q[0].sin() + (Q[0] + Q[1]).sin());
-    close(&[f(&e["kinetic_energy"]), f(&e["potential_energy"])], &[ke, pe], 1e-12);
+    close(
+        &[f(&e["kinetic_energy"]), f(&e["potential_energy"])],
+        &[ke, pe],
+        1e-12,
+    );
     close(&[f(&e["total_energy"])], &[ke + pe], 1e-12);
 }
 
@@ -80,10 +107,22 @@ fn forward_dynamics_inverts_the_closed_form() {
     let tau: Vec<f64> = (0..2)
         .map(|i| m[i][0] * A[0] + m[i][1] * A[1] + cv[i] + g[i])
         .collect();
-    for (cmd, method) in [("forward-dynamics", "aba"), ("aba", "crba"), ("aba", "walker-orin")] {
+    for (cmd, method) in [
+        ("forward-dynamics", "aba"),
+        ("aba", "crba"),
+        ("aba", "walker-orin"),
+    ] {
         let out = json(&[
-            cmd, "builtin:planar2", "--q", &csv(&Q), "--v", &csv(&V), "--tau", &csv(&tau),
-            "--method", method,
+            cmd,
+            "builtin:planar2",
+            "--q",
+            &csv(&Q),
+            "--v",
+            &csv(&V),
+            "--tau",
+            &csv(&tau),
+            "--method",
+            method,
         ]);
         close(&vec(&out["qdd"]), &A, 1e-10);
     }
@@ -93,17 +132,33 @@ fn forward_dynamics_inverts_the_closed_form() {
 fn external_wrenches_enter_as_jacobian_transpose() {
     // Seed 000: a tip pushing 1 N along its local y at q = 0 needs τ = (L1 + L2, L2) · 1 N.
     let out = json(&[
-        "rnea", "builtin:planar2", "--gravity", "0,0,0", "--tip-wrench", "link2:0,0,0,0,1,0",
+        "rnea",
+        "builtin:planar2",
+        "--gravity",
+        "0,0,0",
+        "--tip-wrench",
+        "link2:0,0,0,0,1,0",
     ]);
     close(&vec(&out["tau"]), &[2.0, 1.0], 1e-12);
     // The environment pushing on link 2 with the same force (body frame): the opposite torques.
-    let out = json(&["rnea", "builtin:planar2", "--gravity", "0,0,0", "--wrench", "link2:0,0,0,0,1,0"]);
+    let out = json(&[
+        "rnea",
+        "builtin:planar2",
+        "--gravity",
+        "0,0,0",
+        "--wrench",
+        "link2:0,0,0,0,1,0",
+    ]);
     close(&vec(&out["tau"]), &[-2.0, -1.0], 1e-12);
     // Holding the bobs up from outside (world frame) cancels gravity: f = m g ŷ on each, the
     // moment about the base origin r × f.
     let out = json(&[
-        "rnea", "builtin:planar2", "--wrench", "link1:0,0,9.81,0,9.81,0@world",
-        "--wrench", "link2:0,0,19.62,0,9.81,0@world",
+        "rnea",
+        "builtin:planar2",
+        "--wrench",
+        "link1:0,0,9.81,0,9.81,0@world",
+        "--wrench",
+        "link2:0,0,19.62,0,9.81,0@world",
     ]);
     close(&vec(&out["tau"]), &[0.0, 0.0], 1e-12);
 }
@@ -113,7 +168,16 @@ fn closed_form_and_lagrange_follow_seed_004() {
     let half_pi = std::f64::consts::FRAC_PI_2;
     let q = format!("0,{half_pi}");
     let cf = json(&["closed-form", "builtin:planar2", "--q", &q, "--v", "0.5,-1"]);
-    for key in ["A", "L", "S", "inertia", "J", "mass_matrix", "coriolis_matrix", "gravity_torque"] {
+    for key in [
+        "A",
+        "L",
+        "S",
+        "inertia",
+        "J",
+        "mass_matrix",
+        "coriolis_matrix",
+        "gravity_torque",
+    ] {
         assert!(!cf[key].is_null(), "{key}");
     }
     assert_eq!(mat(&cf["A"]).len(), 12);
@@ -141,7 +205,16 @@ fn explain_prints_the_seed_iterations_and_rnea_torques() {
     let expect: Vec<f64> = (0..2)
         .map(|i| m[i][0] * A[0] + m[i][1] * A[1] + cv[i] + g[i])
         .collect();
-    let args = ["explain", "builtin:planar2", "--q", &csv(&Q), "--v", &csv(&V), "--a", &csv(&A)];
+    let args = [
+        "explain",
+        "builtin:planar2",
+        "--q",
+        &csv(&Q),
+        "--v",
+        &csv(&V),
+        "--a",
+        &csv(&A),
+    ];
     let out = json(&args);
     close(&vec(&out["tau"]), &expect, 1e-12);
     // V_2 in frame 2 and the base acceleration standing in for gravity.
@@ -159,14 +232,26 @@ fn explain_prints_the_seed_iterations_and_rnea_torques() {
     ] {
         assert!(text.contains(needle), "missing {needle} in\n{text}");
     }
-    assert!(text.contains(&format!("τ_2 (joint2) = {:.6}", expect[1])), "{text}");
+    assert!(
+        text.contains(&format!("τ_2 (joint2) = {:.6}", expect[1])),
+        "{text}"
+    );
     // UR5 and a branched tree: the printed τ equals the library's RNEA.
     for (spec, n) in [("builtin:ur5", 6), ("builtin:branched", 0)] {
         let model = load_model(spec).unwrap();
         let n = if n == 0 { model.nq() } else { n };
         let mut r = Lcg(7);
         let (q, v, a) = (r.vec(n), r.vec(n), r.vec(n));
-        let out = json(&["explain", spec, "--q", &csv(&q), "--v", &csv(&v), "--a", &csv(&a)]);
+        let out = json(&[
+            "explain",
+            spec,
+            "--q",
+            &csv(&q),
+            "--v",
+            &csv(&v),
+            "--a",
+            &csv(&a),
+        ]);
         let mut ws = Workspace::new(&model);
         let tau = dynamics::rnea(&model, &mut ws, &q, &v, &a).unwrap();
         close(&vec(&out["tau"]), tau.as_slice(), 1e-10);
@@ -182,17 +267,40 @@ fn urdf_and_ur5_match_the_library() {
         let (q, v, a) = (r.vec(n), r.vec(n), r.vec(n));
         let mut ws = Workspace::new(&model);
         let tau = dynamics::rnea(&model, &mut ws, &q, &v, &a).unwrap().clone();
-        let out = json(&["rnea", spec, "--q", &csv(&q), "--v", &csv(&v), "--a", &csv(&a)]);
+        let out = json(&[
+            "rnea",
+            spec,
+            "--q",
+            &csv(&q),
+            "--v",
+            &csv(&v),
+            "--a",
+            &csv(&a),
+        ]);
         close(&vec(&out["tau"]), tau.as_slice(), 1e-10);
         let mm = dynamics::crba(&model, &mut ws, &q).unwrap().clone();
         let out = mat(&json(&["crba", spec, "--q", &csv(&q)])["mass_matrix"]);
         for i in 0..n {
-            close(&out[i], &mm.row(i).iter().copied().collect::<Vec<_>>(), 1e-10);
+            close(
+                &out[i],
+                &mm.row(i).iter().copied().collect::<Vec<_>>(),
+                1e-10,
+            );
         }
-        let qdd = dynamics::forward_dynamics(&model, &mut ws, &q, &v, tau.as_slice(), ForwardMethod::Aba)
-            .unwrap()
-            .clone();
-        let out = json(&["aba", spec, "--q", &csv(&q), "--v", &csv(&v), "--tau", &csv(tau.as_slice())]);
+        let qdd =
+            dynamics::forward_dynamics(&model, &mut ws, &q, &v, tau.as_slice(), ForwardMethod::Aba)
+                .unwrap()
+                .clone();
+        let out = json(&[
+            "aba",
+            spec,
+            "--q",
+            &csv(&q),
+            "--v",
+            &csv(&v),
+            "--tau",
+            &csv(tau.as_slice()),
+        ]);
         close(&vec(&out["qdd"]), qdd.as_slice(), 1e-9);
         close(&vec(&out["qdd"]), &a, 1e-8);
     }
@@ -215,9 +323,15 @@ fn single_state_csv_has_design_columns() {
     let out = ok(&["aba", "builtin:planar2", "--format", "csv"]);
     assert_eq!(out.lines().next().unwrap(), "qdd.joint1,qdd.joint2");
     let out = ok(&["gravity", "builtin:planar2", "--format", "csv"]);
-    assert_eq!(out.lines().next().unwrap(), "gravity_torque.joint1,gravity_torque.joint2");
+    assert_eq!(
+        out.lines().next().unwrap(),
+        "gravity_torque.joint1,gravity_torque.joint2"
+    );
     let out = ok(&["nonlinear-effects", "builtin:planar2", "--format", "csv"]);
-    assert_eq!(out.lines().next().unwrap(), "nonlinear_effects.joint1,nonlinear_effects.joint2");
+    assert_eq!(
+        out.lines().next().unwrap(),
+        "nonlinear_effects.joint1,nonlinear_effects.joint2"
+    );
     let out = ok(&["coriolis", "builtin:planar2", "--format", "csv"]);
     assert!(out.starts_with("coriolis_matrix.joint1.joint1,"));
     let out = ok(&["jacobian", "builtin:planar2", "--format", "csv"]);
@@ -270,7 +384,10 @@ fn batch_of_1000_states() {
     let mut ws = Workspace::new(&model);
     for (k, (q, v, a)) in states.iter().enumerate() {
         let tau = dynamics::rnea(&model, &mut ws, q, v, a).unwrap();
-        let row: Vec<f64> = lines[k + 1].split(',').map(|c| c.parse().unwrap()).collect();
+        let row: Vec<f64> = lines[k + 1]
+            .split(',')
+            .map(|c| c.parse().unwrap())
+            .collect();
         close(&row, tau.as_slice(), 1e-12);
     }
     // JSON: an array of one object per row.
@@ -278,7 +395,11 @@ fn batch_of_1000_states() {
     let rows = out.as_array().unwrap();
     assert_eq!(rows.len(), 1000);
     let mm = dynamics::crba(&model, &mut ws, &states[999].0).unwrap();
-    close(&mat(&rows[999]["mass_matrix"])[2], &mm.row(2).iter().copied().collect::<Vec<_>>(), 1e-12);
+    close(
+        &mat(&rows[999]["mass_matrix"])[2],
+        &mm.row(2).iter().copied().collect::<Vec<_>>(),
+        1e-12,
+    );
     assert_eq!(rows[0]["joints"].as_array().unwrap().len(), 6);
     // Matrices in batch CSV: <key>.<row joint>.<col joint>.
     let out = ok(&["crba", "builtin:ur5", "--input", p, "--format", "csv"]);

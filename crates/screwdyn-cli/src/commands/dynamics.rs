@@ -127,15 +127,8 @@ pub fn forward_dynamics(a: &ForwardDynamicsArgs) -> Result<(), CliError> {
         ("tau", a.tau.as_deref()),
     ];
     run_states(&m, &a.common, &flags, |s| {
-        let qdd = dynamics::forward_dynamics_with(
-            &m,
-            &mut ws,
-            &s.q,
-            &s.v,
-            &s.tau,
-            ext.as_ref(),
-            method,
-        )?;
+        let qdd =
+            dynamics::forward_dynamics_with(&m, &mut ws, &s.q, &s.v, &s.tau, ext.as_ref(), method)?;
         let mut r = base(&m);
         r.add("qdd", Value::joints(&j, qdd.as_slice()));
         Ok(r)
@@ -187,7 +180,12 @@ pub fn closed_form(a: &QvArgs) -> Result<(), CliError> {
             ("coriolis_matrix", "C(θ, θ̇) (the seeds' literal form)"),
             ("gravity_torque", "g(θ)"),
         ] {
-            let v = &r.items.iter().find(|(k, _)| k == key).expect("added above").1;
+            let v = &r
+                .items
+                .iter()
+                .find(|(k, _)| k == key)
+                .expect("added above")
+                .1;
             let mut body = String::new();
             match v {
                 Value::Matrix(rl, cl, x) => body = crate::output::matrix_table(rl, cl, x),

@@ -53,7 +53,9 @@ pub fn iterations(m: &Model, q: &[f64], v: &[f64], a: &[f64]) -> Iterations {
     let g = m.gravity();
     let vdot0: Twist = twist(Vector3::zeros(), -g);
     let mut t = String::new();
-    t.push_str("Recursive Newton–Euler algorithm (seeds 000/002), twists (ω | v), wrenches (m | f).\n");
+    t.push_str(
+        "Recursive Newton–Euler algorithm (seeds 000/002), twists (ω | v), wrenches (m | f).\n",
+    );
     t.push_str(&format!(
         "Base: V_0^{{0,0}} = 0, V̇_0^{{0,0}} = (0, −g) = {}  (gravity as a base acceleration)\n\n",
         six(&vdot0)

@@ -204,7 +204,9 @@ fn read_states(m: &Model, path: &Path) -> Result<Vec<State>, CliError> {
             )));
         };
         if !seen.insert(slot) {
-            return Err(CliError::input(format!("{file}: column '{h}' appears twice")));
+            return Err(CliError::input(format!(
+                "{file}: column '{h}' appears twice"
+            )));
         }
         slots.push(slot);
     }
@@ -289,7 +291,11 @@ pub fn parse_wrench(text: &str, flag: &str) -> Result<(String, Vector6<f64>, boo
         None => (rest, false),
     };
     let w = parse_fixed(numbers, flag, 6, "mx,my,mz,fx,fy,fz (moment first)")?;
-    Ok((name.trim().to_string(), Vector6::from_column_slice(&w), world))
+    Ok((
+        name.trim().to_string(),
+        Vector6::from_column_slice(&w),
+        world,
+    ))
 }
 
 /// The external wrenches of `--wrench` and `--tip-wrench`, or `None` when there are none.

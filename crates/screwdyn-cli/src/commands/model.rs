@@ -163,7 +163,9 @@ pub fn check(a: &CheckArgs) -> Result<(), CliError> {
         let q = vec![0.0; loose.nq()];
         let mm = screwdyn::dynamics::crba(&loose, &mut ws, &q)?.clone();
         if mm.cholesky().is_none() {
-            problems.push("the mass matrix at q = 0 is not positive definite (a massless chain?)".into());
+            problems.push(
+                "the mass matrix at q = 0 is not positive definite (a massless chain?)".into(),
+            );
         }
     }
     let ok = problems.is_empty();

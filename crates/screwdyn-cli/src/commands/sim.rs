@@ -48,7 +48,8 @@ fn plot_kind(path: &Path) -> Result<(), CliError> {
 
 /// Writes a recording as DESIGN §5 CSV or JSON.
 fn write_recording(rec: &Recording, path: &Path, kind: Format) -> Result<(), CliError> {
-    let fail = |e: std::io::Error| CliError::input(format!("cannot write {} ({e})", path.display()));
+    let fail =
+        |e: std::io::Error| CliError::input(format!("cannot write {} ({e})", path.display()));
     let mut file = std::io::BufWriter::new(std::fs::File::create(path).map_err(fail)?);
     match kind {
         Format::Json => {
@@ -81,7 +82,8 @@ fn scalar_series(rec: &Recording, name: &str, x: &[f64]) -> Series {
 /// Reads a torque series: columns `t` and `tau.<joint>` (a missing joint is zero).
 fn read_torque_csv(m: &Model, path: &Path) -> Result<TorqueSeries, CliError> {
     let file = path.display().to_string();
-    let err = |e: csv::Error| CliError::input(format!("{file}: {}", e.to_string().replace('\n', " ")));
+    let err =
+        |e: csv::Error| CliError::input(format!("{file}: {}", e.to_string().replace('\n', " ")));
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .from_path(path)
@@ -108,7 +110,9 @@ fn read_torque_csv(m: &Model, path: &Path) -> Result<TorqueSeries, CliError> {
         }
     }
     if !cols.contains(&None) {
-        return Err(CliError::input(format!("{file}: the column 't' is missing")));
+        return Err(CliError::input(format!(
+            "{file}: the column 't' is missing"
+        )));
     }
     let (mut times, mut values) = (Vec::new(), Vec::new());
     for record in reader.records() {
@@ -117,11 +121,15 @@ fn read_torque_csv(m: &Model, path: &Path) -> Result<TorqueSeries, CliError> {
         let mut tau = vec![0.0; m.nq()];
         let mut t = 0.0;
         for ((c, cell), h) in cols.iter().zip(record.iter()).zip(headers.iter()) {
-            let x: f64 = cell.parse().ok().filter(|x: &f64| x.is_finite()).ok_or_else(|| {
-                CliError::input(format!(
-                    "{file}:{line}: column '{h}': '{cell}' is not a finite number"
-                ))
-            })?;
+            let x: f64 = cell
+                .parse()
+                .ok()
+                .filter(|x: &f64| x.is_finite())
+                .ok_or_else(|| {
+                    CliError::input(format!(
+                        "{file}:{line}: column '{h}': '{cell}' is not a finite number"
+                    ))
+                })?;
             match c {
                 None => t = x,
                 Some(j) => tau[*j] = x,
@@ -130,8 +138,7 @@ fn read_torque_csv(m: &Model, path: &Path) -> Result<TorqueSeries, CliError> {
         times.push(t);
         values.push(tau);
     }
-    TorqueSeries::new(times, values)
-        .map_err(|e| CliError::input(format!("{file}: {e}")))
+    TorqueSeries::new(times, values).map_err(|e| CliError::input(format!("{file}: {e}")))
 }
 
 /// Parses `BODY:mx,my,mz,fx,fy,fz[@world]@T0-T1`.
@@ -147,7 +154,10 @@ fn parse_disturbance(m: &Model, text: &str) -> Result<Disturbance, CliError> {
     let dash = (1..b.len())
         .find(|&k| b[k] == b'-' && !matches!(b[k - 1], b'e' | b'E'))
         .ok_or_else(bad)?;
-    let t = parse_numbers(&format!("{},{}", &window[..dash], &window[dash + 1..]), "--disturbance")?;
+    let t = parse_numbers(
+        &format!("{},{}", &window[..dash], &window[dash + 1..]),
+        "--disturbance",
+    )?;
     if t[1] < t[0] {
         return Err(CliError::input(format!(
             "--disturbance '{text}': the window ends before it starts"
@@ -197,7 +207,10 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
         .parse()
         .map_err(|e: String| CliError::input(format!("--method: {e}")))?;
     if !(a.dt > 0.0 && a.dt.is_finite()) {
-        return Err(CliError::input(format!("--dt must be positive (got {})", a.dt)));
+        return Err(CliError::input(format!(
+            "--dt must be positive (got {})",
+            a.dt
+        )));
     }
     if !(a.duration >= 0.0 && a.duration.is_finite()) {
         return Err(CliError::input(format!(
@@ -261,7 +274,9 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
         }
         ControllerArg::Series => {
             let Some(p) = &a.torque_csv else {
-                return Err(CliError::input("--controller series needs --torque-csv FILE"));
+                return Err(CliError::input(
+                    "--controller series needs --torque-csv FILE",
+                ));
             };
             Box::new(read_torque_csv(&m, p)?)
         }
@@ -373,7 +388,13 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
         .add("total_energy_end", Value::Scalar(rec.total_energy[last]));
     if format == Format::Table {
         let mut t = table();
-        t.set_header(vec!["joint", "q(0) (rad)", "q(T) (rad)", "q̇(T) (rad/s)", "τ(T) (N·m)"]);
+        t.set_header(vec![
+            "joint",
+            "q(0) (rad)",
+            "q(T) (rad)",
+            "q̇(T) (rad/s)",
+            "τ(T) (N·m)",
+        ]);
         for (i, n) in j.iter().enumerate() {
             t.add_row(vec![
                 n.clone(),
@@ -422,7 +443,10 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
     let q0 = parse_vector(a.q0.as_deref(), "q0", &m)?;
     let qf = parse_vector(Some(&a.qf), "qf", &m)?;
     if !(a.dt > 0.0 && a.dt.is_finite()) {
-        return Err(CliError::input(format!("--dt must be positive (got {})", a.dt)));
+        return Err(CliError::input(format!(
+            "--dt must be positive (got {})",
+            a.dt
+        )));
     }
     let (traj, what): (Box<dyn Trajectory>, String) = match a.trajectory {
         TrajectoryArg::Trapezoid => {
@@ -434,7 +458,11 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
                 )));
             }
             let t = Trapezoid::new(&q0, &qf, &vmax, &amax, !a.unsynchronised)?;
-            let cruise: Vec<String> = t.cruise_speeds().iter().map(|v| format!("{v:.3}")).collect();
+            let cruise: Vec<String> = t
+                .cruise_speeds()
+                .iter()
+                .map(|v| format!("{v:.3}"))
+                .collect();
             let what = format!(
                 "trapezoid: accelerate from rest, cruise at ({}) rad/s, stop",
                 cruise.join(", ")
@@ -560,7 +588,11 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
         }
         for (l, js) in &limits {
             let which = if js.len() == 1 { "joint" } else { "joints" };
-            let label = format!("effort limit ±{} N·m ({which} {})", fmt_short(*l), js.join(", "));
+            let label = format!(
+                "effort limit ±{} N·m ({which} {})",
+                fmt_short(*l),
+                js.join(", ")
+            );
             lines.push((label.clone(), *l));
             lines.push((label, -*l));
         }

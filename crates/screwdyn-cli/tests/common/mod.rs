@@ -6,7 +6,10 @@ use serde_json::Value;
 use std::path::PathBuf;
 
 /// The URDF test robot of the library's tests (three revolute joints, fixed DH frames).
-pub const ARM3: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../screwdyn/tests/data/arm3.urdf");
+pub const ARM3: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../screwdyn/tests/data/arm3.urdf"
+);
 
 pub fn bin() -> Command {
     Command::cargo_bin("screwdyn").unwrap()
@@ -33,7 +36,10 @@ pub fn fails(args: &[&str], expected: &str) -> String {
     let out = bin().args(args).output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr).to_string();
     assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-    assert!(err.contains(expected), "{args:?}: expected '{expected}' in: {err}");
+    assert!(
+        err.contains(expected),
+        "{args:?}: expected '{expected}' in: {err}"
+    );
     assert!(!err.contains("panicked") && !err.contains("RUST_BACKTRACE"));
     assert_eq!(err.trim().lines().count(), 1, "one sentence: {err}");
     err
@@ -70,7 +76,10 @@ pub fn close(a: &[f64], b: &[f64], tol: f64) {
 
 /// Comma-joined numbers for a flag.
 pub fn csv(x: &[f64]) -> String {
-    x.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(",")
+    x.iter()
+        .map(|v| v.to_string())
+        .collect::<Vec<_>>()
+        .join(",")
 }
 
 /// Deterministic pseudo-random numbers in [-1, 1).
