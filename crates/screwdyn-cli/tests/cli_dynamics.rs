@@ -280,12 +280,8 @@ fn urdf_and_ur5_match_the_library() {
         close(&vec(&out["tau"]), tau.as_slice(), 1e-10);
         let mm = dynamics::crba(&model, &mut ws, &q).unwrap().clone();
         let out = mat(&json(&["crba", spec, "--q", &csv(&q)])["mass_matrix"]);
-        for i in 0..n {
-            close(
-                &out[i],
-                &mm.row(i).iter().copied().collect::<Vec<_>>(),
-                1e-10,
-            );
+        for (i, row) in out.iter().enumerate() {
+            close(row, &mm.row(i).iter().copied().collect::<Vec<_>>(), 1e-10);
         }
         let qdd =
             dynamics::forward_dynamics(&model, &mut ws, &q, &v, tau.as_slice(), ForwardMethod::Aba)

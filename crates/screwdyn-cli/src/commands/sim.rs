@@ -498,7 +498,7 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
         })
         .collect();
     let mut viol = Vec::new();
-    for i in 0..n {
+    for (i, name) in j.iter().enumerate() {
         let mine: Vec<_> = p.violations.iter().filter(|v| v.joint == i).collect();
         let first = mine.first().map(|v| v.t).unwrap_or(f64::NAN);
         let worst = mine
@@ -506,7 +506,7 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
             .map(|v| v.tau.abs())
             .fold(f64::NAN, |w: f64, x| if w.is_nan() { x } else { w.max(x) });
         viol.push((
-            j[i].clone(),
+            name.clone(),
             Value::Map(vec![
                 ("count".into(), Value::Scalar(mine.len() as f64)),
                 ("first_time".into(), Value::Scalar(first)),
