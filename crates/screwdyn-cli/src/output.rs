@@ -86,16 +86,16 @@ impl Value {
 
     fn flatten(&self, key: &str, out: &mut Vec<(String, String)>) {
         match self {
-            Value::Scalar(x) => out.push((key.into(), x.to_string())),
+            Value::Scalar(x) => out.push((key.into(), format!("{x:?}"))),
             Value::Vector(l, x) => {
                 for (l, x) in l.iter().zip(x) {
-                    out.push((format!("{key}.{l}"), x.to_string()));
+                    out.push((format!("{key}.{l}"), format!("{x:?}")));
                 }
             }
             Value::Matrix(rl, cl, m) => {
                 for (r, rn) in rl.iter().enumerate() {
                     for (c, cn) in cl.iter().enumerate() {
-                        out.push((format!("{key}.{rn}.{cn}"), m[(r, c)].to_string()));
+                        out.push((format!("{key}.{rn}.{cn}"), format!("{:?}", m[(r, c)])));
                     }
                 }
             }

@@ -310,7 +310,7 @@ fn single_state_csv_has_design_columns() {
         lines[0],
         "mass_matrix.joint1.joint1,mass_matrix.joint1.joint2,mass_matrix.joint2.joint1,mass_matrix.joint2.joint2"
     );
-    assert_eq!(lines[1], "5,2,2,1");
+    assert_eq!(lines[1], "5.0,2.0,2.0,1.0");
     assert_eq!(lines.len(), 2);
     let out = ok(&["energy", "builtin:planar2", "--q", "0,0", "--format", "csv"]);
     assert!(out.starts_with("kinetic_energy,potential_energy,total_energy,center_of_mass.x"));

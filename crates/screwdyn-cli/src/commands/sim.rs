@@ -227,7 +227,9 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
         Some(t) => parse_vector(Some(t), "target", &m)?,
         None => q0.clone(),
     };
-    let name = format!("{:?}", a.controller).to_lowercase();
+    let name = clap::ValueEnum::to_possible_value(&a.controller)
+        .map(|v| v.get_name().to_string())
+        .unwrap_or_default();
     let c = a.controller;
     if c != ControllerArg::Constant {
         unused("--tau", a.tau.is_some(), &name)?;
