@@ -292,6 +292,38 @@ fn torque_profile_answers_seed_003_for_the_ur5() {
 }
 
 #[test]
+fn svg_plots_and_help() {
+    let svg = tmp("run.svg");
+    ok(&[
+        "simulate",
+        "builtin:pendulum",
+        "--q0",
+        "0.5",
+        "--duration",
+        "0.2",
+        "--plot",
+        svg.to_str().unwrap(),
+        "--format",
+        "table",
+    ]);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains("<svg") && text.contains("pivot") && text.contains("Energy"));
+    let help = ok(&["inverse-dynamics", "--help"]);
+    assert!(help.contains("default: all zero") && help.contains("--input"));
+    let help = ok(&["--help"]);
+    for cmd in [
+        "torque-profile",
+        "closed-form",
+        "explain",
+        "rnea",
+        "crba",
+        "aba",
+    ] {
+        assert!(help.contains(cmd), "{cmd}");
+    }
+}
+
+#[test]
 fn export_round_trips_through_urdf() {
     let path = tmp("planar2_export.urdf");
     ok(&[
