@@ -1,13 +1,18 @@
 //! Command-line arguments (clap derive).
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
 
 /// Kinematics and dynamics of robot manipulators, in the screw-theory notation.
 ///
-/// MODEL is a .urdf or .toml file, or builtin:<name> (builtin:planar2, builtin:pendulum, ...).
-/// Joint-space vectors are comma-separated numbers in model joint order.
+/// MODEL is a .urdf or .toml file, or builtin:<name> (builtin:planar2, builtin:pendulum,
+/// builtin:ur5, builtin:panda, builtin:branched). Joint-space vectors are comma-separated numbers
+/// in model joint order (`--q 0.1,0.2`); an absent vector is all zeros. Numeric commands take one
+/// state from flags or many from `--input states.csv` (columns q.<joint>, v.<joint>, a.<joint>,
+/// tau.<joint>; a missing column is zero). Output: `--format table|json|csv` (table on a
+/// terminal, JSON otherwise). Bad input exits with status 2 and one sentence on stderr.
 #[derive(Parser, Debug)]
-#[command(name = "screwdyn", version, about, long_about = None)]
+#[command(name = "screwdyn", version, about, long_about)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
@@ -15,12 +20,43 @@ pub struct Cli {
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Joints, bodies, frames and the kinematic tree of a model.
+    /// Joints (kind, screw axis, limits), bodies (mass, CoM), frames and the kinematic tree.
     Info(ModelArgs),
-    /// Poses of all frames (or of --frame) at configuration --q.
+    /// Validates a model and lists its physical-consistency problems (exit 2 if any).
+    Check(CheckArgs),
+    /// Poses H_f^0 of all frames (or of --frame) at configuration --q.
     Fk(FkArgs),
     /// The 6×n Jacobian of --frame at --q (angular rows first).
     Jacobian(JacobianArgs),
+    /// Inverse dynamics τ = M(q) q̈ + C(q, q̇) q̇ + g(q) − Σ Jᵀ W_ext by RNEA.
+    #[command(visible_alias = "rnea")]
+    InverseDynamics(InverseDynamicsArgs),
+    /// The joint-space mass matrix M(q) by CRBA.
+    #[command(visible_alias = "crba")]
+    MassMatrix(QArgs),
+    /// The Coriolis matrix C(q, q̇) (Christoffel-consistent: Ṁ − 2C skew-symmetric).
+    Coriolis(QvArgs),
+    /// The gravity torques g(q).
+    Gravity(QArgs),
+    /// The nonlinear effects C(q, q̇) q̇ + g(q).
+    NonlinearEffects(QvArgs),
+    /// Kinetic, potential and total energy and the centre of mass.
+    Energy(QvArgs),
+    /// Forward dynamics q̈ = M⁻¹ (τ − C q̇ − g + Σ Jᵀ W_ext).
+    #[command(visible_alias = "aba")]
+    ForwardDynamics(ForwardDynamicsArgs),
+    /// The seeds' closed form: the stacked A, L, S, 𝔍, J and M, C, g (small robots).
+    ClosedForm(QvArgs),
+    /// Seed 004's Lagrangian coefficients D_ij, D_ijk, D_i and the effective inertias.
+    Lagrange(QArgs),
+    /// The RNEA iterations step by step in the seeds' notation (H, V, V̇ out; W, τ back).
+    Explain(ExplainArgs),
+    /// Simulates the robot under a controller; writes the run (CSV/JSON) and plots it.
+    Simulate(SimulateArgs),
+    /// Torques needed along a trapezoid or quintic motion: peak, RMS, effort-limit violations.
+    TorqueProfile(TorqueProfileArgs),
+    /// Writes the model in another format (URDF).
+    Export(ExportArgs),
     /// Per-call timing (median ns) of the core algorithms on random states.
     Bench(BenchArgs),
 }
@@ -29,16 +65,63 @@ pub enum Command {
 pub struct ModelArgs {
     /// A .urdf or .toml file, or builtin:<name>.
     pub model: String,
-    /// Output format.
+    /// Output format (default: table on a terminal, JSON otherwise).
     #[arg(long, value_enum)]
     pub format: Option<Format>,
+    /// Accept inertias that are not physically consistent and massless leaf bodies.
+    #[arg(long)]
+    pub allow_nonphysical: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct CheckArgs {
+    /// A .urdf or .toml file, or builtin:<name>.
+    pub model: String,
+    /// Output format (default: table on a terminal, JSON otherwise).
+    #[arg(long, value_enum)]
+    pub format: Option<Format>,
+}
+
+/// Model, gravity override and batch input shared by the numeric commands.
+#[derive(Args, Debug)]
+pub struct Common {
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// Gravity x,y,z in the base frame (m/s²), overriding the model's.
+    #[arg(long, allow_hyphen_values = true, value_name = "X,Y,Z")]
+    pub gravity: Option<String>,
+    /// Many states from a CSV file: columns q.<joint>, v.<joint>, a.<joint>, tau.<joint>
+    /// (a missing column is zero); one output row / JSON object per input row.
+    #[arg(long, value_name = "STATES.CSV")]
+    pub input: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+pub struct QArgs {
+    #[command(flatten)]
+    pub common: Common,
+    /// Joint positions q, comma-separated (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub q: Option<String>,
+}
+
+#[derive(Args, Debug)]
+pub struct QvArgs {
+    #[command(flatten)]
+    pub common: Common,
+    /// Joint positions q, comma-separated (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub q: Option<String>,
+    /// Joint velocities q̇, comma-separated (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub v: Option<String>,
 }
 
 #[derive(Args, Debug)]
 pub struct FkArgs {
     #[command(flatten)]
-    pub model: ModelArgs,
-    /// Joint positions, comma-separated (default: all zero).
+    pub common: Common,
+    /// Joint positions q, comma-separated (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Only this frame.
@@ -49,8 +132,8 @@ pub struct FkArgs {
 #[derive(Args, Debug)]
 pub struct JacobianArgs {
     #[command(flatten)]
-    pub model: ModelArgs,
-    /// Joint positions, comma-separated (default: all zero).
+    pub common: Common,
+    /// Joint positions q, comma-separated (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// The frame whose Jacobian to compute (default: the last frame of the model).
@@ -59,6 +142,219 @@ pub struct JacobianArgs {
     /// Frame the twist is written in.
     #[arg(long, value_enum, default_value = "world")]
     pub reference: ReferenceArg,
+}
+
+/// External wrenches on bodies and at frames.
+#[derive(Args, Debug)]
+pub struct WrenchArgs {
+    /// A wrench of the environment on a body, moment first, in the body frame unless @world:
+    /// BODY:mx,my,mz,fx,fy,fz[@world]. Repeatable.
+    #[arg(long, allow_hyphen_values = true, value_name = "BODY:W[@world]")]
+    pub wrench: Vec<String>,
+    /// A wrench that a frame applies to the environment, in that frame (adds J_eᵀ W):
+    /// FRAME:mx,my,mz,fx,fy,fz. Repeatable.
+    #[arg(long, allow_hyphen_values = true, value_name = "FRAME:W")]
+    pub tip_wrench: Vec<String>,
+}
+
+#[derive(Args, Debug)]
+pub struct InverseDynamicsArgs {
+    #[command(flatten)]
+    pub common: Common,
+    /// Joint positions q, comma-separated (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub q: Option<String>,
+    /// Joint velocities q̇ (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub v: Option<String>,
+    /// Joint accelerations q̈ (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub a: Option<String>,
+    #[command(flatten)]
+    pub wrenches: WrenchArgs,
+}
+
+#[derive(Args, Debug)]
+pub struct ForwardDynamicsArgs {
+    #[command(flatten)]
+    pub common: Common,
+    /// Joint positions q, comma-separated (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub q: Option<String>,
+    /// Joint velocities q̇ (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub v: Option<String>,
+    /// Joint torques τ (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub tau: Option<String>,
+    /// Algorithm: aba, crba or walker-orin.
+    #[arg(long, default_value = "aba")]
+    pub method: String,
+    #[command(flatten)]
+    pub wrenches: WrenchArgs,
+}
+
+#[derive(Args, Debug)]
+pub struct ExplainArgs {
+    #[command(flatten)]
+    pub common: Common,
+    /// Joint positions θ, comma-separated (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub q: Option<String>,
+    /// Joint velocities θ̇ (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub v: Option<String>,
+    /// Joint accelerations θ̈ (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub a: Option<String>,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ControllerArg {
+    /// No torque: the robot moves passively.
+    Zero,
+    /// Constant torque --tau.
+    Constant,
+    /// PD to --target with gravity compensation.
+    Pd,
+    /// Computed torque tracking a quintic from --q0 to --target over the duration.
+    ComputedTorque,
+    /// Torques from --torque-csv (columns t, tau.<joint>), linearly interpolated.
+    Series,
+}
+
+#[derive(Args, Debug)]
+pub struct SimulateArgs {
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// Gravity x,y,z in the base frame (m/s²), overriding the model's.
+    #[arg(long, allow_hyphen_values = true, value_name = "X,Y,Z")]
+    pub gravity: Option<String>,
+    /// Simulated time (s).
+    #[arg(long, default_value_t = 2.0)]
+    pub duration: f64,
+    /// Time step (s); the output interval for dopri5.
+    #[arg(long, default_value_t = 1e-3)]
+    pub dt: f64,
+    /// Integrator: euler (symplectic), rk4 or dopri5 (adaptive).
+    #[arg(long, default_value = "rk4")]
+    pub integrator: String,
+    /// Forward-dynamics algorithm: aba, crba or walker-orin.
+    #[arg(long, default_value = "aba")]
+    pub method: String,
+    /// Controller.
+    #[arg(long, value_enum, default_value = "zero")]
+    pub controller: ControllerArg,
+    /// Constant torque for --controller constant.
+    #[arg(long, allow_hyphen_values = true)]
+    pub tau: Option<String>,
+    /// Target position for pd and computed-torque (default: --q0).
+    #[arg(long, allow_hyphen_values = true)]
+    pub target: Option<String>,
+    /// Proportional gains. Default: pd 100·M_ii(target) (N·m/rad), computed-torque 100 (1/s²).
+    #[arg(long, allow_hyphen_values = true)]
+    pub kp: Option<String>,
+    /// Derivative gains. Default: pd 20·M_ii(target), computed-torque 20 (1/s); critically
+    /// damped at 10 rad/s.
+    #[arg(long, allow_hyphen_values = true)]
+    pub kd: Option<String>,
+    /// Torque time series for --controller series: CSV with columns t, tau.<joint>.
+    #[arg(long, value_name = "FILE")]
+    pub torque_csv: Option<PathBuf>,
+    /// Viscous joint damping b per joint (N·m·s/rad), replacing the model's.
+    #[arg(long, allow_hyphen_values = true)]
+    pub damping: Option<String>,
+    /// No joint effects (no effort saturation, damping, friction or position-limit stops).
+    #[arg(long)]
+    pub no_effects: bool,
+    /// A wrench on a body for a time window, moment first, body frame unless @world:
+    /// BODY:mx,my,mz,fx,fy,fz[@world]@T0-T1. Repeatable.
+    #[arg(long, allow_hyphen_values = true, value_name = "BODY:W[@world]@T0-T1")]
+    pub disturbance: Vec<String>,
+    /// Initial positions (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub q0: Option<String>,
+    /// Initial velocities (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub v0: Option<String>,
+    /// Record every k-th step.
+    #[arg(long, default_value_t = 1)]
+    pub record_every: usize,
+    /// Write the run to run.csv or run.json (columns t, q.<joint>, v.., a.., tau..,
+    /// kinetic_energy, potential_energy, total_energy). Without it the run goes to stdout
+    /// (CSV or JSON) or a summary is printed (table).
+    #[arg(long, value_name = "RUN.CSV|RUN.JSON")]
+    pub output: Option<PathBuf>,
+    /// Plot positions, velocities, torques and energy to a .png or .svg file.
+    #[arg(long, value_name = "RUN.PNG|RUN.SVG")]
+    pub plot: Option<PathBuf>,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TrajectoryArg {
+    /// Trapezoidal velocity: accelerate at --amax, cruise at up to --vmax, decelerate.
+    Trapezoid,
+    /// Rest-to-rest quintic polynomial over --duration.
+    Quintic,
+}
+
+#[derive(Args, Debug)]
+pub struct TorqueProfileArgs {
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// Gravity x,y,z in the base frame (m/s²), overriding the model's.
+    #[arg(long, allow_hyphen_values = true, value_name = "X,Y,Z")]
+    pub gravity: Option<String>,
+    /// The motion.
+    #[arg(long, value_enum, default_value = "trapezoid")]
+    pub trajectory: TrajectoryArg,
+    /// Start position (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub q0: Option<String>,
+    /// End position.
+    #[arg(long, allow_hyphen_values = true)]
+    pub qf: String,
+    /// Trapezoid cruise-speed limit (rad/s): one value for all joints or one per joint.
+    #[arg(long, allow_hyphen_values = true, default_value = "1")]
+    pub vmax: String,
+    /// Trapezoid acceleration (rad/s²): one value for all joints or one per joint.
+    #[arg(long, allow_hyphen_values = true, default_value = "2")]
+    pub amax: String,
+    /// Let each trapezoid joint finish on its own (default: all joints end together).
+    #[arg(long)]
+    pub unsynchronised: bool,
+    /// Quintic duration (s).
+    #[arg(long, default_value_t = 2.0)]
+    pub duration: f64,
+    /// Sampling step (s).
+    #[arg(long, default_value_t = 1e-3)]
+    pub dt: f64,
+    /// Write the samples (t, q, v, a, tau, energies) to a .csv or .json file.
+    #[arg(long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// Plot the required torques with the effort limits to a .png or .svg file.
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ExportFormat {
+    Urdf,
+}
+
+#[derive(Args, Debug)]
+pub struct ExportArgs {
+    /// A .urdf or .toml file, or builtin:<name>.
+    pub model: String,
+    /// The format to write.
+    #[arg(long, value_enum)]
+    pub to: ExportFormat,
+    /// Write to this file instead of stdout.
+    #[arg(long)]
+    pub output: Option<PathBuf>,
+    /// Accept inertias that are not physically consistent and massless leaf bodies.
+    #[arg(long)]
+    pub allow_nonphysical: bool,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]

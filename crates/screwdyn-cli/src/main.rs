@@ -26,16 +26,50 @@ impl CliError {
     }
 }
 
+impl CliError {
+    /// An internal failure (exit status 1).
+    pub fn internal(message: impl Into<String>) -> Self {
+        CliError {
+            code: 1,
+            message: message.into(),
+        }
+    }
+}
+
+/// Help and version go to stdout with status 0; a usage error becomes one line on stderr with
+/// status 2 (clap's usage block and tips are dropped).
+fn clap_error(e: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    if matches!(
+        e.kind(),
+        ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+    ) {
+        let _ = e.print();
+        return if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+            ExitCode::from(2)
+        } else {
+            ExitCode::SUCCESS
+        };
+    }
+    let text = e.render().to_string();
+    let parts: Vec<&str> = text
+        .lines()
+        .map(str::trim)
+        .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+        .filter(|l| !l.is_empty() && !l.starts_with("tip:"))
+        .collect();
+    let line = parts.join(" ");
+    let line = line.strip_prefix("error: ").unwrap_or(&line);
+    eprintln!("screwdyn: {line}");
+    ExitCode::from(2)
+}
+
 impl From<screwdyn::Error> for CliError {
     fn from(e: screwdyn::Error) -> Self {
-        let code = match e {
-            screwdyn::Error::Numerical(_) => 2,
-            _ => 2,
-        };
-        CliError {
-            code,
-            message: e.to_string(),
-        }
+        // Every library error is caused by the input (model, state, options): exit status 2.
+        CliError::input(e.to_string())
     }
 }
 
@@ -50,7 +84,10 @@ fn main() -> ExitCode {
             .unwrap_or_else(|| "unknown".into());
         eprintln!("screwdyn: internal error: {msg}");
     }));
-    let cli = args::Cli::parse();
+    let cli = match args::Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return clap_error(e),
+    };
     match std::panic::catch_unwind(|| commands::run(cli)) {
         Ok(Ok(())) => ExitCode::SUCCESS,
         Ok(Err(e)) => {

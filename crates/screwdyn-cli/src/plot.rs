@@ -4,9 +4,6 @@
 //! Text is drawn with the DejaVu Sans font embedded in the binary (its licence is in
 //! `assets/`), so plots look the same on machines without system fonts.
 
-// Used by `simulate` and `torque-profile`, which arrive with the CLI issue; remove then.
-#![allow(dead_code)]
-
 use crate::CliError;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -14,6 +11,37 @@ use std::path::Path;
 use std::sync::Once;
 
 static FONT: Once = Once::new();
+
+/// Width of the legend column right of each chart (pixels).
+const LEGEND_WIDTH: i32 = 300;
+
+/// Draws `(label, colour, dashed)` entries top-down in the legend column.
+fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    entries: &[(String, RGBColor, bool)],
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let font = ("sans-serif", 14).into_font().color(&BLACK);
+    for (k, (label, color, dashed)) in entries.iter().enumerate() {
+        let y = 40 + 22 * k as i32;
+        let style = color.stroke_width(3);
+        if *dashed {
+            area.draw(&PathElement::new(vec![(8, y), (16, y)], style))?;
+            area.draw(&PathElement::new(vec![(22, y), (30, y)], style))?;
+        } else {
+            area.draw(&PathElement::new(vec![(8, y), (30, y)], style))?;
+        }
+        area.draw(&Text::new(label.clone(), (38, y - 8), font.clone()))?;
+    }
+    Ok(())
+}
+
+/// Colours of the dashed reference lines (dark, distinct from the series palette's first hues).
+const LIMIT_COLORS: [RGBColor; 4] = [
+    RGBColor(200, 0, 0),
+    RGBColor(90, 90, 90),
+    RGBColor(150, 0, 150),
+    RGBColor(0, 110, 110),
+];
 
 fn register_font() {
     FONT.call_once(|| {
@@ -51,7 +79,7 @@ pub fn plot_panels(
     panels: &[Panel],
 ) -> Result<(u32, u32), CliError> {
     register_font();
-    let size = (1100u32, 60 + 300 * panels.len() as u32);
+    let size = (1300u32, 60 + 300 * panels.len() as u32);
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -94,7 +122,9 @@ where
     root.fill(&WHITE).map_err(e)?;
     let root = root.titled(title, ("sans-serif", 26)).map_err(e)?;
     let areas = root.split_evenly((panels.len().max(1), 1));
-    for (panel, area) in panels.iter().zip(areas.iter()) {
+    for (panel, whole) in panels.iter().zip(areas.iter()) {
+        // The chart on the left, its legend in a column on the right (never over the curves).
+        let (area, legend) = whole.split_horizontally(whole.dim_in_pixel().0 as i32 - LEGEND_WIDTH);
         let (mut x0, mut x1, mut y0, mut y1) = (
             f64::INFINITY,
             f64::NEG_INFINITY,
@@ -121,9 +151,14 @@ where
         if x1 <= x0 {
             x1 = x0 + 1.0;
         }
-        let pad = ((y1 - y0) * 0.08).max(1e-9 * y1.abs().max(1.0)).max(1e-12);
+        if y1 - y0 < 1e-9 * y0.abs().max(y1.abs()).max(1.0) {
+            // A constant signal: centre it in a range of ±1 (or ±10 % of its value).
+            let half = (0.1 * y0.abs()).max(1.0);
+            (y0, y1) = (y0 - half, y1 + half);
+        }
+        let pad = (y1 - y0) * 0.08;
         let (y0, y1) = (y0 - pad, y1 + pad);
-        let mut chart = ChartBuilder::on(area)
+        let mut chart = ChartBuilder::on(&area)
             .caption(&panel.title, ("sans-serif", 20))
             .margin(12)
             .x_label_area_size(40)
@@ -145,30 +180,39 @@ where
                     s.points.iter().copied(),
                     color.stroke_width(2),
                 ))
-                .map_err(e)?
-                .label(s.name.clone())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
+                .map_err(e)?;
         }
-        for (k, (label, y)) in panel.lines.iter().enumerate() {
-            let color = Palette99::pick(k).to_rgba();
+        let mut entries: Vec<(String, RGBColor, bool)> = panel
+            .series
+            .iter()
+            .enumerate()
+            .map(|(k, s)| {
+                let c = Palette99::pick(k).to_rgba();
+                (s.name.clone(), RGBColor(c.0, c.1, c.2), false)
+            })
+            .collect();
+        // Reference lines: dashed, one colour and one legend entry per distinct label.
+        let mut labels: Vec<&str> = Vec::new();
+        for (label, y) in &panel.lines {
+            let (k, first) = match labels.iter().position(|l| l == label) {
+                Some(k) => (k, false),
+                None => {
+                    labels.push(label);
+                    (labels.len() - 1, true)
+                }
+            };
+            let color = LIMIT_COLORS[k % LIMIT_COLORS.len()];
             let dashes = (0..40).map(|i| {
                 let a = x0 + (x1 - x0) * (2 * i) as f64 / 80.0;
                 let b = x0 + (x1 - x0) * (2 * i + 1) as f64 / 80.0;
-                PathElement::new(vec![(a, *y), (b, *y)], color.stroke_width(1))
+                PathElement::new(vec![(a, *y), (b, *y)], color.stroke_width(2))
             });
             chart.draw_series(dashes).map_err(e)?;
-            let _ = label;
+            if first {
+                entries.push((label.clone(), color, true));
+            }
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 14))
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()
-            .map_err(e)?;
+        draw_legend(&legend, &entries).map_err(e)?;
     }
     root.present().map_err(e)?;
     Ok(())

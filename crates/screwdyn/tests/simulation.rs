@@ -362,3 +362,114 @@ fn a_disturbance_wrench_pushes_the_arm_only_while_active() {
     let e = &run.total_energy;
     assert!((e[250] - e[300]).abs() < 1e-9 * e[300]);
 }
+
+/// A 1 m, 1 kg pendulum about z with the given joint limits and friction (I = m l² = 1 kg·m²).
+fn limited_pendulum(lower: f64, upper: f64, effort: f64, friction: f64) -> screwdyn::Model {
+    use screwdyn::model::{JointSpec, ModelBuilder};
+    use screwdyn::spatial::{Se3, SpatialInertia};
+    let mut b = ModelBuilder::new("limited");
+    b.gravity(nalgebra::Vector3::zeros()).link(
+        "bob",
+        "base",
+        JointSpec::revolute("pivot")
+            .screw_in_parent(nalgebra::Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0))
+            .limits(lower, upper)
+            .effort_limit(effort)
+            .friction(friction),
+        Se3::from_translation(nalgebra::Vector3::new(0.0, -1.0, 0.0)),
+        SpatialInertia::point_mass(1.0, nalgebra::Vector3::zeros()),
+    );
+    b.build().unwrap()
+}
+
+#[test]
+fn position_limit_is_a_stiff_spring_damper_stop() {
+    // Hitting the stop at 2 rad/s: an undamped spring k would let it in by v·√(I/k); the
+    // stop's damping only shortens that. Then it bounces back out.
+    let m = limited_pendulum(-0.2, 0.2, f64::INFINITY, 0.0);
+    let effects = JointEffects {
+        friction: false,
+        ..JointEffects::default()
+    };
+    let opts = SimOptions {
+        duration: 0.5,
+        dt: 1e-4,
+        effects,
+        ..Default::default()
+    };
+    let run = simulate(&m, &[0.0], &[2.0], &mut ZeroTorque, &[], &opts, &mut |_| {}).unwrap();
+    let deepest = run.q.iter().map(|q| q[0]).fold(f64::MIN, f64::max) - 0.2;
+    let bound = 2.0 * (1.0 / effects.limit_stiffness).sqrt();
+    assert!(
+        deepest > 0.5 * bound && deepest <= bound,
+        "penetration {deepest} vs {bound}"
+    );
+    assert!(run.v.last().unwrap()[0] < 0.0, "it bounces back");
+}
+
+#[test]
+fn coulomb_friction_holds_below_and_slips_above_its_level() {
+    let m = limited_pendulum(-10.0, 10.0, f64::INFINITY, 0.5);
+    let opts = SimOptions {
+        duration: 1.0,
+        dt: 1e-4,
+        effects: JointEffects::default(),
+        ..Default::default()
+    };
+    // 0.3 N·m < 0.5 N·m of friction: (almost) no motion, only the smoothing creep v = ε atanh(0.6).
+    let run = simulate(
+        &m,
+        &[0.0],
+        &[0.0],
+        &mut ConstantTorque(vec![0.3]),
+        &[],
+        &opts,
+        &mut |_| {},
+    )
+    .unwrap();
+    let creep = opts.effects.friction_smoothing * (0.6f64).atanh();
+    assert!((run.v.last().unwrap()[0] - creep).abs() < 1e-6);
+    // 1 N·m: slides with q̈ = (1 − 0.5) / I once moving, so v(1 s) ≈ 0.5 rad/s.
+    let run = simulate(
+        &m,
+        &[0.0],
+        &[0.0],
+        &mut ConstantTorque(vec![1.0]),
+        &[],
+        &opts,
+        &mut |_| {},
+    )
+    .unwrap();
+    assert!(
+        (run.v.last().unwrap()[0] - 0.5).abs() < 2e-3,
+        "{}",
+        run.v.last().unwrap()[0]
+    );
+}
+
+#[test]
+fn effort_saturation_clamps_the_commanded_torque() {
+    let m = limited_pendulum(-10.0, 10.0, 2.0, 0.0);
+    let opts = SimOptions {
+        duration: 1.0,
+        dt: 1e-3,
+        effects: JointEffects::default(),
+        ..Default::default()
+    };
+    let run = simulate(
+        &m,
+        &[0.0],
+        &[0.0],
+        &mut ConstantTorque(vec![5.0]),
+        &[],
+        &opts,
+        &mut |_| {},
+    )
+    .unwrap();
+    // τ = min(5, 2) = 2 N·m on I = 1 kg·m²: q̈ = 2, v(1) = 2, q(1) = 1.
+    assert!(run.tau.iter().all(|t| t[0] == 2.0));
+    assert!(
+        (run.v.last().unwrap()[0] - 2.0).abs() < 1e-9
+            && (run.q.last().unwrap()[0] - 1.0).abs() < 1e-9
+    );
+}

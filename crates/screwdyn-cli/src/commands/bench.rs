@@ -154,7 +154,7 @@ fn run(model: &Model, s: &States, name: &str, batches: usize, calls: usize) -> O
 
 /// `screwdyn bench MODEL [--algorithms …] [--batches N] [--calls N] [--format json|table]`.
 pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
-    let model = super::load(&args.model)?;
+    let model = screwdyn::io::load_model(&args.model)?;
     if args.batches == 0 || args.calls == 0 {
         return Err(CliError::input("--batches and --calls must be at least 1"));
     }

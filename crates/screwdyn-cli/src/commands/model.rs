@@ -1,14 +1,11 @@
-//! Loading models and the `info` command.
+//! `info`, `check` and `export`.
 
-use crate::args::{Format, ModelArgs};
-use crate::output::resolve;
+use super::load;
+use crate::args::{CheckArgs, ExportArgs, ExportFormat, Format, ModelArgs};
+use crate::output::{fmt, resolve, table, write_stdout};
 use crate::CliError;
-use screwdyn::Model;
-
-/// Loads `builtin:<name>` or a `.urdf` / `.toml` description file.
-pub fn load(spec: &str) -> Result<Model, CliError> {
-    Ok(screwdyn::io::load_model(spec)?)
-}
+use screwdyn::io::LoadOptions;
+use screwdyn::{Model, Workspace};
 
 fn tree(model: &Model, body: Option<usize>, depth: usize, out: &mut String) {
     let kids: Vec<usize> = match body {
@@ -33,10 +30,10 @@ fn tree(model: &Model, body: Option<usize>, depth: usize, out: &mut String) {
 
 /// `screwdyn info MODEL`.
 pub fn info(a: &ModelArgs) -> Result<(), CliError> {
-    let m = load(&a.model)?;
+    let m = load(a, None)?;
     let g = m.gravity();
     match resolve(a.format) {
-        Format::Json => {
+        Format::Json | Format::Csv => {
             let joints: Vec<_> = m
                 .joints()
                 .iter()
@@ -45,63 +42,187 @@ pub fn info(a: &ModelArgs) -> Result<(), CliError> {
                         "name": j.name, "kind": j.kind.name(), "screw": j.screw.as_slice(),
                         "lower": finite(j.limits.lower), "upper": finite(j.limits.upper),
                         "velocity": finite(j.limits.velocity), "effort": finite(j.limits.effort),
+                        "damping": j.damping, "friction": j.friction,
                     })
                 })
                 .collect();
             let bodies: Vec<_> = m
                 .bodies()
                 .iter()
-                .map(|b| serde_json::json!({"name": b.name, "mass": b.inertia.mass, "com": b.inertia.com.as_slice()}))
+                .enumerate()
+                .map(|(i, b)| serde_json::json!({
+                    "name": b.name, "mass": b.inertia.mass, "com": b.inertia.com.as_slice(),
+                    "parent": m.parent(i).map(|p| m.bodies()[p].name.clone()).unwrap_or_else(|| m.base().name.clone()),
+                }))
                 .collect();
-            let frames: Vec<_> = m.frames().iter().map(|f| f.name.clone()).collect();
+            let frames: Vec<_> = m
+                .frames()
+                .iter()
+                .map(|f| {
+                    serde_json::json!({
+                        "name": f.name,
+                        "body": f.body.map(|b| m.bodies()[b].name.clone()).unwrap_or_else(|| m.base().name.clone()),
+                    })
+                })
+                .collect();
             let v = serde_json::json!({
                 "model": m.name(), "nq": m.nq(), "joints": joints, "bodies": bodies,
                 "frames": frames, "total_mass": m.total_mass(), "gravity": g.as_slice(),
             });
-            println!(
-                "{}",
+            if a.format == Some(Format::Csv) {
+                return Err(CliError::input(
+                    "info has no CSV form; use --format table or --format json",
+                ));
+            }
+            write_stdout(&format!(
+                "{}\n",
                 serde_json::to_string_pretty(&v).expect("JSON of numbers")
-            );
+            ))
         }
-        _ => {
-            println!(
-                "model {}: nq = {}, total mass {:.4} kg, gravity ({}, {}, {}) m/s²",
+        Format::Table => {
+            let mut out = format!(
+                "model {}: nq = {}, total mass {} kg, gravity ({}, {}, {}) m/s²\n\n",
                 m.name(),
                 m.nq(),
-                m.total_mass(),
+                fmt(m.total_mass()),
                 g.x,
                 g.y,
                 g.z
             );
-            println!("\njoint               kind          screw S_i^{{i,λ(i)}} (ω, v)                  lower      upper      effort");
+            let mut t = table();
+            t.set_header(vec![
+                "joint",
+                "kind",
+                "screw S_i^{i,λ(i)} (ω | v)",
+                "lower",
+                "upper",
+                "velocity",
+                "effort",
+            ]);
             for j in m.joints() {
                 let s: Vec<String> = j.screw.iter().map(|x| format!("{x:.3}")).collect();
-                println!(
-                    "{:<19} {:<13} ({:<40}) {:>9} {:>9} {:>9}",
-                    j.name,
-                    j.kind.name(),
-                    s.join(", "),
+                t.add_row(vec![
+                    j.name.clone(),
+                    j.kind.name().to_string(),
+                    format!("({} | {})", s[..3].join(", "), s[3..].join(", ")),
                     lim(j.limits.lower),
                     lim(j.limits.upper),
-                    lim(j.limits.effort)
-                );
+                    lim(j.limits.velocity),
+                    lim(j.limits.effort),
+                ]);
             }
-            println!("\nbody                mass (kg)   CoM (m)");
+            out.push_str(&format!("{t}\n\n"));
+            let mut t = table();
+            t.set_header(vec!["body", "mass (kg)", "CoM in body frame (m)"]);
             for b in m.bodies() {
                 let c = b.inertia.com;
-                println!(
-                    "{:<19} {:>9.4}   ({:.4}, {:.4}, {:.4})",
-                    b.name, b.inertia.mass, c.x, c.y, c.z
-                );
+                t.add_row(vec![
+                    b.name.clone(),
+                    fmt(b.inertia.mass),
+                    format!("({:.4}, {:.4}, {:.4})", c.x, c.y, c.z),
+                ]);
             }
+            out.push_str(&format!("{t}\n"));
             let frames: Vec<&str> = m.frames().iter().map(|f| f.name.as_str()).collect();
-            println!("\nframes: {}", frames.join(", "));
-            let mut t = format!("\ntree:\n{}\n", m.base().name);
-            tree(&m, None, 0, &mut t);
-            print!("{t}");
+            out.push_str(&format!("\nframes: {}\n", frames.join(", ")));
+            out.push_str(&format!("\ntree:\n{}\n", m.base().name));
+            tree(&m, None, 0, &mut out);
+            write_stdout(&out)
         }
     }
-    Ok(())
+}
+
+/// `screwdyn check MODEL`: loads with the checks off to list every problem, then with them on.
+pub fn check(a: &CheckArgs) -> Result<(), CliError> {
+    let loose = screwdyn::io::load_model_with(
+        &a.model,
+        &LoadOptions {
+            allow_nonphysical: true,
+        },
+    )?;
+    let strict = screwdyn::io::load_model_with(&a.model, &LoadOptions::default());
+    let mut problems = Vec::new();
+    for (i, b) in loose.bodies().iter().enumerate() {
+        if let Err(why) = b.inertia.check_physical() {
+            problems.push(format!("the inertia of body '{}' {why}", b.name));
+        } else if loose.children(i).is_empty() && b.inertia.mass <= 0.0 {
+            problems.push(format!(
+                "body '{}' is a moving leaf with no mass: joint '{}' has no inertia",
+                b.name,
+                loose.joints()[i].name
+            ));
+        }
+    }
+    if let Err(e) = &strict {
+        if problems.is_empty() {
+            problems.push(e.to_string());
+        }
+    }
+    if problems.is_empty() && loose.nq() > 0 {
+        let mut ws = Workspace::new(&loose);
+        let q = vec![0.0; loose.nq()];
+        let mm = screwdyn::dynamics::crba(&loose, &mut ws, &q)?.clone();
+        if mm.cholesky().is_none() {
+            problems.push(
+                "the mass matrix at q = 0 is not positive definite (a massless chain?)".into(),
+            );
+        }
+    }
+    let ok = problems.is_empty();
+    match resolve(a.format) {
+        Format::Table => {
+            let mut out = format!(
+                "{}: {} joints, {} bodies, total mass {} kg\n",
+                a.model,
+                loose.nq(),
+                loose.nbodies(),
+                fmt(loose.total_mass())
+            );
+            if ok {
+                out.push_str("ok: every inertia is physically consistent\n");
+            }
+            for p in &problems {
+                out.push_str(&format!("problem: {p}\n"));
+            }
+            write_stdout(&out)?;
+        }
+        _ => {
+            let v = serde_json::json!({"model": a.model, "ok": ok, "problems": problems});
+            write_stdout(&format!(
+                "{}\n",
+                serde_json::to_string_pretty(&v).expect("JSON of strings")
+            ))?;
+        }
+    }
+    if ok {
+        Ok(())
+    } else {
+        Err(CliError::input(format!(
+            "{} fails its checks ({} problem{}): {}",
+            a.model,
+            problems.len(),
+            if problems.len() == 1 { "" } else { "s" },
+            problems[0]
+        )))
+    }
+}
+
+/// `screwdyn export MODEL --to urdf [--output FILE]`.
+pub fn export(a: &ExportArgs) -> Result<(), CliError> {
+    let m = screwdyn::io::load_model_with(
+        &a.model,
+        &LoadOptions {
+            allow_nonphysical: a.allow_nonphysical,
+        },
+    )?;
+    let text = match a.to {
+        ExportFormat::Urdf => screwdyn::io::urdf::to_urdf_string(&m)?,
+    };
+    match &a.output {
+        Some(p) => std::fs::write(p, text)
+            .map_err(|e| CliError::input(format!("cannot write {} ({e})", p.display()))),
+        None => write_stdout(&text),
+    }
 }
 
 fn finite(x: f64) -> Option<f64> {

@@ -5,8 +5,8 @@
 //! use screwdyn::sim::{simulate, PdGravity, SimOptions};
 //! // PD + gravity compensation brings the two-link arm to rest at its target.
 //! let m = screwdyn::builtin::planar2();
-//! let mut pd = PdGravity::new(m.clone(), vec![0.5, -0.3], vec![50.0, 50.0], vec![15.0, 15.0]).unwrap();
-//! let opts = SimOptions { duration: 3.0, dt: 1e-3, record_every: 100, ..Default::default() };
+//! let mut pd = PdGravity::new(m.clone(), vec![0.5, -0.3], vec![100.0, 100.0], vec![40.0, 40.0]).unwrap();
+//! let opts = SimOptions { duration: 5.0, dt: 1e-3, record_every: 100, ..Default::default() };
 //! let run = simulate(&m, &[0.0, 0.0], &[0.0, 0.0], &mut pd, &[], &opts, &mut |_| {}).unwrap();
 //! let q = run.q.last().unwrap();
 //! assert!((q[0] - 0.5).abs() < 1e-3 && (q[1] + 0.3).abs() < 1e-3);

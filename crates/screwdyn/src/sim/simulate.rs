@@ -125,7 +125,8 @@ impl Plant<'_> {
 /// use screwdyn::sim::{simulate, SimOptions, ZeroTorque};
 /// // The pendulum released at rest from 0.1 rad swings through zero.
 /// let m = screwdyn::builtin::pendulum();
-/// let opts = SimOptions { duration: 0.5, dt: 1e-3, ..Default::default() };
+/// // A quarter period is π/2 · √(l/g) ≈ 0.50 s.
+/// let opts = SimOptions { duration: 0.6, dt: 1e-3, ..Default::default() };
 /// let run = simulate(&m, &[0.1], &[0.0], &mut ZeroTorque, &[], &opts, &mut |_| {}).unwrap();
 /// assert!(run.q.last().unwrap()[0] < 0.0);
 /// ```

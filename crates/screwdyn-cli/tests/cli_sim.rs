@@ -1,0 +1,381 @@
+//! `simulate`, `torque-profile` (with plots), `export`, `check` and `info`.
+
+mod common;
+use common::*;
+use screwdyn::io::load_model;
+use screwdyn::sim::{self, PdGravity, SimOptions, Trajectory, Trapezoid};
+
+/// Decodes a PNG; returns (width, height, RGB pixels row-major).
+fn decode_png(path: &std::path::Path) -> (u32, u32, Vec<[u8; 3]>) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let step = info.color_type.samples();
+    let px = buf[..info.buffer_size()]
+        .chunks(step)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect();
+    (info.width, info.height, px)
+}
+
+/// The plot is the expected size and every stacked panel has drawn, coloured content.
+fn check_plot(path: &std::path::Path, panels: u32) {
+    let (w, h, px) = decode_png(path);
+    assert_eq!((w, h), (1300, 60 + 300 * panels));
+    for p in 0..panels {
+        let rows = (60 + 300 * p + 20)..(60 + 300 * (p + 1) - 20);
+        let mut colours = std::collections::HashSet::new();
+        let mut non_white = 0;
+        for y in rows {
+            for x in 0..w {
+                let c = px[(y * w + x) as usize];
+                if c != [255, 255, 255] {
+                    non_white += 1;
+                }
+                colours.insert(c);
+            }
+        }
+        assert!(colours.len() > 20, "panel {p}: {} colours", colours.len());
+        assert!(non_white > 5000, "panel {p}: {non_white} drawn pixels");
+    }
+}
+
+#[test]
+fn simulate_writes_design_columns_and_matches_the_library() {
+    let csv_path = tmp("pd.csv");
+    let png = tmp("pd.png");
+    let out = json(&[
+        "simulate",
+        "builtin:planar2",
+        "--controller",
+        "pd",
+        "--target",
+        "0.5,-0.3",
+        "--kp",
+        "50",
+        "--kd",
+        "15",
+        "--duration",
+        "1",
+        "--dt",
+        "0.001",
+        "--record-every",
+        "100",
+        "--output",
+        csv_path.to_str().unwrap(),
+        "--plot",
+        png.to_str().unwrap(),
+    ]);
+    let text = std::fs::read_to_string(&csv_path).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(
+        lines[0],
+        "t,q.joint1,q.joint2,v.joint1,v.joint2,a.joint1,a.joint2,tau.joint1,tau.joint2,kinetic_energy,potential_energy,total_energy"
+    );
+    assert_eq!(lines.len(), 1 + 11);
+    // The library's own simulation with the same options is the reference.
+    let m = load_model("builtin:planar2").unwrap();
+    let mut pd = PdGravity::new(m.clone(), vec![0.5, -0.3], vec![50.0; 2], vec![15.0; 2]).unwrap();
+    let opts = SimOptions {
+        duration: 1.0,
+        dt: 1e-3,
+        record_every: 100,
+        ..Default::default()
+    };
+    let rec = sim::simulate(
+        &m,
+        &[0.0, 0.0],
+        &[0.0, 0.0],
+        &mut pd,
+        &[],
+        &opts,
+        &mut |_| {},
+    )
+    .unwrap();
+    let last: Vec<f64> = lines[11].split(',').map(|c| c.parse().unwrap()).collect();
+    close(&last[1..3], rec.q.last().unwrap(), 1e-12);
+    close(&vec(&out["q"]), rec.q.last().unwrap(), 1e-12);
+    check_plot(&png, 4);
+
+    // JSON run file: the same names as arrays.
+    let json_path = tmp("zero.json");
+    ok(&[
+        "simulate",
+        "builtin:pendulum",
+        "--q0",
+        "0.1",
+        "--duration",
+        "0.6",
+        "--no-effects",
+        "--output",
+        json_path.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    let run: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json_path).unwrap()).unwrap();
+    for key in [
+        "t",
+        "q.pivot",
+        "v.pivot",
+        "a.pivot",
+        "tau.pivot",
+        "kinetic_energy",
+        "potential_energy",
+        "total_energy",
+    ] {
+        assert_eq!(run[key].as_array().unwrap().len(), 601, "{key}");
+    }
+    // Passive swing with RK4: energy conserved; past a quarter period (0.50 s) q < 0.
+    let e = vec(&run["total_energy"]);
+    assert!((e[0] - e[600]).abs() < 1e-8);
+    assert!(vec(&run["q.pivot"])[600] < 0.0);
+}
+
+#[test]
+fn simulate_to_stdout_and_other_controllers() {
+    // Without --output the run itself goes to stdout.
+    let out = ok(&[
+        "simulate",
+        "builtin:pendulum",
+        "--duration",
+        "0.01",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(out.lines().count(), 1 + 11);
+    // Constant torque m g l on a horizontal pendulum holds it: τ = g sin(π/2) = 9.81.
+    let out = json(&[
+        "simulate",
+        "builtin:pendulum",
+        "--q0",
+        "1.5707963267948966",
+        "--controller",
+        "constant",
+        "--tau",
+        "9.81",
+        "--duration",
+        "0.2",
+        "--output",
+        tmp("c.csv").to_str().unwrap(),
+    ]);
+    close(&vec(&out["q"]), &[std::f64::consts::FRAC_PI_2], 1e-9);
+    // Computed torque tracks the quintic to the target.
+    let out = json(&[
+        "simulate",
+        "builtin:planar2",
+        "--controller",
+        "computed-torque",
+        "--target",
+        "0.4,0.2",
+        "--duration",
+        "1",
+        "--integrator",
+        "dopri5",
+        "--method",
+        "crba",
+        "--output",
+        tmp("ct.json").to_str().unwrap(),
+    ]);
+    close(&vec(&out["q"]), &[0.4, 0.2], 1e-6);
+    // A torque series from a file: columns t, tau.<joint>.
+    let series = tmp("series.csv");
+    std::fs::write(&series, "t,tau.pivot\n0,9.81\n1,9.81\n").unwrap();
+    let out = json(&[
+        "simulate",
+        "builtin:pendulum",
+        "--q0",
+        "1.5707963267948966",
+        "--controller",
+        "series",
+        "--torque-csv",
+        series.to_str().unwrap(),
+        "--duration",
+        "0.2",
+        "--integrator",
+        "euler",
+        "--output",
+        tmp("s.csv").to_str().unwrap(),
+    ]);
+    close(&vec(&out["q"]), &[std::f64::consts::FRAC_PI_2], 1e-9);
+    // A disturbance pushes the resting pendulum; damping removes energy.
+    let out = json(&[
+        "simulate",
+        "builtin:pendulum",
+        "--disturbance",
+        "bob:0,0,1,1,0,0@world@0-0.1",
+        "--damping",
+        "0.5",
+        "--duration",
+        "0.5",
+        "--output",
+        tmp("d.csv").to_str().unwrap(),
+    ]);
+    assert!(vec(&out["q"])[0] > 0.001);
+}
+
+#[test]
+fn torque_profile_answers_seed_003_for_the_ur5() {
+    let png = tmp("tp.png");
+    let qf = "1,-1,1.5,0.5,0.5,0.5";
+    let out = json(&[
+        "torque-profile",
+        "builtin:ur5",
+        "--trajectory",
+        "trapezoid",
+        "--qf",
+        qf,
+        "--vmax",
+        "1",
+        "--amax",
+        "2",
+        "--dt",
+        "0.01",
+        "--plot",
+        png.to_str().unwrap(),
+    ]);
+    let m = load_model("builtin:ur5").unwrap();
+    let traj = Trapezoid::new(
+        &[0.0; 6],
+        &[1.0, -1.0, 1.5, 0.5, 0.5, 0.5],
+        &[1.0; 6],
+        &[2.0; 6],
+        true,
+    )
+    .unwrap();
+    let p = sim::torque_profile(&m, &traj, 0.01).unwrap();
+    close(&vec(&out["peak"]), &p.peak, 1e-12);
+    close(&vec(&out["rms"]), &p.rms, 1e-12);
+    close(
+        &vec(&out["effort_limit"]),
+        &[150.0, 150.0, 150.0, 28.0, 28.0, 28.0],
+        0.0,
+    );
+    close(&[f(&out["duration"])], &[traj.duration()], 1e-12);
+    assert_eq!(out["violations"]["elbow_joint"]["count"], 0.0);
+    assert!(out["violations"]["elbow_joint"]["first_time"].is_null());
+    check_plot(&png, 3);
+
+    // A fast quintic on the planar arm with a low gravity-free limit: violations are reported.
+    let out = json(&[
+        "torque-profile",
+        "builtin:ur5",
+        "--trajectory",
+        "quintic",
+        "--qf",
+        "3,-3,3,3,3,3",
+        "--duration",
+        "0.3",
+        "--dt",
+        "0.01",
+    ]);
+    let v = &out["violations"]["shoulder_lift_joint"];
+    assert!(f(&v["count"]) > 0.0);
+    assert!(f(&v["worst"]) > 150.0);
+    assert!(f(&v["first_time"]) >= 0.0);
+    let table = ok(&[
+        "torque-profile",
+        "builtin:ur5",
+        "--trajectory",
+        "quintic",
+        "--qf",
+        "3,-3,3,3,3,3",
+        "--duration",
+        "0.3",
+        "--dt",
+        "0.01",
+        "--format",
+        "table",
+    ]);
+    assert!(table.contains("over the effort limit: ") && table.contains("shoulder_lift_joint"));
+}
+
+#[test]
+fn svg_plots_and_help() {
+    let svg = tmp("run.svg");
+    ok(&[
+        "simulate",
+        "builtin:pendulum",
+        "--q0",
+        "0.5",
+        "--duration",
+        "0.2",
+        "--plot",
+        svg.to_str().unwrap(),
+        "--format",
+        "table",
+    ]);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains("<svg") && text.contains("pivot") && text.contains("Energy"));
+    let help = ok(&["inverse-dynamics", "--help"]);
+    assert!(help.contains("default: all zero") && help.contains("--input"));
+    let help = ok(&["--help"]);
+    for cmd in [
+        "torque-profile",
+        "closed-form",
+        "explain",
+        "rnea",
+        "crba",
+        "aba",
+    ] {
+        assert!(help.contains(cmd), "{cmd}");
+    }
+}
+
+#[test]
+fn export_round_trips_through_urdf() {
+    let path = tmp("planar2_export.urdf");
+    ok(&[
+        "export",
+        "builtin:planar2",
+        "--to",
+        "urdf",
+        "--output",
+        path.to_str().unwrap(),
+    ]);
+    let text = ok(&["export", "builtin:planar2", "--to", "urdf"]);
+    assert!(text.contains("<robot"));
+    // The exported robot has the same dynamics (URDF has no gravity element: give it back).
+    let a = json(&[
+        "rnea",
+        "builtin:planar2",
+        "--q",
+        "0.2,0.4",
+        "--v",
+        "1,2",
+        "--a",
+        "3,4",
+    ]);
+    let b = json(&[
+        "rnea",
+        path.to_str().unwrap(),
+        "--q",
+        "0.2,0.4",
+        "--v",
+        "1,2",
+        "--a",
+        "3,4",
+        "--gravity",
+        "0,-9.81,0",
+    ]);
+    close(&vec(&a["tau"]), &vec(&b["tau"]), 1e-12);
+}
+
+#[test]
+fn check_and_info() {
+    let v = json(&["check", "builtin:ur5"]);
+    assert_eq!(v["ok"], true);
+    let v = json(&["check", ARM3]);
+    assert_eq!(v["ok"], true);
+    let v = json(&["info", ARM3]);
+    assert_eq!(v["nq"], 3);
+    assert_eq!(v["joints"][0]["name"], "joint1");
+    assert_eq!(v["joints"][0]["effort"], 100.0);
+    close(&[f(&v["total_mass"])], &[4.3], 1e-12);
+    let text = ok(&["info", "builtin:branched", "--format", "table"]);
+    assert!(text.contains("tree:") && text.contains("└─"));
+    // fk on a URDF: every frame.
+    let v = json(&["fk", ARM3, "--q", "0.1,0.2,0.3"]);
+    assert!(v["poses"].as_object().unwrap().len() >= 4);
+}
