@@ -23,6 +23,4 @@ pub use jacobian::{
     compute_joint_jacobians, frame_acceleration, frame_jacobian, frame_twist, link_jacobian,
     Reference,
 };
-#[allow(unused_imports)]
-pub(crate) use motion::propagate_acceleration;
 pub use motion::{forward_acceleration, forward_velocity, frame_jdot_qdot};

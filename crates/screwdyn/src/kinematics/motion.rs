@@ -5,7 +5,7 @@ use super::jacobian::{frame_acceleration, Reference};
 use crate::error::Result;
 use crate::model::Model;
 use crate::scalar::Real;
-use crate::spatial::{ad, Twist};
+use crate::spatial::Twist;
 use crate::workspace::Workspace;
 
 /// Forward kinematics and body twists: `V_i^{i,0} = Ad_{H_{λ(i)}^i} V_{λ(i)} + S_i q̇_i`
@@ -26,12 +26,13 @@ pub fn forward_velocity<T: Real>(
 ) -> Result<()> {
     model.check_vector(v, "v")?;
     forward_kinematics(model, ws, q)?;
-    for (i, joint) in model.joints().iter().enumerate() {
-        let s_qd = joint.screw * v[i];
-        ws.twist[i] = match model.parent(i) {
-            Some(p) => ws.pose_in_parent[i].inv_act_twist(&ws.twist[p]) + s_qd,
-            None => s_qd,
+    for (i, m) in model.motions().iter().enumerate() {
+        let mut vi = match model.parent(i) {
+            Some(p) => ws.pose_in_parent[i].inv_act_twist(&ws.twist[p]),
+            None => Twist::zeros(),
         };
+        m.add_scaled(&mut vi, v[i]);
+        ws.twist[i] = vi;
     }
     Ok(())
 }
@@ -66,14 +67,14 @@ pub fn forward_acceleration<T: Real>(
 /// The acceleration half of the forward pass, given `ws.pose_in_parent` and `ws.twist`, with
 /// base acceleration `base` (zero for kinematics, `(0, −g)` for dynamics); `a = None` means
 /// `q̈ = 0`.
-pub(crate) fn propagate_acceleration<T: Real>(
+fn propagate_acceleration<T: Real>(
     model: &Model<T>,
     ws: &mut Workspace<T>,
     v: &[T],
     a: Option<&[T]>,
     base: &Twist<T>,
 ) {
-    for (i, joint) in model.joints().iter().enumerate() {
+    for (i, m) in model.motions().iter().enumerate() {
         let h = &ws.pose_in_parent[i];
         let (v_par, vd_par) = match model.parent(i) {
             Some(p) => (
@@ -82,10 +83,11 @@ pub(crate) fn propagate_acceleration<T: Real>(
             ),
             None => (Twist::zeros(), h.inv_act_twist(base)),
         };
-        ws.twist_dot[i] = vd_par - ad(&(joint.screw * v[i]), &v_par);
+        let mut vdi = vd_par - m.ad_scaled(v[i], &v_par);
         if let Some(a) = a {
-            ws.twist_dot[i] += joint.screw * a[i];
+            m.add_scaled(&mut vdi, a[i]);
         }
+        ws.twist_dot[i] = vdi;
     }
 }
 

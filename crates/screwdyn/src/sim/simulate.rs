@@ -87,16 +87,10 @@ impl Plant<'_> {
         }
         self.effects
             .apply(self.model, q, v, &self.cmd, &mut self.tau);
-        let active: Vec<&Disturbance> = self
-            .disturbances
-            .iter()
-            .filter(|d| t >= d.start && t < d.end)
-            .collect();
-        let fext = if active.is_empty() {
-            None
-        } else {
+        let active = |d: &&Disturbance| t >= d.start && t < d.end;
+        let fext = if self.disturbances.iter().any(|d| active(&d)) {
             self.fext.clear();
-            for d in active {
+            for d in self.disturbances.iter().filter(active) {
                 if d.in_world {
                     self.fext.add_world(d.body, d.wrench)?;
                 } else {
@@ -104,6 +98,8 @@ impl Plant<'_> {
                 }
             }
             Some(&self.fext)
+        } else {
+            None
         };
         let a =
             forward_dynamics_with(self.model, &mut self.ws, q, v, &self.tau, fext, self.method)?;
