@@ -52,17 +52,21 @@ pub struct Workspace<T: Real = f64> {
 
     /// CRBA: composite spatial inertia of the subtree rooted at body `i`, in the base frame.
     pub composite_inertia: Vec<CompositeInertia<T>>,
-    /// ABA: articulated-body inertia `𝔍ᴬ_i` in frame `i`.
+    /// ABA: `V_i^0 = Ad_{H_i^0} V_i^{i,0}`, body `i`'s twist written in the base frame.
+    pub twist_in_world: Vec<Twist<T>>,
+    /// ABA: `V̇_i^0`, its time derivative (the base-frame spatial acceleration).
+    pub twist_dot_in_world: Vec<Twist<T>>,
+    /// ABA: articulated-body inertia `𝔍ᴬ_i`, in the base frame.
     pub articulated_inertia: Vec<Matrix6<T>>,
-    /// ABA: articulated bias wrench `pᴬ_i` in frame `i`.
+    /// ABA: articulated bias wrench `pᴬ_i`, in the base frame.
     pub articulated_bias: Vec<Wrench<T>>,
-    /// ABA: velocity-product acceleration `c_i = −ad_{S_i q̇_i}(Ad V_{λ(i)})`.
+    /// ABA: velocity-product acceleration `c_i = ad_{V_{λ(i)}^0}(s_i q̇_i)`, in the base frame.
     pub bias_acceleration: Vec<Twist<T>>,
-    /// ABA: `U_i = 𝔍ᴬ_i S_i`.
+    /// ABA: `U_i = 𝔍ᴬ_i s_i`.
     pub aba_u: Vec<Wrench<T>>,
-    /// ABA: `D_i = S_iᵀ U_i`.
+    /// ABA: `D_i = s_iᵀ U_i`.
     pub aba_d: DVector<T>,
-    /// ABA: `u_i = τ_i − S_iᵀ pᴬ_i`.
+    /// ABA: `u_i = τ_i − s_iᵀ pᴬ_i`.
     pub aba_small_u: DVector<T>,
     /// Forward dynamics by CRBA: the Cholesky factor of `M` (lower triangle).
     pub cholesky: DMatrix<T>,
@@ -98,6 +102,8 @@ impl<T: Real> Workspace<T> {
             nonlinear_effects: DVector::zeros(n),
             qdd: DVector::zeros(n),
             composite_inertia: vec![CompositeInertia::zero(); n],
+            twist_in_world: vec![Twist::zeros(); n],
+            twist_dot_in_world: vec![Twist::zeros(); n],
             articulated_inertia: vec![Matrix6::zeros(); n],
             articulated_bias: vec![Wrench::zeros(); n],
             bias_acceleration: vec![Twist::zeros(); n],

@@ -6,69 +6,72 @@ use crate::error::{Error, Result};
 use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::{real, Real};
-use crate::spatial::{ad_transpose, Twist};
+use crate::spatial::{ad, ad_transpose, Se3, SpatialInertia, Twist};
 use crate::workspace::Workspace;
-use nalgebra::{DVector, Matrix3, Matrix6, Vector3};
+use nalgebra::{DVector, Matrix3, Matrix6};
 
-/// `𝔍_λ += Ad_{H_λ^i}ᵀ 𝔍 Ad_{H_λ^i}`: adds a symmetric 6×6 inertia given in child frame `i`,
-/// written in the parent frame, with `h = H_i^λ = (R, p)`. By blocks, with `𝔍 = [A B; Bᵀ C]`
-/// rotated to `A' = R A Rᵀ`, `B' = R B Rᵀ`, `C' = R C Rᵀ` and then shifted by `p`:
-/// `C_λ = C'`, `B_λ = B' + [p] C'`, `A_λ = A' + [p] B'ᵀ − B' [p] − [p] C' [p]`
-/// (no 6×6 product; only the upper triangles of the symmetric blocks are formed).
-#[inline]
-fn add_to_parent<T: Real>(h: &crate::spatial::Se3<T>, m: &Matrix6<T>, out: &mut Matrix6<T>) {
-    let r = &h.rotation;
-    let p = &h.translation;
-    let a: Matrix3<T> = m.fixed_view::<3, 3>(0, 0).into_owned();
-    let b: Matrix3<T> = m.fixed_view::<3, 3>(0, 3).into_owned();
-    let c: Matrix3<T> = m.fixed_view::<3, 3>(3, 3).into_owned();
-    let rt = r.transpose();
-    let a1 = r * a * rt;
-    let b1 = r * b * rt;
-    let c1 = r * c * rt;
-    // [p] X column by column is p × X_col; X [p] = −([p] Xᵀ)ᵀ.
-    let pc = cross_cols(p, &c1); // [p] C'
-    let b2 = b1 + pc;
-    let pbt = cross_cols(p, &b1.transpose()); // [p] B'ᵀ
-                                              // −B'[p] = ([p] B'ᵀ)ᵀ and −[p] C' [p] = [p] ([p] C')ᵀ (C' symmetric).
-    let pcp = cross_cols(p, &pc.transpose());
-    let a2 = a1 + pbt + pbt.transpose() + pcp;
-    for i in 0..3 {
-        for j in 0..3 {
-            out[(i, j)] += a2[(i, j)];
-            out[(i, j + 3)] += b2[(i, j)];
-            out[(j + 3, i)] += b2[(i, j)];
-            out[(i + 3, j + 3)] += c1[(i, j)];
-        }
-    }
-}
-
-/// `[p] X`: `p ×` each column of `X`.
+/// Writes the 6×6 matrix of `𝔍^0 = Ad_{H_0^i}ᵀ 𝔍^i Ad_{H_0^i}`, body `i`'s spatial inertia
+/// in the base frame, into `out`, given `H_i^0 = (R, p)` and the body-frame parameters: the
+/// centre of mass moves to `c⁰ = R c + p`, the rotational inertia about it turns to
+/// `I_c⁰ = R I_c Rᵀ` (symmetric, six entries formed), and the matrix is
+/// `[I_c⁰ − m[c⁰][c⁰]  m[c⁰]; −m[c⁰]  m·1]` (the parallel-axis theorem of seed 003).
+/// Returns the same inertia by its parameters `(m, c⁰, I_c⁰)`, for the momentum `𝔍^0 V`.
 #[inline(always)]
-fn cross_cols<T: Real>(p: &Vector3<T>, x: &Matrix3<T>) -> Matrix3<T> {
-    let mut out = Matrix3::zeros();
-    for k in 0..3 {
-        let (x0, x1, x2) = (x[(0, k)], x[(1, k)], x[(2, k)]);
-        out[(0, k)] = p.y * x2 - p.z * x1;
-        out[(1, k)] = p.z * x0 - p.x * x2;
-        out[(2, k)] = p.x * x1 - p.y * x0;
-    }
-    out
+fn world_inertia<T: Real>(
+    h: &Se3<T>,
+    body: &SpatialInertia<T>,
+    out: &mut Matrix6<T>,
+) -> SpatialInertia<T> {
+    let r = &h.rotation;
+    let m = body.mass;
+    let c = r * body.com + h.translation;
+    let a = r * body.inertia_com;
+    // I_c⁰ = A Rᵀ: entry (i, j) is row i of A dotted with row j of R.
+    let dot =
+        |i: usize, j: usize| a[(i, 0)] * r[(j, 0)] + a[(i, 1)] * r[(j, 1)] + a[(i, 2)] * r[(j, 2)];
+    let (i00, i01, i02, i11, i12, i22) = (
+        dot(0, 0),
+        dot(0, 1),
+        dot(0, 2),
+        dot(1, 1),
+        dot(1, 2),
+        dot(2, 2),
+    );
+    let ic = Matrix3::new(i00, i01, i02, i01, i11, i12, i02, i12, i22);
+    let (mx, my, mz) = (m * c.x, m * c.y, m * c.z);
+    // −m[c][c] = m (cᵀc 1 − c cᵀ).
+    let (xx, yy, zz) = (mx * c.x, my * c.y, mz * c.z);
+    let (xy, xz, yz) = (mx * c.y, mx * c.z, my * c.z);
+    let zero = T::zero();
+    #[rustfmt::skip]
+    let matrix = Matrix6::new(
+        i00 + yy + zz, i01 - xy,      i02 - xz,      zero, -mz,  my,
+        i01 - xy,      i11 + xx + zz, i12 - yz,      mz,   zero, -mx,
+        i02 - xz,      i12 - yz,      i22 + xx + yy, -my,  mx,   zero,
+        zero,          mz,            -my,           m,    zero, zero,
+        -mz,           zero,          mx,            zero, m,    zero,
+        my,            -mx,           zero,          zero, zero, m,
+    );
+    *out = matrix;
+    SpatialInertia::new(m, c, ic)
 }
 
 /// Forward dynamics `q̈ = M⁻¹(τ − C q̇ − g)` by the articulated-body algorithm (Featherstone),
-/// written with the seeds' operators:
+/// written with the seeds' operators and every spatial quantity in the base frame {0}
+/// (`s_i = Ad_{H_i^0} S_i`, `𝔍_i^0 = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i}`, twists `V_i^0 = Ad_{H_i^0} V_i`),
+/// so that nothing is carried from child to parent frame:
 ///
-/// 1. forward: `V_i = Ad_{H_λ^i} V_λ + S_i q̇_i`, `c_i = −ad_{S_i q̇_i}(Ad_{H_λ^i} V_λ)`,
-///    `𝔍ᴬ_i = 𝔍_i`, `pᴬ_i = −ad_{V_i}ᵀ 𝔍_i V_i − W_ext,i`;
-/// 2. backward: `U_i = 𝔍ᴬ_i S_i`, `D_i = S_iᵀ U_i`, `u_i = τ_i − S_iᵀ pᴬ_i`, and the parent
-///    receives `Ad_{H_λ^i}ᵀ (𝔍ᴬ_i − U_i U_iᵀ / D_i) Ad_{H_λ^i}` and
-///    `Ad_{H_λ^i}ᵀ (pᴬ_i + 𝔍ᵃ_i c_i + U_i u_i / D_i)`;
-/// 3. forward: `V̇'_i = Ad_{H_λ^i} V̇_λ + c_i`, `q̈_i = (u_i − U_iᵀ V̇'_i) / D_i`,
-///    `V̇_i = V̇'_i + S_i q̈_i`, with `V̇_base = (0, −g)` (seed 000).
+/// 1. forward: `V_i = V_λ + s_i q̇_i`, `c_i = ad_{V_λ}(s_i q̇_i)` (the `ṡ_i q̇_i` of
+///    `V̇_i = V̇_λ + s_i q̈_i + ṡ_i q̇_i`), `𝔍ᴬ_i = 𝔍_i^0`, `pᴬ_i = −ad_{V_i}ᵀ 𝔍_i^0 V_i − W_ext,i`;
+/// 2. backward: `U_i = 𝔍ᴬ_i s_i`, `D_i = s_iᵀ U_i`, `u_i = τ_i − s_iᵀ pᴬ_i`; the parent
+///    receives `𝔍ᴬ_i − U_i U_iᵀ / D_i` and `pᴬ_i + 𝔍ᵃ_i c_i + U_i u_i / D_i`;
+/// 3. forward: `V̇'_i = V̇_λ + c_i`, `q̈_i = (u_i − U_iᵀ V̇'_i) / D_i`,
+///    `V̇_i = V̇'_i + s_i q̈_i`, with `V̇_base = (0, −g)` (seed 000).
 ///
-/// Returns `ws.qdd`; `Error::Numerical` when an articulated inertia `D_i` is not positive (a
-/// massless subtree).
+/// Writes `ws.qdd`, and `ws.screw_in_world`, `ws.twist_in_world`, `ws.twist_dot_in_world`
+/// (`V̇_i^0`, the base-frame spatial acceleration) and the articulated quantities, all in the
+/// base frame. Returns `ws.qdd`; `Error::Numerical` when an articulated inertia `D_i` is not
+/// positive (a massless subtree).
 ///
 /// ```
 /// use screwdyn::{builtin, dynamics::aba, Workspace};
@@ -107,28 +110,33 @@ pub fn aba_with<'w, T: Real>(
     let (motions, parents, bodies) = (model.motions(), model.parents(), model.bodies());
     // Pass 1: twists, velocity-product accelerations, rigid-body inertias and bias wrenches.
     for i in 0..n {
-        let m = &motions[i];
-        let mut vi = match parents[i] {
-            Some(p) => ws.pose_in_parent[i].inv_act_twist(&ws.twist[p]),
-            None => Twist::zeros(),
+        let h = &ws.pose_in_world[i];
+        let s = motions[i].act(h);
+        let sv = s * v[i];
+        let (vi, ci) = match parents[i] {
+            Some(p) => {
+                let vp = ws.twist_in_world[p];
+                (vp + sv, ad(&vp, &sv))
+            }
+            None => (sv, Twist::zeros()),
         };
-        ws.bias_acceleration[i] = -m.ad_scaled(v[i], &vi);
-        m.add_scaled(&mut vi, v[i]);
-        ws.twist[i] = vi;
-        let inertia = &bodies[i].inertia;
-        ws.articulated_inertia[i] = inertia.matrix();
+        let inertia = world_inertia(h, &bodies[i].inertia, &mut ws.articulated_inertia[i]);
         let mut p = -ad_transpose(&vi, &inertia.apply(&vi));
         if let Some(f) = fext {
-            p -= f.on_body(ws, i);
+            p -= f.in_world_at(h, i);
         }
+        ws.screw_in_world[i] = s;
+        ws.twist_in_world[i] = vi;
+        ws.bias_acceleration[i] = ci;
         ws.articulated_bias[i] = p;
     }
     // Pass 2: articulated inertias, from the leaves to the root.
     let tiny = model.inertia_scale() * T::default_epsilon() * real(64.0);
     for i in (0..n).rev() {
-        let m = &motions[i];
-        let u = m.inertia_column(&ws.articulated_inertia[i]);
-        let d = m.dot(&u);
+        let s = ws.screw_in_world[i];
+        let ia = ws.articulated_inertia[i];
+        let u = ia * s;
+        let d = s.dot(&u);
         // Written to also catch NaN.
         if d.partial_cmp(&tiny) != Some(std::cmp::Ordering::Greater) {
             return Err(Error::Numerical(format!(
@@ -138,39 +146,59 @@ pub fn aba_with<'w, T: Real>(
                 d
             )));
         }
-        let small_u = tau[i] - m.dot(&ws.articulated_bias[i]);
+        let small_u = tau[i] - s.dot(&ws.articulated_bias[i]);
         ws.aba_u[i] = u;
         ws.aba_d[i] = d;
         ws.aba_small_u[i] = small_u;
         if let Some(p) = parents[i] {
-            // 𝔍ᵃ = 𝔍ᴬ − U Uᵀ / D, symmetric.
-            let mut ia = ws.articulated_inertia[i];
             let ud = u / d;
+            // 𝔍ᵃ = 𝔍ᴬ − U Uᵀ / D (symmetric), added to the parent's as it is formed.
+            let parent = &mut ws.articulated_inertia[p];
             for c in 0..6 {
                 for r in 0..6 {
-                    ia[(r, c)] -= ud[r] * u[c];
+                    parent[(r, c)] += ia[(r, c)] - ud[r] * u[c];
                 }
             }
-            let pa = ws.articulated_bias[i] + ia * ws.bias_acceleration[i] + ud * small_u;
-            let h = ws.pose_in_parent[i];
-            add_to_parent(&h, &ia, &mut ws.articulated_inertia[p]);
-            let pa_par = h.inv_act_transpose_wrench(&pa);
-            ws.articulated_bias[p] += pa_par;
+            // pᵃ = pᴬ + 𝔍ᵃ c + U u / D = pᴬ + 𝔍ᴬ c + (U / D)(u − Uᵀ c).
+            let ci = ws.bias_acceleration[i];
+            let pa = ws.articulated_bias[i] + ia * ci + ud * (small_u - u.dot(&ci));
+            ws.articulated_bias[p] += pa;
         }
     }
     // Pass 3: accelerations, from the root to the leaves.
     let base = base_acceleration(model);
-    for i in 0..n {
-        let h = &ws.pose_in_parent[i];
-        let a_par = match parents[i] {
-            Some(p) => h.inv_act_twist(&ws.twist_dot[p]),
-            None => h.inv_act_twist(&base),
+    for (i, parent) in parents.iter().enumerate() {
+        let a_par = match *parent {
+            Some(p) => ws.twist_dot_in_world[p],
+            None => base,
         } + ws.bias_acceleration[i];
         let qdd = (ws.aba_small_u[i] - ws.aba_u[i].dot(&a_par)) / ws.aba_d[i];
         ws.qdd[i] = qdd;
-        let mut vd = a_par;
-        motions[i].add_scaled(&mut vd, qdd);
-        ws.twist_dot[i] = vd;
+        ws.twist_dot_in_world[i] = a_par + ws.screw_in_world[i] * qdd;
     }
     Ok(&ws.qdd)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+
+    /// The base-frame inertia equals the change of frame `Ad_{H⁻¹}ᵀ 𝔍 Ad_{H⁻¹}` done with 6×6
+    /// adjoint matrices (seed 001), for a body with an off-diagonal inertia and offset CoM.
+    #[test]
+    fn world_inertia_is_the_adjoint_change_of_frame() {
+        let body = SpatialInertia::new(
+            2.5,
+            Vector3::new(0.1, -0.2, 0.3),
+            Matrix3::new(0.3, 0.01, -0.02, 0.01, 0.2, 0.03, -0.02, 0.03, 0.25),
+        );
+        let h = Se3::from_rpy(0.4, -0.7, 1.9).with_translation(Vector3::new(0.5, -1.2, 0.8));
+        let ad = h.inverse().adjoint_matrix();
+        let expected = ad.transpose() * body.matrix() * ad;
+        let mut out = Matrix6::zeros();
+        let params = world_inertia(&h, &body, &mut out);
+        assert!((out - expected).amax() < 1e-12);
+        assert!((params.matrix() - expected).amax() < 1e-12);
+    }
 }

@@ -136,6 +136,18 @@ impl<T: Real> ExternalWrenches<T> {
         self.on_body_at(&ws.pose_in_world[i], i)
     }
 
+    /// `W_ext^{0,i}`: the total wrench on body `i` written in the base frame (moment about the
+    /// base origin), given the pose `H_i^0` of body `i`; `Ad_{H_0^i}ᵀ W_ext^{i,i}`.
+    #[inline]
+    pub fn in_world_at(&self, pose_in_world: &Se3<T>, i: usize) -> Wrench<T> {
+        let local = pose_in_world.inv_act_transpose_wrench(&self.local[i]);
+        if self.any_world {
+            local + self.world[i]
+        } else {
+            local
+        }
+    }
+
     /// `W_ext^{i,i}` given the pose `H_i^0` of body `i`.
     #[inline]
     pub fn on_body_at(&self, pose_in_world: &Se3<T>, i: usize) -> Wrench<T> {
