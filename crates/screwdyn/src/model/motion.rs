@@ -4,13 +4,15 @@
 //! Most joints of real arms turn about (or slide along) a coordinate axis of the child frame
 //! through its origin: `S = (±ê_k, 0)` or `S = (0, ±ê_k)`. For those, `e^{[S]q}` is a plain
 //! rotation about `ê_k` (one `sin_cos`, no series), `S q̇` has one non-zero entry and `Sᵀ W`
-//! reads one entry. Everything else (general revolute, prismatic and helical axes) goes through
+//! reads one entry. The joints of standard-DH tables turn about a coordinate axis of the child
+//! frame that misses its origin (`S = (±ê_k, r × ±ê_k)`): their pose and base-frame axis are
+//! special-cased too. Everything else (general revolute, prismatic and helical axes) goes through
 //! the general screw formulas. Every algorithm reaches the joint's screw through the methods
 //! here, so the specialisation lives in this one place.
 
 use crate::scalar::Real;
 use crate::spatial::{ad, ang, lin, Se3, Twist, Wrench};
-use nalgebra::{Matrix6, Vector3, Vector6};
+use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 
 /// A joint's screw axis in the child frame, specialised by shape.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -28,6 +30,19 @@ pub enum JointMotion<T: Real = f64> {
         axis: usize,
         /// `±1`.
         sign: T,
+    },
+    /// Rotation about `ω = sign · ê_axis` through the point `point` of the child frame
+    /// (`point ⊥ ê_axis`, the foot of the perpendicular from the origin): `S = (ω, point × ω)`.
+    /// Standard-DH joints with a non-zero link length `a` look like this from their child frame.
+    RevoluteOffsetAxis {
+        /// 0, 1 or 2 for x, y, z.
+        axis: usize,
+        /// `±1`.
+        sign: T,
+        /// A point on the axis, perpendicular to it.
+        point: Vector3<T>,
+        /// `S` itself, for the operations that use it whole.
+        screw: Twist<T>,
     },
     /// Any other screw `S = (ω, v)`.
     General {
@@ -66,6 +81,19 @@ impl<T: Real> JointMotion<T> {
                 return JointMotion::PrismaticAxis { axis, sign };
             }
         }
+        if let Some((axis, sign)) = unit(0) {
+            if s[3 + axis] == T::zero() {
+                // v = r × ω with r ⊥ ω gives r = ω × v (exact: ω only permutes and signs v).
+                let omega = Vector3::new(s[0], s[1], s[2]);
+                let point = omega.cross(&Vector3::new(s[3], s[4], s[5]));
+                return JointMotion::RevoluteOffsetAxis {
+                    axis,
+                    sign,
+                    point,
+                    screw: *s,
+                };
+            }
+        }
         JointMotion::General { screw: *s }
     }
 
@@ -82,7 +110,7 @@ impl<T: Real> JointMotion<T> {
                 s[3 + axis] = sign;
                 s
             }
-            JointMotion::General { screw } => screw,
+            JointMotion::General { screw } | JointMotion::RevoluteOffsetAxis { screw, .. } => screw,
         }
     }
 
@@ -92,21 +120,20 @@ impl<T: Real> JointMotion<T> {
     pub fn pose_in_parent(&self, home: &Se3<T>, q: T) -> Se3<T> {
         match *self {
             JointMotion::RevoluteAxis { axis, sign } => {
-                let (s, c) = (q * sign).sin_cos();
-                let r = &home.rotation;
-                // R(0) Rot_k(θ): only the two columns other than k change.
-                let (i, j) = match axis {
-                    0 => (1, 2),
-                    1 => (2, 0),
-                    _ => (0, 1),
-                };
-                let (ci, cj) = (r.column(i), r.column(j));
-                let ni = ci * c + cj * s;
-                let nj = cj * c - ci * s;
-                let mut rot = *r;
-                rot.set_column(i, &ni);
-                rot.set_column(j, &nj);
+                let (rot, _) = rotate_about_axis(&home.rotation, axis, q * sign);
                 Se3::new(rot, home.translation)
+            }
+            JointMotion::RevoluteOffsetAxis {
+                axis, sign, point, ..
+            } => {
+                // H(0) (Rot_k(θ), (1 − Rot_k(θ)) r): p = p(0) + R(0) r − R(0) Rot_k(θ) r, where
+                // r = r_i ê_i + r_j ê_j only meets the two columns that turn.
+                let (rot, (i, j)) = rotate_about_axis(&home.rotation, axis, q * sign);
+                let r0 = &home.rotation;
+                let p = home.translation
+                    + (r0.column(i) - rot.column(i)) * point[i]
+                    + (r0.column(j) - rot.column(j)) * point[j];
+                Se3::new(rot, p)
             }
             JointMotion::PrismaticAxis { axis, sign } => {
                 let d = q * sign;
@@ -134,7 +161,9 @@ impl<T: Real> JointMotion<T> {
                 s[3 + axis] = sign * x;
                 s
             }
-            JointMotion::General { screw } => screw * x,
+            JointMotion::General { screw } | JointMotion::RevoluteOffsetAxis { screw, .. } => {
+                screw * x
+            }
         }
     }
 
@@ -144,7 +173,9 @@ impl<T: Real> JointMotion<T> {
         match *self {
             JointMotion::RevoluteAxis { axis, sign } => v[axis] += sign * x,
             JointMotion::PrismaticAxis { axis, sign } => v[3 + axis] += sign * x,
-            JointMotion::General { screw } => *v += screw * x,
+            JointMotion::General { screw } | JointMotion::RevoluteOffsetAxis { screw, .. } => {
+                *v += screw * x
+            }
         }
     }
 
@@ -154,7 +185,9 @@ impl<T: Real> JointMotion<T> {
         match *self {
             JointMotion::RevoluteAxis { axis, sign } => w[axis] * sign,
             JointMotion::PrismaticAxis { axis, sign } => w[3 + axis] * sign,
-            JointMotion::General { screw } => screw.dot(w),
+            JointMotion::General { screw } | JointMotion::RevoluteOffsetAxis { screw, .. } => {
+                screw.dot(w)
+            }
         }
     }
 
@@ -184,7 +217,9 @@ impl<T: Real> JointMotion<T> {
                 };
                 Vector6::new(T::zero(), T::zero(), T::zero(), l.x, l.y, l.z)
             }
-            JointMotion::General { screw } => ad(&(screw * x), v),
+            JointMotion::General { screw } | JointMotion::RevoluteOffsetAxis { screw, .. } => {
+                ad(&(screw * x), v)
+            }
         }
     }
 
@@ -203,6 +238,16 @@ impl<T: Real> JointMotion<T> {
                 let l = h.rotation.column(axis) * sign;
                 Vector6::new(T::zero(), T::zero(), T::zero(), l[0], l[1], l[2])
             }
+            JointMotion::RevoluteOffsetAxis {
+                axis, sign, point, ..
+            } => {
+                // ω⁰ = R ω, through the point p + R r.
+                let w = h.rotation.column(axis) * sign;
+                let w = Vector3::new(w[0], w[1], w[2]);
+                let at = h.act_point(&point);
+                let l = at.cross(&w);
+                Vector6::new(w.x, w.y, w.z, l.x, l.y, l.z)
+            }
             JointMotion::General { screw } => h.act_twist(&screw),
         }
     }
@@ -213,7 +258,94 @@ impl<T: Real> JointMotion<T> {
         match *self {
             JointMotion::RevoluteAxis { axis, sign } => m.column(axis) * sign,
             JointMotion::PrismaticAxis { axis, sign } => m.column(3 + axis) * sign,
-            JointMotion::General { screw } => m * screw,
+            JointMotion::General { screw } | JointMotion::RevoluteOffsetAxis { screw, .. } => {
+                m * screw
+            }
+        }
+    }
+}
+
+/// `R Rot_k(θ)`: only the two columns `(i, j)` other than `k` change; returns them too.
+#[inline(always)]
+fn rotate_about_axis<T: Real>(
+    r: &Matrix3<T>,
+    axis: usize,
+    theta: T,
+) -> (Matrix3<T>, (usize, usize)) {
+    let (s, c) = theta.sin_cos();
+    let (i, j) = match axis {
+        0 => (1, 2),
+        1 => (2, 0),
+        _ => (0, 1),
+    };
+    let (ci, cj) = (r.column(i), r.column(j));
+    let ni = ci * c + cj * s;
+    let nj = cj * c - ci * s;
+    let mut rot = *r;
+    rot.set_column(i, &ni);
+    rot.set_column(j, &nj);
+    (rot, (i, j))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every special case agrees with the general screw formulas it replaces (which are checked
+    /// against the matrix-exponential series in the spatial tests).
+    #[test]
+    fn special_cases_agree_with_the_general_screw_formulas() {
+        let screws: [Twist<f64>; 10] = [
+            Vector6::new(1.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+            Vector6::new(0.0, -1.0, 0.0, 0.0, 0.0, 0.0),
+            Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0),
+            Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0),
+            Vector6::new(0.0, 0.0, 0.0, 1.0, 0.0, 0.0),
+            // Standard-DH offset axes: z through (0.425, 0, 0), −y through (0.1, 0, −0.2), x.
+            Vector6::new(0.0, 0.0, 1.0, 0.0, -0.425, 0.0),
+            Vector6::new(0.0, -1.0, 0.0, 0.2, 0.0, 0.1),
+            Vector6::new(1.0, 0.0, 0.0, 0.0, 0.3, -0.7),
+            // General: a tilted axis, and a helical screw.
+            Vector6::new(0.6, 0.8, 0.0, 0.1, -0.2, 0.3),
+            Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.05),
+        ];
+        let kinds = [
+            "RevoluteAxis",
+            "RevoluteAxis",
+            "RevoluteAxis",
+            "PrismaticAxis",
+            "PrismaticAxis",
+            "RevoluteOffsetAxis",
+            "RevoluteOffsetAxis",
+            "RevoluteOffsetAxis",
+            "General",
+            "General",
+        ];
+        let home = Se3::from_rpy(0.3, -1.2, 2.1).with_translation(Vector3::new(0.2, -0.4, 1.1));
+        let h = Se3::from_rpy(-0.7, 0.4, -2.6).with_translation(Vector3::new(-1.0, 0.5, 0.3));
+        let v = Vector6::new(0.3, -0.1, 0.7, 1.5, -0.4, 0.2);
+        let w = Vector6::new(-0.2, 0.9, 0.4, 3.0, 1.0, -2.0);
+        let m = Matrix6::from_fn(|r, c| ((r * 6 + c) as f64).sin());
+        for (s, kind) in screws.iter().zip(kinds) {
+            let jm = JointMotion::classify(s);
+            assert!(format!("{jm:?}").starts_with(kind), "{s:?} gave {jm:?}");
+            assert_eq!(jm.screw(), *s);
+            for q in [0.0, 0.8, -2.3] {
+                let fast = jm.pose_in_parent(&home, q);
+                let general = home.compose(&Se3::exp_screw(s, q));
+                assert!(
+                    (fast.to_matrix() - general.to_matrix()).amax() < 1e-14,
+                    "{kind} q={q}"
+                );
+                assert!((jm.scaled(q) - s * q).amax() < 1e-15);
+                let mut x = v;
+                jm.add_scaled(&mut x, q);
+                assert!((x - (v + s * q)).amax() < 1e-15);
+                assert!((jm.ad_scaled(q, &v) - ad(&(s * q), &v)).amax() < 1e-14);
+            }
+            assert!((jm.dot(&w) - s.dot(&w)).abs() < 1e-14);
+            assert!((jm.act(&h) - h.act_twist(s)).amax() < 1e-14, "{kind}");
+            assert!((jm.inertia_column(&m) - m * s).amax() < 1e-14);
         }
     }
 }

@@ -14,7 +14,28 @@
 use super::so3::{exp_so3, hat, log_so3, one_minus_cos_over_sq, phi_minus_sin_over_cube};
 use super::twist::{ang, lin, Twist, Wrench};
 use crate::scalar::{real, Real};
-use nalgebra::{Matrix3, Matrix4, Matrix6, Rotation3, Vector3, Vector6};
+use nalgebra::{Matrix3, Matrix4, Matrix6, Vector3, Vector6};
+
+/// `(sin t, cos t)`, exact (`0`, `±1`) when `t` is within `1e-12` rad of a multiple of `π/2`.
+fn quarter_exact_sin_cos<T: Real>(t: T) -> (T, T) {
+    let quarter = T::frac_pi_2();
+    let k = (t / quarter).round();
+    if (t - k * quarter).abs() > real(1e-12) {
+        return t.sin_cos();
+    }
+    let four: T = real(4.0);
+    let m = k - (k / four).floor() * four;
+    let (zero, one) = (T::zero(), T::one());
+    if m == zero {
+        (zero, one)
+    } else if m == one {
+        (one, zero)
+    } else if m == real(2.0) {
+        (zero, -one)
+    } else {
+        (-one, zero)
+    }
+}
 
 /// A rigid-body transform `H = [R p; 0 1] ∈ SE(3)`.
 ///
@@ -69,11 +90,37 @@ impl<T: Real> Se3<T> {
     }
 
     /// The URDF rotation `rpy`: fixed-axis X-Y-Z, i.e. `R = Rz(yaw)·Ry(pitch)·Rx(roll)`.
+    ///
+    /// Angles within `1e-12` rad of a multiple of `π/2` (such as the `1.5707963267948966` of
+    /// URDF files and DH tables) give exact `0` and `±1` sines and cosines, so a frame turned by a
+    /// quarter turn has its axes exactly on the parent's axes (not `6e-17` off), and the joint
+    /// axes in it are recognised as coordinate axes (see
+    /// [`JointMotion`](crate::model::JointMotion)).
+    ///
+    /// ```
+    /// use screwdyn::spatial::Se3;
+    /// let h = Se3::from_rpy(std::f64::consts::FRAC_PI_2, 0.0, 0.0);
+    /// assert_eq!(h.rotation[(1, 1)], 0.0); // cos(π/2), exactly
+    /// assert_eq!(h.rotation[(2, 1)], 1.0);
+    /// let g = Se3::from_rpy(0.3_f64, -0.2, 0.1);
+    /// assert!((g.rotation[(2, 0)] + (-0.2_f64).sin()).abs() < 1e-16);
+    /// ```
     pub fn from_rpy(roll: T, pitch: T, yaw: T) -> Self {
-        let r = Rotation3::from_axis_angle(&Vector3::z_axis(), yaw)
-            * Rotation3::from_axis_angle(&Vector3::y_axis(), pitch)
-            * Rotation3::from_axis_angle(&Vector3::x_axis(), roll);
-        Se3::new(r.into_inner(), Vector3::zeros())
+        let (sr, cr) = quarter_exact_sin_cos(roll);
+        let (sp, cp) = quarter_exact_sin_cos(pitch);
+        let (sy, cy) = quarter_exact_sin_cos(yaw);
+        let r = Matrix3::new(
+            cy * cp,
+            cy * sp * sr - sy * cr,
+            cy * sp * cr + sy * sr,
+            sy * cp,
+            sy * sp * sr + cy * cr,
+            sy * sp * cr - cy * sr,
+            -sp,
+            cp * sr,
+            cp * cr,
+        );
+        Se3::new(r, Vector3::zeros())
     }
 
     /// The URDF `rpy` angles of the rotation (inverse of [`Se3::from_rpy`]).
@@ -283,5 +330,47 @@ impl<T: Real> std::ops::Mul<&Se3<T>> for &Se3<T> {
     #[inline]
     fn mul(self, rhs: &Se3<T>) -> Se3<T> {
         self.compose(rhs)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Rotation3;
+    use std::f64::consts::{FRAC_PI_2, PI};
+
+    #[test]
+    fn quarter_turns_are_exact_and_other_angles_are_libm() {
+        let cases = [
+            (0.0, (0.0, 1.0)),
+            (FRAC_PI_2, (1.0, 0.0)),
+            (PI, (0.0, -1.0)),
+            (-FRAC_PI_2, (-1.0, 0.0)),
+            (3.0 * FRAC_PI_2, (-1.0, 0.0)),
+            (-PI, (0.0, -1.0)),
+            (4.0 * PI, (0.0, 1.0)),
+        ];
+        for (t, expected) in cases {
+            assert_eq!(quarter_exact_sin_cos(t), expected, "t = {t}");
+        }
+        for t in [1e-9, 0.3, FRAC_PI_2 + 1e-9, FRAC_PI_2 - 3e-7, -2.5, 7.0] {
+            assert_eq!(quarter_exact_sin_cos(t), t.sin_cos(), "t = {t}");
+        }
+    }
+
+    /// `from_rpy` is nalgebra's `Rz(yaw) Ry(pitch) Rx(roll)` up to rounding.
+    #[test]
+    fn rpy_matches_the_product_of_elementary_rotations() {
+        for (r, p, y) in [
+            (0.3, -0.2, 0.1),
+            (FRAC_PI_2, 0.4, -PI),
+            (-1.1, FRAC_PI_2, 2.0),
+        ] {
+            let expected = Rotation3::from_axis_angle(&Vector3::z_axis(), y)
+                * Rotation3::from_axis_angle(&Vector3::y_axis(), p)
+                * Rotation3::from_axis_angle(&Vector3::x_axis(), r);
+            let got = Se3::from_rpy(r, p, y).rotation;
+            assert!((got - expected.into_inner()).amax() < 1e-15);
+        }
     }
 }
