@@ -106,7 +106,10 @@ impl Plant<'_> {
         qdd.copy_from_slice(a.as_slice());
         if let Some(i) = qdd.iter().position(|x| !x.is_finite()) {
             return Err(Error::Numerical(format!(
-                "the acceleration of joint '{}' became non-finite at t = {t:.6} s",
+                "the acceleration of joint '{}' became non-finite at t = {t:.6} s: the \
+                 simulation diverged (a fixed step too large for stiff joint effects — limit \
+                 stops, damping or smoothed Coulomb friction on a light link — does this; try a \
+                 smaller step or the adaptive Dormand–Prince integrator)",
                 self.model.joints()[i].name
             )));
         }
