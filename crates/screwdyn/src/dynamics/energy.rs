@@ -24,11 +24,17 @@ pub fn kinetic_energy<T: Real>(
     v: &[T],
 ) -> Result<T> {
     forward_velocity(model, ws, q, v)?;
-    Ok(model
+    Ok(kinetic_energy_given_twists(model, ws))
+}
+
+/// `Σ_i ½ V_iᵀ 𝔍_i V_i` from the body twists `ws.twist` of the last
+/// [`forward_velocity`](crate::kinematics::forward_velocity) (or RNEA) call.
+pub(crate) fn kinetic_energy_given_twists<T: Real>(model: &Model<T>, ws: &Workspace<T>) -> T {
+    model
         .bodies()
         .iter()
         .zip(&ws.twist)
-        .fold(T::zero(), |e, (b, vi)| e + b.inertia.kinetic_energy(vi)))
+        .fold(T::zero(), |e, (b, vi)| e + b.inertia.kinetic_energy(vi))
 }
 
 /// Kinetic energy from the mass matrix, `½ q̇ᵀ M(q) q̇` (seed 001, seed 003).
@@ -72,14 +78,20 @@ pub fn kinetic_energy_mass_matrix<T: Real>(
 /// ```
 pub fn potential_energy<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) -> Result<T> {
     forward_kinematics(model, ws, q)?;
+    Ok(potential_energy_given_poses(model, ws))
+}
+
+/// `−Σ_i m_i g⁰ · p_{c,i}⁰` from the body poses `ws.pose_in_world` of the last
+/// [`forward_kinematics`] call.
+pub(crate) fn potential_energy_given_poses<T: Real>(model: &Model<T>, ws: &Workspace<T>) -> T {
     let g = model.gravity();
-    Ok(model
+    model
         .bodies()
         .iter()
         .zip(&ws.pose_in_world)
         .fold(T::zero(), |e, (b, h)| {
             e - g.dot(&h.act_point(&b.inertia.com)) * b.inertia.mass
-        }))
+        })
 }
 
 /// Total mechanical energy `E_kin + P`.

@@ -21,7 +21,7 @@ mod aba;
 mod closed_form;
 mod coriolis;
 mod crba;
-mod energy;
+pub(crate) mod energy;
 mod forward;
 mod lagrange;
 mod rnea;

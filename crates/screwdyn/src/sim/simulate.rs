@@ -5,11 +5,10 @@ use super::controller::Controller;
 use super::effects::JointEffects;
 use super::integrate::{Integrator, Stepper};
 use super::record::Recording;
-use crate::dynamics::{
-    forward_dynamics_with, kinetic_energy, potential_energy, ExternalWrenches, ForwardMethod,
-};
+use crate::dynamics::energy::{kinetic_energy_given_twists, potential_energy_given_poses};
+use crate::dynamics::{forward_dynamics_with, ExternalWrenches, ForwardMethod};
 use crate::error::{Error, Result};
-use crate::kinematics::{forward_kinematics, frame_pose};
+use crate::kinematics::{forward_velocity, frame_pose};
 use crate::model::Model;
 use crate::spatial::Wrench;
 use crate::workspace::Workspace;
@@ -190,9 +189,10 @@ pub fn simulate(
                       rec: &mut Recording|
      -> Result<()> {
         plant.accel(t, q, v, a)?;
-        let ke = kinetic_energy(model, &mut rec_ws, q, v)?;
-        let pe = potential_energy(model, &mut rec_ws, q)?;
-        forward_kinematics(model, &mut rec_ws, q)?;
+        // One kinematic pass gives the energies and the frame poses.
+        forward_velocity(model, &mut rec_ws, q, v)?;
+        let ke = kinetic_energy_given_twists(model, &rec_ws);
+        let pe = potential_energy_given_poses(model, &rec_ws);
         let poses = opts
             .frames
             .iter()
