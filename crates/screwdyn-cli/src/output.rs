@@ -29,6 +29,8 @@ pub fn resolve(format: Option<Format>) -> Format {
 pub enum Value {
     /// A number.
     Scalar(f64),
+    /// A count (written as an integer: `10001`, not `10001.0`).
+    Count(usize),
     /// A vector whose entries carry labels (joint names, `wx`…`vz`, ...).
     Vector(Vec<String>, Vec<f64>),
     /// A matrix with row and column labels.
@@ -67,6 +69,7 @@ impl Value {
     fn to_json(&self) -> Json {
         match self {
             Value::Scalar(x) => num_json(*x),
+            Value::Count(n) => Json::from(*n),
             Value::Vector(_, x) => Json::Array(x.iter().map(|v| num_json(*v)).collect()),
             Value::Matrix(_, _, m) => Json::Array(
                 (0..m.nrows())
@@ -87,6 +90,7 @@ impl Value {
     fn flatten(&self, key: &str, out: &mut Vec<(String, String)>) {
         match self {
             Value::Scalar(x) => out.push((key.into(), format!("{x:?}"))),
+            Value::Count(n) => out.push((key.into(), n.to_string())),
             Value::Vector(l, x) => {
                 for (l, x) in l.iter().zip(x) {
                     out.push((format!("{key}.{l}"), format!("{x:?}")));
@@ -112,6 +116,7 @@ impl Value {
     fn table(&self, key: &str, out: &mut String) {
         match self {
             Value::Scalar(x) => out.push_str(&format!("{key} = {}\n", fmt(*x))),
+            Value::Count(n) => out.push_str(&format!("{key} = {n}\n")),
             Value::Text(s) => out.push_str(&format!("{key}: {s}\n")),
             Value::Names(n) => out.push_str(&format!("{key}: {}\n", n.join(", "))),
             Value::Vector(l, x) => {

@@ -456,30 +456,84 @@ fn limited_pendulum(lower: f64, upper: f64, effort: f64, friction: f64) -> screw
 }
 
 #[test]
-fn position_limit_is_a_stiff_spring_damper_stop() {
-    // Hitting the stop at 2 rad/s: an undamped spring k would let it in by v·√(I/k); the
-    // stop's damping only shortens that. Then it bounces back out.
+fn position_limit_is_a_spring_damper_stop_scaled_to_the_joint() {
+    // The stop is k = I/T², d = 2ζI/T with I the joint's inertia (1 kg·m² for this 1 kg, 1 m
+    // pendulum), so the joint inside the stop is the oscillator ẍ + (2ζ/T) ẋ + x/T² = 0.
+    // Critically damped (ζ = 1), entering at speed w: x(t) = w t e^{−t/T}, deepest w T / e, no
+    // bounce. Underdamped (ζ = 0.2): it leaves at w e^{−ζπ/√(1−ζ²)} (the restitution of a
+    // damped spring).
     let m = limited_pendulum(-0.2, 0.2, f64::INFINITY, 0.0);
-    let effects = JointEffects {
-        friction: false,
-        ..JointEffects::default()
+    let (w, t) = (2.0, 0.01);
+    let run_with = |zeta: f64, duration: f64| {
+        let effects = JointEffects {
+            friction: false,
+            limit_time_constant: t,
+            limit_damping_ratio: zeta,
+            ..JointEffects::default()
+        };
+        let opts = SimOptions {
+            duration,
+            dt: 1e-5,
+            effects,
+            record_every: 10,
+            ..Default::default()
+        };
+        simulate(&m, &[0.0], &[w], &mut ZeroTorque, &[], &opts, &mut |_| {}).unwrap()
     };
-    let opts = SimOptions {
-        duration: 0.5,
-        dt: 1e-4,
-        effects,
-        ..Default::default()
-    };
-    let run = simulate(&m, &[0.0], &[2.0], &mut ZeroTorque, &[], &opts, &mut |_| {}).unwrap();
+    let run = run_with(1.0, 0.2);
     let deepest = run.q.iter().map(|q| q[0]).fold(f64::MIN, f64::max) - 0.2;
-    let bound = 2.0 * (1.0 / effects.limit_stiffness).sqrt();
+    let expected = w * t / std::f64::consts::E;
     assert!(
-        deepest > 0.5 * bound && deepest <= bound,
-        "penetration {deepest} vs {bound}"
+        (deepest - expected).abs() < 1e-3 * expected,
+        "penetration {deepest} vs w T / e = {expected}"
     );
-    assert!(run.v.last().unwrap()[0] < 0.0, "it bounces back");
+    let entered = run.q.iter().position(|q| q[0] > 0.2).unwrap();
+    assert!(
+        run.q[entered..].iter().all(|q| q[0] > 0.2 - 1e-9),
+        "critically damped: no bounce out of the stop"
+    );
+    let zeta: f64 = 0.2;
+    let run = run_with(zeta, 0.3);
+    let out = run.v.last().unwrap()[0];
+    let expected = -w * (-zeta * PI / (1.0 - zeta * zeta).sqrt()).exp();
+    assert!(
+        (out - expected).abs() < 1e-3 * expected.abs(),
+        "exit speed {out} vs {expected}"
+    );
 }
 
+#[test]
+fn default_effects_keep_the_builtin_arms_stable_at_one_millisecond() {
+    // Released at rest with every effect on, the UR5's and the Panda's joints swing into their
+    // limit stops; the stops, scaled to each joint's inertia, keep RK4 at 1 ms stable (a single
+    // stiffness for all joints made the light wrists diverge), and each joint stays within a
+    // few stop time constants' travel of its limits.
+    for name in ["ur5", "panda"] {
+        let m = builtin::load(name).unwrap();
+        let opts = SimOptions {
+            duration: 10.0,
+            dt: 1e-3,
+            record_every: 10,
+            ..Default::default()
+        };
+        let q0 = vec![0.0; m.nq()];
+        let run = simulate(&m, &q0, &q0, &mut ZeroTorque, &[], &opts, &mut |_| {})
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        for (i, j) in m.joints().iter().enumerate() {
+            let (lo, hi) = (j.limits.lower, j.limits.upper);
+            let worst = run
+                .q
+                .iter()
+                .map(|q| (lo - q[i]).max(q[i] - hi))
+                .fold(f64::MIN, f64::max);
+            assert!(
+                worst < 0.5,
+                "{name} joint {}: {worst} rad past its limit",
+                j.name
+            );
+        }
+    }
+}
 #[test]
 fn coulomb_friction_holds_below_and_slips_above_its_level() {
     let m = limited_pendulum(-10.0, 10.0, f64::INFINITY, 0.5);

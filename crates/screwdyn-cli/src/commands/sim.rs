@@ -382,7 +382,7 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
     let last = rec.len() - 1;
     let mut r = Report::new();
     r.add("joints", Value::Names(j.clone()))
-        .add("samples", Value::Scalar(rec.len() as f64))
+        .add("samples", Value::Count(rec.len()))
         .add("t", Value::Scalar(rec.t[last]))
         .add("q", Value::joints(&j, &rec.q[last]))
         .add("v", Value::joints(&j, &rec.v[last]))
@@ -510,7 +510,7 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
         viol.push((
             name.clone(),
             Value::Map(vec![
-                ("count".into(), Value::Scalar(mine.len() as f64)),
+                ("count".into(), Value::Count(mine.len())),
                 ("first_time".into(), Value::Scalar(first)),
                 ("worst".into(), Value::Scalar(worst)),
             ]),

@@ -1,7 +1,10 @@
 //! Joint effects added to the commanded torque: effort saturation, viscous damping, smoothed
 //! Coulomb friction and position limits as a stiff spring–damper.
 
+use crate::dynamics::mass_matrix_inverse;
+use crate::error::{Error, Result};
 use crate::model::Model;
+use crate::workspace::Workspace;
 
 /// Which joint effects act, and how. The total joint torque is
 ///
@@ -11,12 +14,25 @@ use crate::model::Model;
 ///
 /// with `b` (damping) and `f` (Coulomb friction) from the model, `ε` the friction smoothing
 /// speed (so the ODE stays smooth and well posed), and, outside `[lower, upper]`,
-/// `τ_limit = −k (q − bound) − d q̇` (a one-sided spring–damper stop).
+/// `τ_limit = −k (q − bound) − d q̇`: a one-sided spring–damper stop.
+///
+/// **The stop is scaled to the joint.** With `I` the inertia the joint moves when every other
+/// joint is free (`1 / (M⁻¹)_ii` at the initial configuration), time constant `T` and damping
+/// ratio `ζ`, `k = I / T²` and `d = 2 ζ I / T`: every joint's stop behaves like a critically
+/// damped (for `ζ = 1`) oscillator of period `2πT`, whether it holds a 0.2 kg wrist or a whole
+/// arm. A joint hitting the stop at speed `w` goes in by `w T / e` (for `ζ = 1`), or bounces out
+/// at `w e^{−ζπ/√(1−ζ²)}` (for `ζ < 1`). A fixed stiffness for all joints cannot work: stiff
+/// enough to hold a shoulder, it is far too stiff for an explicit integrator on a wrist.
+///
+/// **Stability of fixed steps.** [`EffectGains::new`] keeps `T ≥ 4 dt` and raises `ε` to at
+/// least `4 f dt / I`, so that the stiffest term of each joint (`d / I` and `f / (ε I)`) stays
+/// well inside the stability region of the explicit integrators at step `dt`.
 ///
 /// ```
 /// use screwdyn::sim::JointEffects;
 /// let e = JointEffects::default();
 /// assert!(e.saturate && e.damping && e.friction && e.position_limits);
+/// assert_eq!((e.limit_time_constant, e.limit_damping_ratio), (0.01, 1.0));
 /// assert!(JointEffects::none().total_torque_is_commanded());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -27,14 +43,15 @@ pub struct JointEffects {
     pub damping: bool,
     /// Coulomb friction `−f tanh(q̇/ε)`.
     pub friction: bool,
-    /// Smoothing speed `ε` of the friction (rad/s or m/s).
+    /// Smoothing speed `ε` of the friction (rad/s or m/s); raised per joint where a fixed step
+    /// needs it (see above).
     pub friction_smoothing: f64,
     /// Position limits as a spring–damper stop.
     pub position_limits: bool,
-    /// Stop stiffness `k` (N·m/rad or N/m).
-    pub limit_stiffness: f64,
-    /// Stop damping `d` (N·m·s/rad or N·s/m).
-    pub limit_damping: f64,
+    /// Time constant `T` of the stop (s): `k = I/T²`, `d = 2ζI/T`; at least `4 dt` in use.
+    pub limit_time_constant: f64,
+    /// Damping ratio `ζ` of the stop (1 = critically damped, no bounce).
+    pub limit_damping_ratio: f64,
 }
 
 impl Default for JointEffects {
@@ -45,9 +62,80 @@ impl Default for JointEffects {
             friction: true,
             friction_smoothing: 1e-3,
             position_limits: true,
-            limit_stiffness: 2000.0,
-            limit_damping: 20.0,
+            limit_time_constant: 0.01,
+            limit_damping_ratio: 1.0,
         }
+    }
+}
+
+/// The per-joint constants of the effects for one simulation: stop stiffness `k_i` and damping
+/// `d_i`, and friction smoothing `ε_i` (see [`JointEffects`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct EffectGains {
+    /// `k_i = I_i / T²` (N·m/rad or N/m).
+    pub stop_stiffness: Vec<f64>,
+    /// `d_i = 2 ζ I_i / T` (N·m·s/rad or N·s/m).
+    pub stop_damping: Vec<f64>,
+    /// `ε_i = max(ε, 4 f_i dt / I_i)` (rad/s or m/s).
+    pub friction_smoothing: Vec<f64>,
+}
+
+impl EffectGains {
+    /// The gains of `effects` for `model`, scaled by the joint inertias `I_i = 1/(M⁻¹)_ii` at
+    /// `q0`, for a step of `dt`. Errors name the bad setting.
+    ///
+    /// ```
+    /// use screwdyn::sim::{EffectGains, JointEffects};
+    /// // The 1 kg, 1 m pendulum moves I = m l² = 1 kg·m²: k = I/T², d = 2ζI/T.
+    /// let m = screwdyn::builtin::pendulum();
+    /// let g = EffectGains::new(&JointEffects::default(), &m, &[0.0], 1e-3).unwrap();
+    /// assert!((g.stop_stiffness[0] - 1.0 / 0.01_f64.powi(2)).abs() < 1e-9);
+    /// assert!((g.stop_damping[0] - 2.0 / 0.01).abs() < 1e-9);
+    /// ```
+    pub fn new(effects: &JointEffects, model: &Model, q0: &[f64], dt: f64) -> Result<Self> {
+        let n = model.nq();
+        let (t, zeta, eps) = (
+            effects.limit_time_constant,
+            effects.limit_damping_ratio,
+            effects.friction_smoothing,
+        );
+        let positive = |x: f64| x > 0.0 && x.is_finite();
+        let problem = if effects.position_limits && !positive(t) {
+            Some(("limit time constant", t, "positive"))
+        } else if effects.position_limits && !(zeta >= 0.0 && zeta.is_finite()) {
+            Some(("limit damping ratio", zeta, "non-negative"))
+        } else if effects.friction && !positive(eps) {
+            Some(("friction smoothing speed", eps, "positive"))
+        } else {
+            None
+        };
+        if let Some((what, x, must)) = problem {
+            return Err(Error::InvalidModel(format!(
+                "the joint effects' {what} is {x}; it must be finite and {must}"
+            )));
+        }
+        let needs_friction = effects.friction && model.joints().iter().any(|j| j.friction != 0.0);
+        if !(effects.position_limits || needs_friction) {
+            return Ok(EffectGains {
+                stop_stiffness: vec![0.0; n],
+                stop_damping: vec![0.0; n],
+                friction_smoothing: vec![eps; n],
+            });
+        }
+        let mut ws = Workspace::new(model);
+        let minv = mass_matrix_inverse(model, &mut ws, q0)?;
+        let inertia: Vec<f64> = (0..n).map(|i| 1.0 / minv[(i, i)]).collect();
+        let t = t.max(4.0 * dt);
+        Ok(EffectGains {
+            stop_stiffness: inertia.iter().map(|i| i / (t * t)).collect(),
+            stop_damping: inertia.iter().map(|i| 2.0 * zeta * i / t).collect(),
+            friction_smoothing: model
+                .joints()
+                .iter()
+                .zip(&inertia)
+                .map(|(j, i)| eps.max(4.0 * j.friction * dt / i))
+                .collect(),
+        })
     }
 }
 
@@ -68,8 +156,17 @@ impl JointEffects {
         !(self.saturate || self.damping || self.friction || self.position_limits)
     }
 
-    /// Writes the total joint torque for commanded `cmd` at state `(q, v)` into `tau`.
-    pub fn apply(&self, model: &Model, q: &[f64], v: &[f64], cmd: &[f64], tau: &mut [f64]) {
+    /// Writes the total joint torque for commanded `cmd` at state `(q, v)` into `tau`, with the
+    /// per-joint constants `gains` ([`EffectGains::new`]).
+    pub fn apply(
+        &self,
+        model: &Model,
+        gains: &EffectGains,
+        q: &[f64],
+        v: &[f64],
+        cmd: &[f64],
+        tau: &mut [f64],
+    ) {
         for (i, j) in model.joints().iter().enumerate() {
             let mut t = cmd[i];
             if self.saturate {
@@ -79,13 +176,14 @@ impl JointEffects {
                 t -= j.damping * v[i];
             }
             if self.friction && j.friction != 0.0 {
-                t -= j.friction * (v[i] / self.friction_smoothing).tanh();
+                t -= j.friction * (v[i] / gains.friction_smoothing[i]).tanh();
             }
             if self.position_limits {
+                let (k, d) = (gains.stop_stiffness[i], gains.stop_damping[i]);
                 if q[i] > j.limits.upper {
-                    t -= self.limit_stiffness * (q[i] - j.limits.upper) + self.limit_damping * v[i];
+                    t -= k * (q[i] - j.limits.upper) + d * v[i];
                 } else if q[i] < j.limits.lower {
-                    t -= self.limit_stiffness * (q[i] - j.limits.lower) + self.limit_damping * v[i];
+                    t -= k * (q[i] - j.limits.lower) + d * v[i];
                 }
             }
             tau[i] = t;

@@ -23,7 +23,7 @@ mod trajectory;
 pub use controller::{
     ComputedTorque, ConstantTorque, Controller, PdGravity, TorqueSeries, ZeroTorque,
 };
-pub use effects::JointEffects;
+pub use effects::{EffectGains, JointEffects};
 pub use integrate::{AccelFn, Integrator, Stepper};
 pub use profile::{torque_profile, TorqueProfile, Violation};
 pub use record::Recording;

@@ -2,7 +2,7 @@
 //! Walker–Orin) integrated in time, under a controller, joint effects and disturbances.
 
 use super::controller::Controller;
-use super::effects::JointEffects;
+use super::effects::{EffectGains, JointEffects};
 use super::integrate::{Integrator, Stepper};
 use super::record::Recording;
 use crate::dynamics::energy::{kinetic_energy_given_twists, potential_energy_given_poses};
@@ -73,6 +73,7 @@ struct Plant<'a> {
     tau: Vec<f64>,
     method: ForwardMethod,
     effects: JointEffects,
+    gains: EffectGains,
 }
 
 impl Plant<'_> {
@@ -85,7 +86,7 @@ impl Plant<'_> {
             )));
         }
         self.effects
-            .apply(self.model, q, v, &self.cmd, &mut self.tau);
+            .apply(self.model, &self.gains, q, v, &self.cmd, &mut self.tau);
         let active = |d: &&Disturbance| t >= d.start && t < d.end;
         let fext = if self.disturbances.iter().any(|d| active(&d)) {
             self.fext.clear();
@@ -168,6 +169,7 @@ pub fn simulate(
         tau: vec![0.0; n],
         method: opts.method,
         effects: opts.effects,
+        gains: EffectGains::new(&opts.effects, model, q0, opts.dt)?,
     };
     let mut stepper = Stepper::new(opts.integrator, n);
     let mut rec_ws = Workspace::new(model);
