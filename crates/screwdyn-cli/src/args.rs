@@ -267,6 +267,23 @@ pub struct SimulateArgs {
     /// No joint effects (no effort saturation, damping, friction or position-limit stops).
     #[arg(long)]
     pub no_effects: bool,
+    /// Time constant T of the position-limit stops (s): a joint with inertia I meets a
+    /// spring k = I/T² and damper d = 2ζI/T past its limit (never below 4 dt).
+    #[arg(
+        long,
+        default_value_t = 0.01,
+        value_name = "T",
+        allow_hyphen_values = true
+    )]
+    pub limit_time_constant: f64,
+    /// Damping ratio ζ of the position-limit stops (1: no bounce; 0: elastic).
+    #[arg(
+        long,
+        default_value_t = 1.0,
+        value_name = "ZETA",
+        allow_hyphen_values = true
+    )]
+    pub limit_damping_ratio: f64,
     /// A wrench on a body for a time window, moment first, body frame unless @world:
     /// BODY:mx,my,mz,fx,fy,fz[@world]@T0-T1. Repeatable.
     #[arg(long, allow_hyphen_values = true, value_name = "BODY:W[@world]@T0-T1")]

@@ -110,6 +110,19 @@ fn bad_vectors() {
         "--dt must be positive",
     );
     fails(
+        &["simulate", "builtin:planar2", "--limit-time-constant", "-1"],
+        "--limit-time-constant must be positive (got -1)",
+    );
+    fails(
+        &[
+            "simulate",
+            "builtin:planar2",
+            "--limit-damping-ratio",
+            "nan",
+        ],
+        "--limit-damping-ratio must be non-negative (got NaN)",
+    );
+    fails(
         &["simulate", "builtin:planar2", "--kp", "1"],
         "--kp is not used by --controller zero",
     );

@@ -379,3 +379,39 @@ fn check_and_info() {
     let v = json(&["fk", ARM3, "--q", "0.1,0.2,0.3"]);
     assert!(v["poses"].as_object().unwrap().len() >= 4);
 }
+
+#[test]
+fn limit_stop_flags_reach_the_simulation() {
+    // The UR5's last wrist spun into its +2π limit at 5 rad/s, without gravity: an elastic stop
+    // (ζ = 0) sends it back at the same speed; a critically damped one (ζ = 1) holds it at the
+    // limit with no bounce.
+    let run = |zeta: &str| {
+        json(&[
+            "simulate",
+            "builtin:ur5",
+            "--gravity",
+            "0,0,0",
+            "--q0",
+            "0,0,0,0,0,6.2",
+            "--v0",
+            "0,0,0,0,0,5",
+            "--duration",
+            "0.3",
+            "--limit-damping-ratio",
+            zeta,
+        ])
+    };
+    let last = |out: &serde_json::Value, key: &str| {
+        let column = out[format!("{key}.wrist_3_joint")].as_array().unwrap();
+        column.last().unwrap().as_f64().unwrap()
+    };
+    let elastic = run("0");
+    assert!(
+        (last(&elastic, "v") + 5.0).abs() < 0.05,
+        "{}",
+        last(&elastic, "v")
+    );
+    let held = run("1");
+    assert!(last(&held, "v").abs() < 1e-3);
+    assert!((last(&held, "q") - 2.0 * std::f64::consts::PI).abs() < 1e-3);
+}

@@ -212,6 +212,18 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
             a.dt
         )));
     }
+    let t = a.limit_time_constant;
+    if !(t > 0.0 && t.is_finite()) {
+        return Err(CliError::input(format!(
+            "--limit-time-constant must be positive (got {t})"
+        )));
+    }
+    let zeta = a.limit_damping_ratio;
+    if !(zeta >= 0.0 && zeta.is_finite()) {
+        return Err(CliError::input(format!(
+            "--limit-damping-ratio must be non-negative (got {zeta})"
+        )));
+    }
     if !(a.duration >= 0.0 && a.duration.is_finite()) {
         return Err(CliError::input(format!(
             "--duration must be a non-negative number (got {})",
@@ -296,7 +308,11 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
         effects: if a.no_effects {
             JointEffects::none()
         } else {
-            JointEffects::default()
+            JointEffects {
+                limit_time_constant: a.limit_time_constant,
+                limit_damping_ratio: a.limit_damping_ratio,
+                ..JointEffects::default()
+            }
         },
         record_every: a.record_every,
         frames: Vec::new(),
