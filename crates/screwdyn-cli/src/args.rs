@@ -207,6 +207,8 @@ pub struct ExplainArgs {
     /// Joint accelerations θ̈ (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub a: Option<String>,
+    #[command(flatten)]
+    pub wrenches: WrenchArgs,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]

@@ -259,6 +259,55 @@ fn explain_prints_the_seed_iterations_and_rnea_torques() {
 }
 
 #[test]
+fn explain_takes_external_wrenches() {
+    // Statics of the planar arm (unit links, no gravity) with its tip pushing 1 N along link 2's
+    // own y axis: τ = J_eᵀ W_tip = (1 + cos θ₂, 1), the lever arms of the force about each joint.
+    let q2: f64 = 0.5;
+    let args = [
+        "explain",
+        "builtin:planar2",
+        "--gravity",
+        "0,0,0",
+        "--q",
+        "0.3,0.5",
+        "--tip-wrench",
+        "link2:0,0,0,0,1,0",
+    ];
+    let out = json(&args);
+    close(&vec(&out["tau"]), &[1.0 + q2.cos(), 1.0], 1e-12);
+    let mut table_args = args.to_vec();
+    table_args.extend(["--format", "table"]);
+    let text = ok(&table_args);
+    assert!(
+        text.contains("− W_ext^{2,2} = (0, 0, 0 | 0, 1.000000, 0)"),
+        "{text}"
+    );
+    // A base-frame wrench on a UR5 body: the printed τ equals the library's RNEA with it.
+    let model = load_model("builtin:ur5").unwrap();
+    let mut r = Lcg(3);
+    let (q, v, a) = (r.vec(6), r.vec(6), r.vec(6));
+    let out = json(&[
+        "explain",
+        "builtin:ur5",
+        "--q",
+        &csv(&q),
+        "--v",
+        &csv(&v),
+        "--a",
+        &csv(&a),
+        "--wrench",
+        "wrist_2_link:0.1,-0.2,0.3,5,-4,3@world",
+    ]);
+    let mut ext = dynamics::ExternalWrenches::new(&model);
+    let body = model.body_id("wrist_2_link").unwrap();
+    ext.add_world(body, nalgebra::Vector6::new(0.1, -0.2, 0.3, 5.0, -4.0, 3.0))
+        .unwrap();
+    let mut ws = Workspace::new(&model);
+    let tau = dynamics::inverse_dynamics(&model, &mut ws, &q, &v, &a, Some(&ext)).unwrap();
+    close(&vec(&out["tau"]), tau.as_slice(), 1e-10);
+}
+
+#[test]
 fn urdf_and_ur5_match_the_library() {
     for spec in [ARM3, "builtin:ur5"] {
         let model = load_model(spec).unwrap();

@@ -6,14 +6,16 @@
 //!   `V̇_i^{i,0} = Ad_{H_{λ(i)}^i} V̇_{λ(i)} − ad_{S_i θ̇_i}(Ad_{H_{λ(i)}^i} V_{λ(i)}) + S_i θ̈_i`,
 //!   with `V_0 = 0` and `V̇_0 = (0, −g)` (gravity as a base acceleration);
 //! - backward, `i = n … 1`: `W_{λ(i)}^{i,i} = 𝔍^{i,i} V̇_i − ad_{V_i}ᵀ(𝔍^{i,i} V_i)
-//!   + Σ_children Ad_{H_i^c}ᵀ W_i^{c,c}`, `τ_i = (S_i^{i,λ(i)})ᵀ W_{λ(i)}^{i,i}`.
+//!   − W_ext^{i,i} + Σ_children Ad_{H_i^c}ᵀ W_i^{c,c}`, `τ_i = (S_i^{i,λ(i)})ᵀ W_{λ(i)}^{i,i}`
+//!   (seed 000's external wrench on link `i`, from `--wrench` and `--tip-wrench`).
 
 use super::kinematics::TWIST_ROWS;
-use super::{load, names, run_states};
+use super::{external_wrenches, load, names, run_states};
 use crate::args::ExplainArgs;
 use crate::output::{fmt, Report, Value};
 use crate::CliError;
 use nalgebra::{DMatrix, Vector3};
+use screwdyn::dynamics::ExternalWrenches;
 use screwdyn::spatial::{ad, ad_transpose, twist, Se3, Twist, Wrench};
 use screwdyn::Model;
 
@@ -44,8 +46,14 @@ pub struct Iterations {
     pub text: String,
 }
 
-/// Runs both passes and writes the narrative.
-pub fn iterations(m: &Model, q: &[f64], v: &[f64], a: &[f64]) -> Iterations {
+/// Runs both passes and writes the narrative; `ext` adds external wrenches on the bodies.
+pub fn iterations(
+    m: &Model,
+    q: &[f64],
+    v: &[f64],
+    a: &[f64],
+    ext: Option<&ExternalWrenches>,
+) -> Iterations {
     let n = m.nq();
     // 1-based seed indices: body i is index i − 1, the base is 0.
     let idx = |i: usize| i + 1;
@@ -110,6 +118,14 @@ pub fn iterations(m: &Model, q: &[f64], v: &[f64], a: &[f64]) -> Iterations {
     t.push_str("\nBackward iterations, i = n … 1:\n");
     let mut w = vec![Wrench::zeros(); n];
     let mut tau = vec![0.0; n];
+    // H_i^0, for wrenches given in the base frame.
+    let mut world = vec![Se3::identity(); n];
+    for i in 0..n {
+        world[i] = match m.parent(i) {
+            Some(p) => world[p].compose(&pose[i]),
+            None => pose[i],
+        };
+    }
     for i in (0..n).rev() {
         let (k, p) = (idx(i), par(i));
         let inertia = &m.bodies()[i].inertia;
@@ -120,6 +136,13 @@ pub fn iterations(m: &Model, q: &[f64], v: &[f64], a: &[f64]) -> Iterations {
             six(&own)
         ));
         let mut total = own;
+        if let Some(ext) = ext {
+            let we = ext.on_body_at(&world[i], i);
+            if we != Wrench::zeros() {
+                t.push_str(&format!("   − W_ext^{{{k},{k}}} = {}\n", six(&-we)));
+                total -= we;
+            }
+        }
         for &c in m.children(i) {
             let kc = idx(c);
             let back = pose[c].inv_act_transpose_wrench(&w[c]);
@@ -155,13 +178,14 @@ pub fn iterations(m: &Model, q: &[f64], v: &[f64], a: &[f64]) -> Iterations {
 pub fn explain(a: &ExplainArgs) -> Result<(), CliError> {
     let m = load(&a.common.model, a.common.gravity.as_deref())?;
     let j = names(&m);
+    let ext = external_wrenches(&m, &a.wrenches.wrench, &a.wrenches.tip_wrench)?;
     let flags = [
         ("q", a.q.as_deref()),
         ("v", a.v.as_deref()),
         ("a", a.a.as_deref()),
     ];
     run_states(&m, &a.common, &flags, |s| {
-        let it = iterations(&m, &s.q, &s.v, &s.a);
+        let it = iterations(&m, &s.q, &s.v, &s.a, ext.as_ref());
         let per_body = |f: &dyn Fn(usize) -> Vec<(String, Value)>| {
             Value::Map(
                 m.bodies()
