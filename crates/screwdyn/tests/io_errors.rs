@@ -321,16 +321,16 @@ fn toml_syntax_errors_and_unknown_keys_name_file_and_line() {
 #[test]
 fn toml_model_errors_name_the_element() {
     let e = err("format = \"dh\"\n[[row]]\ntype = \"X\"\n", "t.toml");
-    check(&e, "t.toml:", &["DH row 1", "'X'"]);
+    check(&e, "t.toml:2:", &["DH row 1", "'X'"]);
     let e = err(
         "format = \"dh\"\n[[row]]\ntype = \"R\"\nmass = 1\ninertia = [1, 0, 0, 1, 0, 3]\n",
         "t.toml",
     );
-    check(&e, "t.toml:", &["DH row 1", "triangle inequality"]);
+    check(&e, "t.toml:2:", &["DH row 1", "triangle inequality"]);
     let e = err("format = \"dh\"\n[[row]]\ntype = \"R\"\n", "t.toml");
     check(&e, "t.toml:", &["link1", "mass 0"]);
     let e = err("format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"revolute\"\nmass = 1\n", "t.toml");
-    check(&e, "t.toml:", &["body 'a'", "no screw axis"]);
+    check(&e, "t.toml:2:", &["body 'a'", "no screw axis"]);
     let e = err("format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"revolute\"\nscrew_in_child = [0, 0, 0, 0, 0, 0]\nmass = 1\n", "t.toml");
     check(&e, "t.toml:", &["joint 'a_joint'", "unit vector"]);
     let e = err("format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"nowhere\"\ntype = \"revolute\"\nscrew_in_child = [0, 0, 1, 0, 0, 0]\nmass = 1\n", "t.toml");
@@ -339,9 +339,20 @@ fn toml_model_errors_name_the_element() {
         "format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"floating\"\n",
         "t.toml",
     );
-    check(&e, "t.toml:", &["body 'a'", "floating", "not support"]);
+    check(&e, "t.toml:2:", &["body 'a'", "floating", "not support"]);
     let e = err("format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"fixed\"\nhome = { quaternion = [0, 0, 0, 0] }\n", "t.toml");
-    check(&e, "t.toml:", &["body 'a'", "zero quaternion"]);
+    check(&e, "t.toml:2:", &["body 'a'", "zero quaternion"]);
+    // The second row, and an extra frame, are placed by their own table headers.
+    let e = err(
+        "format = \"dh\"\n\n[[row]]\na = 1\ntype = \"R\"\nmass = 1\n\n[[row]]\ntype = \"X\"\n",
+        "t.toml",
+    );
+    check(&e, "t.toml:8:", &["DH row 2", "'X'"]);
+    let e = err(
+        "format = \"dh\"\n[[row]]\ntype = \"R\"\nmass = 1\n[[frame]]\nname = \"tool\"\nlink = \"link1\"\npose = { quaternion = [0, 0, 0, 0] }\n",
+        "t.toml",
+    );
+    check(&e, "t.toml:5:", &["frame 'tool'", "zero quaternion"]);
     let poe = "format = \"poe\"\nSlist = [[0, 0, 1, 0, 0, 0]]\nMlist = [[[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]]\nGlist = []\n";
     check(
         &err(poe, "p.toml"),

@@ -16,6 +16,11 @@ pub(crate) fn line_col(text: &str, at: usize) -> (usize, usize) {
     (line, col)
 }
 
+/// `file:line` of an element of a TOML file, from its span (the start of its table).
+pub(crate) fn at_line<T>(file: &str, text: &str, element: &toml::Spanned<T>) -> String {
+    format!("{file}:{}", line_col(text, element.span().start).0)
+}
+
 /// Deserializes TOML, turning an error into `file:line:col: message`.
 pub(crate) fn from_toml<T: DeserializeOwned>(text: &str, file: &str) -> Result<T> {
     toml::from_str(text).map_err(|e| {
@@ -154,13 +159,22 @@ pub(crate) struct FrameSpec {
     pub pose: PoseSpec,
 }
 
-/// Adds the extra frames.
-pub(crate) fn add_frames(b: &mut ModelBuilder, frames: &[FrameSpec], file: &str) -> Result<()> {
-    for f in frames {
-        let h = f
-            .pose
-            .to_se3()
-            .map_err(|why| Error::Parse(format!("{file}: the pose of frame '{}' {why}", f.name)))?;
+/// Adds the extra frames (`text` is the file's contents, for the line of a bad frame).
+pub(crate) fn add_frames(
+    b: &mut ModelBuilder,
+    frames: &[toml::Spanned<FrameSpec>],
+    file: &str,
+    text: &str,
+) -> Result<()> {
+    for spanned in frames {
+        let f = spanned.get_ref();
+        let h = f.pose.to_se3().map_err(|why| {
+            Error::Parse(format!(
+                "{}: the pose of frame '{}' {why}",
+                at_line(file, text, spanned),
+                f.name
+            ))
+        })?;
         b.frame(&f.name, &f.link, h);
     }
     Ok(())

@@ -67,9 +67,9 @@ struct DhFile {
     #[serde(default)]
     gravity: Option<[f64; 3]>,
     #[serde(default)]
-    row: Vec<Row>,
+    row: Vec<toml::Spanned<Row>>,
     #[serde(default)]
-    frame: Vec<FrameSpec>,
+    frame: Vec<toml::Spanned<FrameSpec>>,
 }
 
 #[derive(Deserialize)]
@@ -157,11 +157,13 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
     let mut previous = base.clone();
     let z = Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0);
     let z_lin = Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, 1.0);
-    for (k, row) in f.row.iter().enumerate() {
+    for (k, spanned) in f.row.iter().enumerate() {
+        let row = spanned.get_ref();
+        let at = common::at_line(file, text, spanned);
         let i = k + 1;
         let jname = row.name.clone().unwrap_or_else(|| format!("joint{i}"));
         let lname = row.link.clone().unwrap_or_else(|| format!("link{i}"));
-        let bad = |why: String| Error::Parse(format!("{file}: DH row {i} (joint '{jname}') {why}"));
+        let bad = |why: String| Error::Parse(format!("{at}: DH row {i} (joint '{jname}') {why}"));
         let nums = [row.a, row.alpha, row.d, row.theta];
         if !nums.iter().all(|x| x.is_finite()) {
             return Err(bad("has a non-finite DH parameter".into()));
@@ -203,13 +205,13 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
         common::check_inertia(
             &inertia,
             &format!("DH row {i} (link '{lname}')"),
-            file,
+            &at,
             options.allow_nonphysical,
         )?;
         let parent = row.parent.clone().unwrap_or(previous);
         b.link(&lname, &parent, j, home, inertia);
         previous = lname;
     }
-    common::add_frames(&mut b, &f.frame, file)?;
+    common::add_frames(&mut b, &f.frame, file, text)?;
     common::build(&b, file)
 }

@@ -74,9 +74,9 @@ struct NativeFile {
     #[serde(default)]
     gravity: Option<[f64; 3]>,
     #[serde(default)]
-    body: Vec<BodySpec>,
+    body: Vec<toml::Spanned<BodySpec>>,
     #[serde(default)]
-    frame: Vec<FrameSpec>,
+    frame: Vec<toml::Spanned<FrameSpec>>,
 }
 
 #[derive(Deserialize)]
@@ -127,9 +127,11 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
     }
     b.gravity(common::gravity(f.gravity))
         .allow_nonphysical(options.allow_nonphysical);
-    for body in &f.body {
+    for spanned in &f.body {
+        let body = spanned.get_ref();
+        let at = common::at_line(file, text, spanned);
         let what = format!("body '{}'", body.name);
-        let bad = |why: String| Error::Parse(format!("{file}: {what} {why}"));
+        let bad = |why: String| Error::Parse(format!("{at}: {what} {why}"));
         let home = body
             .home
             .to_se3()
@@ -145,7 +147,7 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
         common::check_inertia(
             &inertia,
             &format!("link '{}'", body.name),
-            file,
+            &at,
             options.allow_nonphysical,
         )?;
         let jname = body
@@ -197,6 +199,6 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
         j = body.limits.apply(j, body.damping, body.friction);
         b.link(&body.name, &body.parent, j, home, inertia);
     }
-    common::add_frames(&mut b, &f.frame, file)?;
+    common::add_frames(&mut b, &f.frame, file, text)?;
     common::build(&b, file)
 }

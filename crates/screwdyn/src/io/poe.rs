@@ -228,7 +228,7 @@ struct PoeFile {
     #[serde(default)]
     effort: Option<Vec<f64>>,
     #[serde(default)]
-    frame: Vec<FrameSpec>,
+    frame: Vec<toml::Spanned<FrameSpec>>,
 }
 
 fn se3_rows(rows: &[[f64; 4]; 4], what: &str, file: &str) -> Result<Se3> {
@@ -321,6 +321,6 @@ pub fn parse_poe(text: &str, file: &str, options: &LoadOptions) -> Result<Model>
         .unwrap_or_else(|| super::native::default_name(file));
     let mut b = poe_builder(&name, m.as_ref(), &slist, &mlist, &glist, &extras, file)?;
     b.gravity(common::gravity(f.gravity));
-    common::add_frames(&mut b, &f.frame, file)?;
+    common::add_frames(&mut b, &f.frame, file, text)?;
     common::build(&b, file)
 }
