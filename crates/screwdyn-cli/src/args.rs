@@ -269,6 +269,9 @@ pub struct SimulateArgs {
     /// No joint effects (no effort saturation, damping, friction or position-limit stops).
     #[arg(long)]
     pub no_effects: bool,
+    /// Record this frame's position (columns pose.<frame>.x|y|z in --output). Repeatable.
+    #[arg(long = "frame", value_name = "FRAME")]
+    pub frames: Vec<String>,
     /// Time constant T of the position-limit stops (s): a joint with inertia I meets a
     /// spring k = I/T² and damper d = 2ζI/T past its limit (never below 4 dt).
     #[arg(

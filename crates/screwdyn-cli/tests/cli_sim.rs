@@ -415,3 +415,52 @@ fn limit_stop_flags_reach_the_simulation() {
     assert!(last(&held, "v").abs() < 1e-3);
     assert!((last(&held, "q") - 2.0 * std::f64::consts::PI).abs() < 1e-3);
 }
+
+#[test]
+fn recorded_frame_positions_follow_the_planar_closed_form() {
+    // --frame link2 adds pose.link2.x|y|z; on the planar arm with unit links the tip is at
+    // (cos q₁ + cos(q₁ + q₂), sin q₁ + sin(q₁ + q₂), 0) at every recorded sample.
+    let path = tmp("frame_run.csv");
+    let p = path.to_str().unwrap();
+    ok(&[
+        "simulate",
+        "builtin:planar2",
+        "--q0",
+        "0.3,-0.4",
+        "--duration",
+        "0.5",
+        "--record-every",
+        "50",
+        "--frame",
+        "link2",
+        "--output",
+        p,
+    ]);
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (q1, q2, x, y, z) = (
+        col("q.joint1"),
+        col("q.joint2"),
+        col("pose.link2.x"),
+        col("pose.link2.y"),
+        col("pose.link2.z"),
+    );
+    let mut rows = 0;
+    for line in lines {
+        let r: Vec<f64> = line.split(',').map(|s| s.parse().unwrap()).collect();
+        let (a, b) = (r[q1], r[q1] + r[q2]);
+        close(
+            &[r[x], r[y], r[z]],
+            &[a.cos() + b.cos(), a.sin() + b.sin(), 0.0],
+            1e-12,
+        );
+        rows += 1;
+    }
+    assert_eq!(rows, 11);
+    fails(
+        &["simulate", "builtin:planar2", "--frame", "nope"],
+        "no frame named 'nope'",
+    );
+}

@@ -315,7 +315,11 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
             }
         },
         record_every: a.record_every,
-        frames: Vec::new(),
+        frames: a
+            .frames
+            .iter()
+            .map(|f| m.frame_id(f))
+            .collect::<Result<Vec<_>, _>>()?,
     };
     let bar = std::io::stderr().is_terminal().then(|| {
         let b = indicatif::ProgressBar::new(1000);
