@@ -52,7 +52,7 @@ pub enum Command {
     /// The RNEA iterations step by step in the seeds' notation (H, V, V̇ out; W, τ back).
     Explain(ExplainArgs),
     /// Simulates the robot under a controller; writes the run (CSV/JSON) and plots it.
-    Simulate(SimulateArgs),
+    Simulate(Box<SimulateArgs>),
     /// Torques needed along a trapezoid or quintic motion: peak, RMS, effort-limit violations.
     TorqueProfile(TorqueProfileArgs),
     /// Writes the model in another format (URDF).
