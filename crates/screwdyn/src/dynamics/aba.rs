@@ -6,55 +6,9 @@ use crate::error::{Error, Result};
 use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::{real, Real};
-use crate::spatial::{ad, ad_transpose, Se3, SpatialInertia, Twist};
+use crate::spatial::{ad, ad_transpose, Twist};
 use crate::workspace::Workspace;
-use nalgebra::{DVector, Matrix3, Matrix6};
-
-/// Writes the 6×6 matrix of `𝔍^0 = Ad_{H_0^i}ᵀ 𝔍^i Ad_{H_0^i}`, body `i`'s spatial inertia
-/// in the base frame, into `out`, given `H_i^0 = (R, p)` and the body-frame parameters: the
-/// centre of mass moves to `c⁰ = R c + p`, the rotational inertia about it turns to
-/// `I_c⁰ = R I_c Rᵀ` (symmetric, six entries formed), and the matrix is
-/// `[I_c⁰ − m[c⁰][c⁰]  m[c⁰]; −m[c⁰]  m·1]` (the parallel-axis theorem of seed 003).
-/// Returns the same inertia by its parameters `(m, c⁰, I_c⁰)`, for the momentum `𝔍^0 V`.
-#[inline(always)]
-fn world_inertia<T: Real>(
-    h: &Se3<T>,
-    body: &SpatialInertia<T>,
-    out: &mut Matrix6<T>,
-) -> SpatialInertia<T> {
-    let r = &h.rotation;
-    let m = body.mass;
-    let c = r * body.com + h.translation;
-    let a = r * body.inertia_com;
-    // I_c⁰ = A Rᵀ: entry (i, j) is row i of A dotted with row j of R.
-    let dot =
-        |i: usize, j: usize| a[(i, 0)] * r[(j, 0)] + a[(i, 1)] * r[(j, 1)] + a[(i, 2)] * r[(j, 2)];
-    let (i00, i01, i02, i11, i12, i22) = (
-        dot(0, 0),
-        dot(0, 1),
-        dot(0, 2),
-        dot(1, 1),
-        dot(1, 2),
-        dot(2, 2),
-    );
-    let ic = Matrix3::new(i00, i01, i02, i01, i11, i12, i02, i12, i22);
-    let (mx, my, mz) = (m * c.x, m * c.y, m * c.z);
-    // −m[c][c] = m (cᵀc 1 − c cᵀ).
-    let (xx, yy, zz) = (mx * c.x, my * c.y, mz * c.z);
-    let (xy, xz, yz) = (mx * c.y, mx * c.z, my * c.z);
-    let zero = T::zero();
-    #[rustfmt::skip]
-    let matrix = Matrix6::new(
-        i00 + yy + zz, i01 - xy,      i02 - xz,      zero, -mz,  my,
-        i01 - xy,      i11 + xx + zz, i12 - yz,      mz,   zero, -mx,
-        i02 - xz,      i12 - yz,      i22 + xx + yy, -my,  mx,   zero,
-        zero,          mz,            -my,           m,    zero, zero,
-        -mz,           zero,          mx,            zero, m,    zero,
-        my,            -mx,           zero,          zero, zero, m,
-    );
-    *out = matrix;
-    SpatialInertia::new(m, c, ic)
-}
+use nalgebra::DVector;
 
 /// Forward dynamics `q̈ = M⁻¹(τ − C q̇ − g)` by the articulated-body algorithm (Featherstone),
 /// written with the seeds' operators and every spatial quantity in the base frame {0}
@@ -120,7 +74,9 @@ pub fn aba_with<'w, T: Real>(
             }
             None => (sv, Twist::zeros()),
         };
-        let inertia = world_inertia(h, &bodies[i].inertia, &mut ws.articulated_inertia[i]);
+        // 𝔍_i^0 = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i}, by its ten parameters (c ↦ R c + p, I_c ↦ R I_c Rᵀ).
+        let inertia = bodies[i].inertia.transformed(h);
+        ws.articulated_inertia[i] = inertia.matrix();
         let mut p = -ad_transpose(&vi, &inertia.apply(&vi));
         if let Some(f) = fext {
             p -= f.in_world_at(h, i);
@@ -177,28 +133,4 @@ pub fn aba_with<'w, T: Real>(
         ws.twist_dot_in_world[i] = a_par + ws.screw_in_world[i] * qdd;
     }
     Ok(&ws.qdd)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use nalgebra::Vector3;
-
-    /// The base-frame inertia equals the change of frame `Ad_{H⁻¹}ᵀ 𝔍 Ad_{H⁻¹}` done with 6×6
-    /// adjoint matrices (seed 001), for a body with an off-diagonal inertia and offset CoM.
-    #[test]
-    fn world_inertia_is_the_adjoint_change_of_frame() {
-        let body = SpatialInertia::new(
-            2.5,
-            Vector3::new(0.1, -0.2, 0.3),
-            Matrix3::new(0.3, 0.01, -0.02, 0.01, 0.2, 0.03, -0.02, 0.03, 0.25),
-        );
-        let h = Se3::from_rpy(0.4, -0.7, 1.9).with_translation(Vector3::new(0.5, -1.2, 0.8));
-        let ad = h.inverse().adjoint_matrix();
-        let expected = ad.transpose() * body.matrix() * ad;
-        let mut out = Matrix6::zeros();
-        let params = world_inertia(&h, &body, &mut out);
-        assert!((out - expected).amax() < 1e-12);
-        assert!((params.matrix() - expected).amax() < 1e-12);
-    }
 }

@@ -11,7 +11,6 @@
 //! whose upper-left block is the parallel-axis theorem of seed 003.
 
 use super::se3::Se3;
-use super::so3::hat;
 use super::twist::{ang, lin, twist, Twist, Wrench};
 use crate::scalar::{real, Real};
 use nalgebra::{Matrix3, Matrix6, Vector3};
@@ -83,16 +82,25 @@ impl<T: Real> SpatialInertia<T> {
         self.inertia_com + parallel_axis_term(self.mass, &self.com)
     }
 
-    /// The 6×6 matrix `𝔍` (angular first) about the frame origin.
+    /// The 6×6 matrix `𝔍` (angular first) about the frame origin:
+    /// `[I_c − m[c][c]  m[c]; −m[c]  m·1]`, with `−m[c][c] = m (cᵀc 1 − c cᵀ)` (the
+    /// parallel-axis theorem of seed 003), written out entry by entry.
+    #[inline]
     pub fn matrix(&self) -> Matrix6<T> {
-        let mut j = Matrix6::zeros();
-        let mc = hat(&self.com) * self.mass;
-        j.fixed_view_mut::<3, 3>(0, 0)
-            .copy_from(&self.inertia_about_origin());
-        j.fixed_view_mut::<3, 3>(0, 3).copy_from(&mc);
-        j.fixed_view_mut::<3, 3>(3, 0).copy_from(&(-mc));
-        j.fixed_view_mut::<3, 3>(3, 3)
-            .copy_from(&(Matrix3::identity() * self.mass));
+        let (m, c, i) = (self.mass, &self.com, &self.inertia_com);
+        let (mx, my, mz) = (m * c.x, m * c.y, m * c.z);
+        let (xx, yy, zz) = (mx * c.x, my * c.y, mz * c.z);
+        let (xy, xz, yz) = (mx * c.y, mx * c.z, my * c.z);
+        let zero = T::zero();
+        #[rustfmt::skip]
+        let j = Matrix6::new(
+            i[(0, 0)] + yy + zz, i[(0, 1)] - xy,      i[(0, 2)] - xz,      zero, -mz,  my,
+            i[(1, 0)] - xy,      i[(1, 1)] + xx + zz, i[(1, 2)] - yz,      mz,   zero, -mx,
+            i[(2, 0)] - xz,      i[(2, 1)] - yz,      i[(2, 2)] + xx + yy, -my,  mx,   zero,
+            zero,                mz,                  -my,                 m,    zero, zero,
+            -mz,                 zero,                mx,                  zero, m,    zero,
+            my,                  -mx,                 zero,                zero, zero, m,
+        );
         j
     }
 
@@ -153,12 +161,23 @@ impl<T: Real> SpatialInertia<T> {
     /// let expected = ad.transpose() * i.matrix() * ad;
     /// assert!((i.transformed(&h).matrix() - expected).amax() < 1e-12);
     /// ```
+    #[inline]
     pub fn transformed(&self, h: &Se3<T>) -> Self {
-        SpatialInertia::new(
-            self.mass,
-            h.act_point(&self.com),
-            h.rotation * self.inertia_com * h.rotation.transpose(),
-        )
+        let r = &h.rotation;
+        let a = r * self.inertia_com;
+        // R I_c Rᵀ = A Rᵀ is symmetric: entry (i, j) is row i of A dotted with row j of R, and
+        // only six are formed.
+        let dot = |i: usize, j: usize| {
+            a[(i, 0)] * r[(j, 0)] + a[(i, 1)] * r[(j, 1)] + a[(i, 2)] * r[(j, 2)]
+        };
+        let (i01, i02, i12) = (dot(0, 1), dot(0, 2), dot(1, 2));
+        #[rustfmt::skip]
+        let rotated = Matrix3::new(
+            dot(0, 0), i01,       i02,
+            i01,       dot(1, 1), i12,
+            i02,       i12,       dot(2, 2),
+        );
+        SpatialInertia::new(self.mass, h.act_point(&self.com), rotated)
     }
 
     /// The inertia of two bodies rigidly joined (both given in the same frame).
@@ -225,4 +244,34 @@ impl SpatialInertia<f64> {
 /// `m (cᵀc I − c cᵀ)`, the parallel-axis term of seed 003.
 pub fn parallel_axis_term<T: Real>(mass: T, c: &Vector3<T>) -> Matrix3<T> {
     (Matrix3::identity() * c.dot(c) - c * c.transpose()) * mass
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `transformed(h).matrix()` equals the change of frame `Ad_{H⁻¹}ᵀ 𝔍 Ad_{H⁻¹}` done with 6×6
+    /// adjoint matrices (seed 001), for a body with an off-diagonal inertia and offset CoM.
+    #[test]
+    fn change_of_frame_matches_the_adjoint_sandwich() {
+        let body = SpatialInertia::new(
+            2.5,
+            Vector3::new(0.1, -0.2, 0.3),
+            Matrix3::new(0.3, 0.01, -0.02, 0.01, 0.2, 0.03, -0.02, 0.03, 0.25),
+        );
+        let h = Se3::from_rpy(0.4, -0.7, 1.9).with_translation(Vector3::new(0.5, -1.2, 0.8));
+        let ad = h.inverse().adjoint_matrix();
+        let expected = ad.transpose() * body.matrix() * ad;
+        assert!((body.transformed(&h).matrix() - expected).amax() < 1e-12);
+        // The matrix itself is the block formula with the parallel-axis theorem.
+        let mc = super::super::so3::hat(&body.com) * body.mass;
+        let mut j = Matrix6::zeros();
+        j.fixed_view_mut::<3, 3>(0, 0)
+            .copy_from(&body.inertia_about_origin());
+        j.fixed_view_mut::<3, 3>(0, 3).copy_from(&mc);
+        j.fixed_view_mut::<3, 3>(3, 0).copy_from(&(-mc));
+        j.fixed_view_mut::<3, 3>(3, 3)
+            .copy_from(&(Matrix3::identity() * body.mass));
+        assert!((body.matrix() - j).amax() < 1e-15);
+    }
 }
