@@ -198,6 +198,14 @@ fn closed_form_and_lagrange_follow_seed_004() {
     close(&vec(&l["D_i"]), &[2.0 * G, 0.0], 1e-12);
 }
 
+/// `explain --format json` at state `(q, v, a)`, with `extra` arguments.
+fn explain_json(spec: &str, q: &[f64], v: &[f64], a: &[f64], extra: &[&str]) -> serde_json::Value {
+    let (q, v, a) = (csv(q), csv(v), csv(a));
+    let mut args = vec!["explain", spec, "--q", &q, "--v", &v, "--a", &a];
+    args.extend_from_slice(extra);
+    json(&args)
+}
+
 #[test]
 fn explain_prints_the_seed_iterations_and_rnea_torques() {
     // Planar arm: the printed τ is the seed's closed form.
@@ -242,16 +250,7 @@ fn explain_prints_the_seed_iterations_and_rnea_torques() {
         let n = if n == 0 { model.nq() } else { n };
         let mut r = Lcg(7);
         let (q, v, a) = (r.vec(n), r.vec(n), r.vec(n));
-        let out = json(&[
-            "explain",
-            spec,
-            "--q",
-            &csv(&q),
-            "--v",
-            &csv(&v),
-            "--a",
-            &csv(&a),
-        ]);
+        let out = explain_json(spec, &q, &v, &a, &[]);
         let mut ws = Workspace::new(&model);
         let tau = dynamics::rnea(&model, &mut ws, &q, &v, &a).unwrap();
         close(&vec(&out["tau"]), tau.as_slice(), 1e-10);
@@ -286,18 +285,13 @@ fn explain_takes_external_wrenches() {
     let model = load_model("builtin:ur5").unwrap();
     let mut r = Lcg(3);
     let (q, v, a) = (r.vec(6), r.vec(6), r.vec(6));
-    let out = json(&[
-        "explain",
+    let out = explain_json(
         "builtin:ur5",
-        "--q",
-        &csv(&q),
-        "--v",
-        &csv(&v),
-        "--a",
-        &csv(&a),
-        "--wrench",
-        "wrist_2_link:0.1,-0.2,0.3,5,-4,3@world",
-    ]);
+        &q,
+        &v,
+        &a,
+        &["--wrench", "wrist_2_link:0.1,-0.2,0.3,5,-4,3@world"],
+    );
     let mut ext = dynamics::ExternalWrenches::new(&model);
     let body = model.body_id("wrist_2_link").unwrap();
     ext.add_world(body, nalgebra::Vector6::new(0.1, -0.2, 0.3, 5.0, -4.0, 3.0))

@@ -17,20 +17,16 @@ fn passive(duration: f64, dt: f64, integrator: Integrator, every: usize) -> SimO
     }
 }
 
+/// A passive run (no torque, no disturbance) from `(q0, v0)`.
+fn run_passive(m: &screwdyn::Model, q0: &[f64], v0: &[f64], opts: &SimOptions) -> Recording {
+    simulate(m, q0, v0, &mut ZeroTorque, &[], opts, &mut |_| {}).unwrap()
+}
+
 #[test]
 fn pendulum_small_amplitude_period_matches_two_pi_sqrt_l_over_g() {
     let (l, g) = (0.8, 9.81);
     let m = builtin::pendulum_with(l, 1.0);
-    let run = simulate(
-        &m,
-        &[0.01],
-        &[0.0],
-        &mut ZeroTorque,
-        &[],
-        &passive(6.0, 1e-3, Integrator::Rk4, 1),
-        &mut |_| {},
-    )
-    .unwrap();
+    let run = run_passive(&m, &[0.01], &[0.0], &passive(6.0, 1e-3, Integrator::Rk4, 1));
     // Downward zero crossings of q, linearly interpolated.
     let mut crossings = Vec::new();
     for k in 1..run.len() {
@@ -54,12 +50,17 @@ fn ur5_start() -> (Vec<f64>, Vec<f64>) {
     )
 }
 
-fn max_energy_deviation(run: &Recording) -> f64 {
+/// The largest `|E(t) − E(0)|` over the samples `range` of a run.
+fn energy_deviation(run: &Recording, range: std::ops::Range<usize>) -> f64 {
     let e0 = run.total_energy[0];
-    run.total_energy
+    run.total_energy[range]
         .iter()
         .map(|e| (e - e0).abs())
         .fold(0.0, f64::max)
+}
+
+fn max_energy_deviation(run: &Recording) -> f64 {
+    energy_deviation(run, 0..run.len())
 }
 
 #[test]
@@ -70,16 +71,7 @@ fn passive_ur5_conserves_energy_with_rk4() {
         .unwrap()
         .with_gravity(nalgebra::Vector3::zeros());
     let (q0, v0) = ur5_start();
-    let run = simulate(
-        &m,
-        &q0,
-        &v0,
-        &mut ZeroTorque,
-        &[],
-        &passive(10.0, 1e-3, Integrator::Rk4, 100),
-        &mut |_| {},
-    )
-    .unwrap();
+    let run = run_passive(&m, &q0, &v0, &passive(10.0, 1e-3, Integrator::Rk4, 100));
     let drift = max_energy_deviation(&run) / run.total_energy[0];
     assert!(drift < 1e-6, "RK4 relative energy drift {drift}");
 }
@@ -105,18 +97,7 @@ fn passive_ur5_under_gravity_conserves_energy_with_rk4() {
     // a bias in the dynamics (which no step size would remove).
     let m = builtin::load("ur5").unwrap();
     let (q0, v0) = ur5_swinging_start();
-    let run = |dt: f64| {
-        simulate(
-            &m,
-            &q0,
-            &v0,
-            &mut ZeroTorque,
-            &[],
-            &passive(10.0, dt, Integrator::Rk4, 10),
-            &mut |_| {},
-        )
-        .unwrap()
-    };
+    let run = |dt: f64| run_passive(&m, &q0, &v0, &passive(10.0, dt, Integrator::Rk4, 10));
     let coarse = drift_over_kinetic_scale(&run(1e-3));
     assert!(coarse < 1e-6, "RK4 energy drift {coarse} at 1 ms");
     let fine = drift_over_kinetic_scale(&run(5e-4));
@@ -136,16 +117,12 @@ fn falling_ur5_conserves_energy_with_rk4() {
     // of the wrist whip the run sees); at 0.25 ms it is about 6e-9, far from the bound.
     let m = builtin::load("ur5").unwrap();
     let q0 = [0.0, -1.57, 0.0, -1.57, 0.0, 0.0];
-    let run = simulate(
+    let run = run_passive(
         &m,
         &q0,
         &[0.0; 6],
-        &mut ZeroTorque,
-        &[],
         &passive(10.0, 2.5e-4, Integrator::Rk4, 200),
-        &mut |_| {},
-    )
-    .unwrap();
+    );
     let drift = drift_over_kinetic_scale(&run);
     assert!(
         drift < 1e-6,
@@ -161,22 +138,15 @@ fn symplectic_euler_energy_error_does_not_grow() {
         .unwrap()
         .with_gravity(nalgebra::Vector3::zeros());
     let (q0, v0) = ur5_start();
-    let run = simulate(
+    let run = run_passive(
         &m,
         &q0,
         &v0,
-        &mut ZeroTorque,
-        &[],
         &passive(10.0, 1e-3, Integrator::SymplecticEuler, 10),
-        &mut |_| {},
-    )
-    .unwrap();
+    );
     let e0 = run.total_energy[0];
     let half = run.len() / 2;
-    let err = |r: std::ops::Range<usize>| {
-        r.map(|k| (run.total_energy[k] - e0).abs())
-            .fold(0.0, f64::max)
-    };
+    let err = |r| energy_deviation(&run, r);
     let (first, second) = (err(0..half), err(half..run.len()));
     assert!(
         second < 2.0 * first,
@@ -196,24 +166,15 @@ fn symplectic_euler_energy_error_stays_bounded_under_gravity() {
     // is no worse than the first (2× margin), unlike explicit Euler whose error compounds.
     let m = builtin::load("ur5").unwrap();
     let (q0, v0) = ur5_swinging_start();
-    let run = simulate(
+    let run = run_passive(
         &m,
         &q0,
         &v0,
-        &mut ZeroTorque,
-        &[],
         &passive(10.0, 1e-3, Integrator::SymplecticEuler, 10),
-        &mut |_| {},
-    )
-    .unwrap();
-    let e0 = run.total_energy[0];
+    );
     let scale = run.kinetic_energy.iter().cloned().fold(0.0, f64::max);
     let half = run.len() / 2;
-    let err = |r: std::ops::Range<usize>| {
-        r.map(|k| (run.total_energy[k] - e0).abs())
-            .fold(0.0, f64::max)
-            / scale
-    };
+    let err = |r| energy_deviation(&run, r) / scale;
     let (first, second) = (err(0..half), err(half..run.len()));
     assert!(
         second < 2.0 * first && second < 0.2,
@@ -225,16 +186,7 @@ fn symplectic_euler_energy_error_stays_bounded_under_gravity() {
 fn dormand_prince_meets_its_tolerance_against_fine_rk4() {
     let m = builtin::load("ur5").unwrap();
     let (q0, v0) = ur5_start();
-    let fine = simulate(
-        &m,
-        &q0,
-        &v0,
-        &mut ZeroTorque,
-        &[],
-        &passive(1.0, 1e-4, Integrator::Rk4, 10_000),
-        &mut |_| {},
-    )
-    .unwrap();
+    let fine = run_passive(&m, &q0, &v0, &passive(1.0, 1e-4, Integrator::Rk4, 10_000));
     let tol = 1e-8;
     let dp = passive(
         1.0,
@@ -245,7 +197,7 @@ fn dormand_prince_meets_its_tolerance_against_fine_rk4() {
         },
         100,
     );
-    let run = simulate(&m, &q0, &v0, &mut ZeroTorque, &[], &dp, &mut |_| {}).unwrap();
+    let run = run_passive(&m, &q0, &v0, &dp);
     let (a, b) = (fine.q.last().unwrap(), run.q.last().unwrap());
     let err = a
         .iter()
@@ -270,7 +222,7 @@ fn damping_makes_energy_decrease_monotonically() {
         record_every: 10,
         ..Default::default()
     };
-    let run = simulate(&m, &q0, &v0, &mut ZeroTorque, &[], &opts, &mut |_| {}).unwrap();
+    let run = run_passive(&m, &q0, &v0, &opts);
     for k in 1..run.len() {
         assert!(
             run.total_energy[k] < run.total_energy[k - 1] + 1e-12,
@@ -478,7 +430,7 @@ fn position_limit_is_a_spring_damper_stop_scaled_to_the_joint() {
             record_every: 10,
             ..Default::default()
         };
-        simulate(&m, &[0.0], &[w], &mut ZeroTorque, &[], &opts, &mut |_| {}).unwrap()
+        run_passive(&m, &[0.0], &[w], &opts)
     };
     let run = run_with(1.0, 0.2);
     let deepest = run.q.iter().map(|q| q[0]).fold(f64::MIN, f64::max) - 0.2;
