@@ -41,6 +41,10 @@ pub enum Error {
     /// A description file could not be read or parsed; the message names file and line.
     #[error("{0}")]
     Parse(String),
+    /// A function argument is out of range or malformed (an id the model does not have, a
+    /// buffer of the wrong size, a NaN option, a workspace made for another model...).
+    #[error("{0}")]
+    InvalidArgument(String),
     /// A numerical failure, e.g. a singular mass matrix in forward dynamics.
     #[error("{0}")]
     Numerical(String),

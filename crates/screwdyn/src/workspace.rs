@@ -1,6 +1,7 @@
 //! [`Workspace`]: everything an algorithm writes, allocated once per model (Pinocchio's `Data`).
 
 use crate::dynamics::CompositeInertia;
+use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::scalar::Real;
 use crate::spatial::{Se3, Twist, Wrench};
@@ -81,6 +82,8 @@ pub struct Workspace<T: Real = f64> {
     pub(crate) cor_inertia: Vec<Matrix6<T>>,
     /// Coriolis matrix: composite world-frame `B(𝔍, V)` of the subtree of `j`.
     pub(crate) cor_b: Vec<Matrix6<T>>,
+    /// The number of bodies of the model this workspace was made for.
+    nbodies: usize,
 }
 
 impl<T: Real> Workspace<T> {
@@ -116,6 +119,33 @@ impl<T: Real> Workspace<T> {
             cor_sdot: vec![Twist::zeros(); n],
             cor_inertia: vec![Matrix6::zeros(); n],
             cor_b: vec![Matrix6::zeros(); n],
+            nbodies: n,
         }
+    }
+
+    /// Checks that this workspace was made for `model` (the same number of bodies): every
+    /// algorithm calls it once before it writes.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming both sizes when the workspace was made for another
+    /// model.
+    ///
+    /// ```
+    /// use screwdyn::{builtin, Workspace};
+    /// let ws = Workspace::new(&builtin::ur5());
+    /// assert!(ws.check(&builtin::ur5()).is_ok());
+    /// let e = ws.check(&builtin::planar2()).unwrap_err().to_string();
+    /// assert!(e.contains("6 bodies"));
+    /// ```
+    pub fn check(&self, model: &Model<T>) -> Result<()> {
+        if self.nbodies != model.nbodies() {
+            return Err(Error::InvalidArgument(format!(
+                "the workspace was made for a model with {} bodies, not for '{}' with {} bodies (make one with Workspace::new)",
+                self.nbodies,
+                model.name(),
+                model.nbodies()
+            )));
+        }
+        Ok(())
     }
 }
