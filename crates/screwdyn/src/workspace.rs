@@ -1,9 +1,9 @@
 //! [`Workspace`]: everything an algorithm writes, allocated once per model (Pinocchio's `Data`).
 
-use crate::dynamics::CompositeInertia;
 use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::scalar::Real;
+use crate::spatial::CompositeInertia;
 use crate::spatial::{Se3, Twist, Wrench};
 use nalgebra::{DMatrix, DVector, Matrix6};
 
@@ -132,8 +132,8 @@ impl<T: Real> Workspace<T> {
     ///
     /// ```
     /// use screwdyn::{builtin, Workspace};
-    /// let ws = Workspace::new(&builtin::ur5());
-    /// assert!(ws.check(&builtin::ur5()).is_ok());
+    /// let ws = Workspace::new(&builtin::load("ur5").unwrap());
+    /// assert!(ws.check(&builtin::load("ur5").unwrap()).is_ok());
     /// let e = ws.check(&builtin::planar2()).unwrap_err().to_string();
     /// assert!(e.contains("6 bodies"));
     /// ```

@@ -58,12 +58,12 @@ fn check(model: &Model) {
     ext.add_local(0, Vector6::repeat(0.5)).unwrap();
     ext.add_world(n - 1, Vector6::repeat(-0.25)).unwrap();
     let mut jac = Matrix6xX::zeros(n);
-    let tip = model.body_frame(n - 1);
+    let tip = model.body_frame(n - 1).unwrap();
     // Warm up once (nothing lazily allocated should remain), then count.
     let mut run = |ws: &mut Workspace| {
         forward_kinematics(model, ws, &q).unwrap();
         compute_joint_jacobians(model, ws, &q).unwrap();
-        frame_jacobian(model, ws, tip, Reference::World, &mut jac);
+        frame_jacobian(model, ws, tip, Reference::World, &mut jac).unwrap();
         forward_velocity(model, ws, &q, &v).unwrap();
         forward_acceleration(model, ws, &q, &v, &a).unwrap();
         rnea(model, ws, &q, &v, &a).unwrap();

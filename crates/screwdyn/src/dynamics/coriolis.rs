@@ -59,7 +59,7 @@ pub fn coriolis_matrix<'w, T: Real>(
         ws.cor_inertia[i] = im;
     }
     for i in (0..n).rev() {
-        if let Some(p) = model.parent(i) {
+        if let Some(p) = model.parents()[i] {
             let (ci, bi) = (ws.cor_inertia[i], ws.cor_b[i]);
             ws.cor_inertia[p] += ci;
             ws.cor_b[p] += bi;
@@ -73,7 +73,7 @@ pub fn coriolis_matrix<'w, T: Real>(
         let h = ws.cor_b[j].tr_mul(&sj);
         ws.coriolis_matrix[(j, j)] = sj.dot(&f);
         let mut k = j;
-        while let Some(p) = model.parent(k) {
+        while let Some(p) = model.parents()[k] {
             k = p;
             ws.coriolis_matrix[(k, j)] = ws.cor_s[k].dot(&f);
             ws.coriolis_matrix[(j, k)] = g.dot(&ws.cor_sdot[k]) + h.dot(&ws.cor_s[k]);

@@ -2,7 +2,8 @@
 //! seed 004 §6.4.
 
 use super::aba::aba_with;
-use super::crba::{cholesky_in_place, cholesky_solve_in_place, crba_given_poses, singular_error};
+use super::cholesky::{cholesky_in_place, cholesky_solve_in_place, singular_error};
+use super::crba::crba_given_poses;
 use super::rnea::{base_acceleration, rnea_passes};
 use super::wrenches::ExternalWrenches;
 use crate::error::{Error, Result};

@@ -25,8 +25,25 @@ pub struct LagrangeCoefficients<T: Real = f64> {
 
 impl<T: Real> LagrangeCoefficients<T> {
     /// `D_ijk` with 0-based `i, j, k`.
-    pub fn d(&self, i: usize, j: usize, k: usize) -> T {
-        self.d_ijk[i][(j, k)]
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when an index is not below `n`.
+    ///
+    /// ```
+    /// use screwdyn::{builtin, dynamics::lagrange_coefficients};
+    /// let c = lagrange_coefficients(&builtin::planar2(), &[0.0, 0.5]).unwrap();
+    /// // Seed 004: D_112 = −m2 L1 L2 s2 (all ones here).
+    /// assert!((c.d(0, 0, 1).unwrap() + 0.5_f64.sin()).abs() < 1e-12);
+    /// assert!(c.d(0, 0, 2).is_err());
+    /// ```
+    pub fn d(&self, i: usize, j: usize, k: usize) -> Result<T> {
+        let n = self.d_ijk.len();
+        if i >= n || j >= n || k >= n {
+            return Err(Error::InvalidArgument(format!(
+                "D_ijk index ({i}, {j}, {k}) is out of range for {n} joints"
+            )));
+        }
+        Ok(self.d_ijk[i][(j, k)])
     }
 }
 
@@ -64,15 +81,15 @@ pub fn mass_matrix_derivatives<T: Real>(model: &Model<T>, q: &[T]) -> Result<Vec
         let adk = ad_matrix(&s[k]);
         let mut dm = DMatrix::zeros(n, n);
         for (i, inertia_i) in inertia.iter().enumerate() {
-            if !model.supports(k, i) {
+            if !model.supports_unchecked(k, i) {
                 continue;
             }
             let mut j_i = DMatrix::zeros(6, n);
             let mut dj_i = DMatrix::zeros(6, n);
             for j in 0..n {
-                if model.supports(j, i) {
+                if model.supports_unchecked(j, i) {
                     j_i.set_column(j, &s[j]);
-                    if j != k && model.supports(k, j) {
+                    if j != k && model.supports_unchecked(k, j) {
                         dj_i.set_column(j, &ad(&s[k], &s[j]));
                     }
                 }
@@ -97,9 +114,9 @@ pub fn mass_matrix_derivatives<T: Real>(model: &Model<T>, q: &[T]) -> Result<Vec
 /// let q2 = 0.8_f64;
 /// let d = lagrange_coefficients(&m, &[0.3, q2]).unwrap();
 /// // Seed 004: D122 = D112 = −m2 l1 l2 sin θ2, D211 = m2 l1 l2 sin θ2, D111 = D222 = 0.
-/// assert!((d.d(0, 1, 1) + q2.sin()).abs() < 1e-12);
-/// assert!((d.d(0, 0, 1) + q2.sin()).abs() < 1e-12);
-/// assert!((d.d(1, 0, 0) - q2.sin()).abs() < 1e-12);
+/// assert!((d.d(0, 1, 1).unwrap() + q2.sin()).abs() < 1e-12);
+/// assert!((d.d(0, 0, 1).unwrap() + q2.sin()).abs() < 1e-12);
+/// assert!((d.d(1, 0, 0).unwrap() - q2.sin()).abs() < 1e-12);
 /// ```
 pub fn lagrange_coefficients<T: Real>(
     model: &Model<T>,

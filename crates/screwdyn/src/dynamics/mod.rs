@@ -18,6 +18,7 @@
 //! ```
 
 mod aba;
+mod cholesky;
 mod closed_form;
 mod coriolis;
 mod crba;
@@ -25,12 +26,13 @@ pub(crate) mod energy;
 mod forward;
 mod lagrange;
 mod rnea;
+mod trace;
 mod wrenches;
 
 pub use aba::{aba, aba_with};
 pub use closed_form::{closed_form, ClosedForm};
 pub use coriolis::coriolis_matrix;
-pub use crba::{crba, mass_matrix, mass_matrix_inverse, CompositeInertia};
+pub use crba::{crba, mass_matrix, mass_matrix_inverse};
 pub use energy::{
     center_of_mass, kinetic_energy, kinetic_energy_mass_matrix, potential_energy, power,
     total_energy,
@@ -44,4 +46,5 @@ pub use lagrange::{
     mass_matrix_derivatives, LagrangeCoefficients,
 };
 pub use rnea::{base_acceleration, gravity_torque, inverse_dynamics, nonlinear_effects, rnea};
+pub use trace::{rnea_trace, BackwardStep, ForwardStep, RneaTrace};
 pub use wrenches::ExternalWrenches;

@@ -51,7 +51,7 @@ pub(crate) fn rnea_passes<T: Real>(
         let inertia = &bodies[i].inertia;
         let mut w = inertia.apply(&vdi) - ad_transpose(&vi, &inertia.apply(&vi));
         if let Some(f) = fext {
-            w -= f.on_body(ws, i);
+            w -= f.on_body_at(&ws.pose_in_world[i], i);
         }
         ws.twist[i] = vi;
         ws.twist_dot[i] = vdi;
@@ -166,7 +166,7 @@ pub fn gravity_torque<'w, T: Real>(
 ///
 /// ```
 /// use screwdyn::{builtin, dynamics::nonlinear_effects, Workspace};
-/// let m = builtin::planar2().with_gravity(nalgebra::Vector3::zeros());
+/// let m = builtin::planar2().with_gravity(nalgebra::Vector3::zeros()).unwrap();
 /// let mut ws = Workspace::new(&m);
 /// let (q2, qd1) = (0.4_f64, 1.5_f64);
 /// let h = nonlinear_effects(&m, &mut ws, &[0.0, q2], &[qd1, 0.0]).unwrap();

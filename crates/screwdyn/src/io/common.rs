@@ -225,17 +225,3 @@ pub(crate) fn gravity(g: Option<[f64; 3]>) -> Vector3<f64> {
     g.map(Vector3::from)
         .unwrap_or_else(|| Vector3::new(0.0, 0.0, -9.81))
 }
-
-/// Checks a link inertia before the builder does, so that the message names the file.
-pub(crate) fn check_inertia(
-    i: &SpatialInertia,
-    what: &str,
-    file: &str,
-    allow_nonphysical: bool,
-) -> Result<()> {
-    if allow_nonphysical {
-        return Ok(());
-    }
-    i.check_physical()
-        .map_err(|why| Error::InvalidModel(format!("{file}: the inertia of {what} {why}")))
-}

@@ -150,7 +150,7 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
     let base = f.base.clone().unwrap_or_else(|| "base".into());
     b.base_name(&base)
         .gravity(common::gravity(f.gravity))
-        .allow_nonphysical(options.allow_nonphysical);
+        .strict(options.strict);
     if f.row.is_empty() {
         return Err(Error::Parse(format!("{file}: the DH table has no [[row]]")));
     }
@@ -202,12 +202,7 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
             Vector3::from(row.com.unwrap_or([0.0; 3])),
             common::inertia_matrix(row.inertia.unwrap_or([0.0; 6])),
         );
-        common::check_inertia(
-            &inertia,
-            &format!("DH row {i} (link '{lname}')"),
-            &at,
-            options.allow_nonphysical,
-        )?;
+        b.locate(&lname, at.clone());
         let parent = row.parent.clone().unwrap_or(previous);
         b.link(&lname, &parent, j, home, inertia);
         previous = lname;

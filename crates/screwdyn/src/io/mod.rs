@@ -44,10 +44,10 @@ use serde::Deserialize;
 /// Options shared by every loader.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct LoadOptions {
-    /// Accept inertias that are not physically consistent (not symmetric positive
-    /// semi-definite, triangle inequality broken) and massless moving leaf bodies. Off by
-    /// default: such a file is an error.
-    pub allow_nonphysical: bool,
+    /// Make physical-consistency problems (inertias not positive semi-definite or breaking
+    /// the triangle inequality, massless moving leaves) errors. Off by default: such a file
+    /// loads, and [`Model::physical_problems`] lists its problems, as Pinocchio would load it.
+    pub strict: bool,
 }
 
 /// Loads a model from `builtin:<name>`, a `.urdf` file or a `.toml` file, with default options.

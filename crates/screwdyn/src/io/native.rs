@@ -125,8 +125,7 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
     if let Some(base) = &f.base {
         b.base_name(base);
     }
-    b.gravity(common::gravity(f.gravity))
-        .allow_nonphysical(options.allow_nonphysical);
+    b.gravity(common::gravity(f.gravity)).strict(options.strict);
     for spanned in &f.body {
         let body = spanned.get_ref();
         let at = common::at_line(file, text, spanned);
@@ -144,12 +143,7 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
         }
         .to_inertia()
         .map_err(bad)?;
-        common::check_inertia(
-            &inertia,
-            &format!("link '{}'", body.name),
-            &at,
-            options.allow_nonphysical,
-        )?;
+        b.locate(&body.name, at.clone());
         let jname = body
             .joint
             .clone()

@@ -59,8 +59,8 @@ pub struct PoeExtras {
     pub velocity: Option<Vec<f64>>,
     /// Effort limits per joint.
     pub effort: Option<Vec<f64>>,
-    /// Accept non-physical inertias.
-    pub allow_nonphysical: bool,
+    /// Make physical-consistency problems errors (see [`ModelBuilder::strict`]).
+    pub strict: bool,
 }
 
 /// Builds a model from Modern Robotics' `M`, `Slist`, `Mlist`, `Glist` (gravity
@@ -129,8 +129,7 @@ pub fn poe_builder(
     }
     let mut b = ModelBuilder::new(name);
     let base = extras.base.clone().unwrap_or_else(|| "base".into());
-    b.base_name(&base)
-        .allow_nonphysical(extras.allow_nonphysical);
+    b.base_name(&base).strict(extras.strict);
     let mut m_i = Se3::identity();
     for i in 0..n {
         m_i = m_i.compose(&mlist[i]);
@@ -298,23 +297,8 @@ pub fn parse_poe(text: &str, file: &str, options: &LoadOptions) -> Result<Model>
         limits,
         velocity: f.velocity.clone(),
         effort: f.effort.clone(),
-        allow_nonphysical: options.allow_nonphysical,
+        strict: options.strict,
     };
-    for (k, g) in glist.iter().enumerate() {
-        if let Ok(i) = SpatialInertia::from_matrix(g) {
-            let lname = extras
-                .links
-                .as_ref()
-                .and_then(|l| l.get(k).cloned())
-                .unwrap_or_else(|| format!("link{}", k + 1));
-            common::check_inertia(
-                &i,
-                &format!("Glist entry {} (link '{lname}')", k + 1),
-                file,
-                options.allow_nonphysical,
-            )?;
-        }
-    }
     let name = f
         .name
         .clone()

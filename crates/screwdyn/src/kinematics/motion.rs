@@ -24,10 +24,10 @@ pub fn forward_velocity<T: Real>(
     q: &[T],
     v: &[T],
 ) -> Result<()> {
-    model.check_vector(v, "v")?;
     forward_kinematics(model, ws, q)?;
+    model.check_vector(v, "v")?;
     for (i, m) in model.motions().iter().enumerate() {
-        let mut vi = match model.parent(i) {
+        let mut vi = match model.parents()[i] {
             Some(p) => ws.pose_in_parent[i].inv_act_twist(&ws.twist[p]),
             None => Twist::zeros(),
         };
@@ -58,30 +58,28 @@ pub fn forward_acceleration<T: Real>(
     v: &[T],
     a: &[T],
 ) -> Result<()> {
-    model.check_vector(a, "a")?;
     forward_velocity(model, ws, q, v)?;
-    propagate_acceleration(model, ws, v, Some(a), &Twist::zeros());
+    model.check_vector(a, "a")?;
+    propagate_acceleration(model, ws, v, Some(a));
     Ok(())
 }
 
 /// The acceleration half of the forward pass, given `ws.pose_in_parent` and `ws.twist`, with
-/// base acceleration `base` (zero for kinematics, `(0, −g)` for dynamics); `a = None` means
-/// `q̈ = 0`.
+/// the base at rest; `a = None` means `q̈ = 0`.
 fn propagate_acceleration<T: Real>(
     model: &Model<T>,
     ws: &mut Workspace<T>,
     v: &[T],
     a: Option<&[T]>,
-    base: &Twist<T>,
 ) {
     for (i, m) in model.motions().iter().enumerate() {
         let h = &ws.pose_in_parent[i];
-        let (v_par, vd_par) = match model.parent(i) {
+        let (v_par, vd_par) = match model.parents()[i] {
             Some(p) => (
                 h.inv_act_twist(&ws.twist[p]),
                 h.inv_act_twist(&ws.twist_dot[p]),
             ),
-            None => (Twist::zeros(), h.inv_act_twist(base)),
+            None => (Twist::zeros(), Twist::zeros()),
         };
         let mut vdi = vd_par - m.ad_scaled(v[i], &v_par);
         if let Some(a) = a {
@@ -111,7 +109,8 @@ pub fn frame_jdot_qdot<T: Real>(
     frame: usize,
     reference: Reference,
 ) -> Result<Twist<T>> {
+    model.frame(frame)?;
     forward_velocity(model, ws, q, v)?;
-    propagate_acceleration(model, ws, v, None, &Twist::zeros());
-    Ok(frame_acceleration(model, ws, frame, reference))
+    propagate_acceleration(model, ws, v, None);
+    frame_acceleration(model, ws, frame, reference)
 }

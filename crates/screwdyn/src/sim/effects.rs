@@ -110,7 +110,7 @@ impl EffectGains {
             None
         };
         if let Some((what, x, must)) = problem {
-            return Err(Error::InvalidModel(format!(
+            return Err(Error::InvalidArgument(format!(
                 "the joint effects' {what} is {x}; it must be finite and {must}"
             )));
         }
@@ -158,6 +158,9 @@ impl JointEffects {
 
     /// Writes the total joint torque for commanded `cmd` at state `(q, v)` into `tau`, with the
     /// per-joint constants `gains` ([`EffectGains::new`]).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when a slice or the gains do not have one entry per joint.
     pub fn apply(
         &self,
         model: &Model,
@@ -166,7 +169,20 @@ impl JointEffects {
         v: &[f64],
         cmd: &[f64],
         tau: &mut [f64],
-    ) {
+    ) -> Result<()> {
+        let n = model.nq();
+        let lens = [q.len(), v.len(), cmd.len(), tau.len()];
+        let gains_n = [
+            gains.stop_stiffness.len(),
+            gains.stop_damping.len(),
+            gains.friction_smoothing.len(),
+        ];
+        if lens.iter().chain(&gains_n).any(|&l| l != n) {
+            return Err(Error::InvalidArgument(format!(
+                "joint effects on {n} joints were given q, q̇, the command and τ of {:?} values and gains for {:?}",
+                lens, gains_n
+            )));
+        }
         for (i, j) in model.joints().iter().enumerate() {
             let mut t = cmd[i];
             if self.saturate {
@@ -188,5 +204,6 @@ impl JointEffects {
             }
             tau[i] = t;
         }
+        Ok(())
     }
 }
