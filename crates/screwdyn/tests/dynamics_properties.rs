@@ -9,10 +9,9 @@ use nalgebra::{DMatrix, DVector, Matrix6xX, Vector3, Vector6};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use screwdyn::dynamics::{
-    closed_form, coriolis_matrix, crba, forward_dynamics, forward_dynamics_with, gravity_torque,
-    inverse_dynamics, kinetic_energy, kinetic_energy_mass_matrix, lagrange_coefficients,
-    mass_matrix_inverse, nonlinear_effects, potential_energy, rnea, ExternalWrenches,
-    ForwardMethod,
+    closed_form, coriolis_matrix, crba, forward_dynamics, gravity_torque, inverse_dynamics,
+    kinetic_energy, kinetic_energy_mass_matrix, lagrange_coefficients, mass_matrix_inverse,
+    nonlinear_effects, potential_energy, rnea, ExternalWrenches, ForwardMethod,
 };
 use screwdyn::kinematics::{compute_joint_jacobians, frame_jacobian, link_jacobian, Reference};
 use screwdyn::spatial::twist;
@@ -137,6 +136,7 @@ fn mass_matrix_crba_closed_form_walker_orin_and_link_sum() {
             &q,
             &vec![0.0; n],
             &vec![0.0; n],
+            None,
             ForwardMethod::WalkerOrin,
         )
         .unwrap();
@@ -266,7 +266,7 @@ fn forward_dynamics_three_ways_invert_rnea() {
             ForwardMethod::WalkerOrin,
         ] {
             for fext in [None, Some(&ext)] {
-                let qdd = forward_dynamics_with(&model, &mut ws, &q, &v, &tau, fext, method)
+                let qdd = forward_dynamics(&model, &mut ws, &q, &v, &tau, fext, method)
                     .unwrap()
                     .clone();
                 let back = inverse_dynamics(&model, &mut ws, &q, &v, qdd.as_slice(), fext).unwrap();
@@ -308,7 +308,7 @@ fn power_balance_without_gravity_and_energy_with_it() {
                 random_vec(&mut rng, n, 2.0),
                 random_vec(&mut rng, n, 5.0),
             );
-            let a = forward_dynamics(&model, &mut ws, &q, &v, &tau, ForwardMethod::Aba)
+            let a = forward_dynamics(&model, &mut ws, &q, &v, &tau, None, ForwardMethod::Aba)
                 .unwrap()
                 .clone();
             // dE/dt = ∂E/∂q · q̇ + ∂E/∂q̇ · q̈ by central differences of the link-sum energy

@@ -264,6 +264,7 @@ fn bad_input_is_an_error_not_a_panic() {
         &[0.0, 0.0],
         &[0.0, 0.0],
         &[0.0],
+        None,
         ForwardMethod::Crba,
     )
     .unwrap_err();
@@ -316,6 +317,7 @@ fn massless_chain_is_a_numerical_error() {
             &[0.1, 0.2],
             &[0.0, 0.0],
             &[1.0, 1.0],
+            None,
             method,
         )
         .unwrap_err();

@@ -74,14 +74,14 @@ fn check(model: &Model) {
         gravity_torque(model, ws, &q).unwrap();
         nonlinear_effects(model, ws, &q, &v).unwrap();
         aba(model, ws, &q, &v, &a).unwrap();
-        aba_with(model, ws, &q, &v, &a, Some(&ext)).unwrap();
+        forward_dynamics(model, ws, &q, &v, &a, Some(&ext), ForwardMethod::Aba).unwrap();
         for m in [
             ForwardMethod::Aba,
             ForwardMethod::Crba,
             ForwardMethod::WalkerOrin,
         ] {
-            forward_dynamics(model, ws, &q, &v, &a, m).unwrap();
-            forward_dynamics_with(model, ws, &q, &v, &a, Some(&ext), m).unwrap();
+            forward_dynamics(model, ws, &q, &v, &a, None, m).unwrap();
+            forward_dynamics(model, ws, &q, &v, &a, Some(&ext), m).unwrap();
         }
         kinetic_energy(model, ws, &q, &v).unwrap();
         kinetic_energy_mass_matrix(model, ws, &q, &v).unwrap();

@@ -12,7 +12,7 @@
 //! let (q, v, a) = ([0.3, 0.5], [1.0, -0.5], [0.2, 0.1]);
 //! let tau = dynamics::rnea(&m, &mut ws, &q, &v, &a).unwrap().clone();
 //! // τ = M q̈ + C q̇ + g, and forward dynamics inverts it.
-//! let qdd = dynamics::forward_dynamics(&m, &mut ws, &q, &v, tau.as_slice(),
+//! let qdd = dynamics::forward_dynamics(&m, &mut ws, &q, &v, tau.as_slice(), None,
 //!                                      dynamics::ForwardMethod::Aba).unwrap();
 //! assert!((qdd[0] - a[0]).abs() < 1e-12 && (qdd[1] - a[1]).abs() < 1e-12);
 //! ```
@@ -29,7 +29,7 @@ mod rnea;
 mod trace;
 mod wrenches;
 
-pub use aba::{aba, aba_with};
+pub use aba::aba;
 pub use closed_form::{closed_form, ClosedForm};
 pub use coriolis::coriolis_matrix;
 pub use crba::{crba, mass_matrix, mass_matrix_inverse};
@@ -38,8 +38,7 @@ pub use energy::{
     total_energy,
 };
 pub use forward::{
-    forward_dynamics, forward_dynamics_crba, forward_dynamics_walker_orin, forward_dynamics_with,
-    ForwardMethod,
+    forward_dynamics, forward_dynamics_crba, forward_dynamics_walker_orin, ForwardMethod,
 };
 pub use lagrange::{
     effective_inertia, effective_inertia_free, effective_inertia_locked, lagrange_coefficients,

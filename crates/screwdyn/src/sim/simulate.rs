@@ -6,7 +6,7 @@ use super::effects::{EffectGains, JointEffects};
 use super::integrate::{Integrator, Stepper};
 use super::record::{Recording, Sample, SampleSink};
 use crate::dynamics::energy::{kinetic_energy_given_twists, potential_energy_given_poses};
-use crate::dynamics::{forward_dynamics_with, ExternalWrenches, ForwardMethod};
+use crate::dynamics::{forward_dynamics, ExternalWrenches, ForwardMethod};
 use crate::error::{Error, Result};
 use crate::kinematics::{forward_velocity, frame_pose};
 use crate::model::Model;
@@ -101,8 +101,7 @@ impl Plant<'_> {
         } else {
             None
         };
-        let a =
-            forward_dynamics_with(self.model, &mut self.ws, q, v, &self.tau, fext, self.method)?;
+        let a = forward_dynamics(self.model, &mut self.ws, q, v, &self.tau, fext, self.method)?;
         qdd.copy_from_slice(a.as_slice());
         if let Some(i) = qdd.iter().position(|x| !x.is_finite()) {
             let cause = if self.effects.total_torque_is_commanded() {
