@@ -46,24 +46,21 @@ fn a_workspace_made_for_another_model_is_refused_by_every_algorithm() {
         says(forward_velocity(m, &mut ws, z, z), &w);
         says(forward_acceleration(m, &mut ws, z, z, z), &w);
         says(compute_joint_jacobians(m, &mut ws, z), &w);
-        says(rnea(m, &mut ws, z, z, z).map(|t| t.clone()), &w);
-        says(
-            inverse_dynamics(m, &mut ws, z, z, z, None).map(|t| t.clone()),
-            &w,
-        );
-        says(gravity_torque(m, &mut ws, z).map(|t| t.clone()), &w);
-        says(nonlinear_effects(m, &mut ws, z, z).map(|t| t.clone()), &w);
-        says(crba(m, &mut ws, z).map(|t| t.clone()), &w);
-        says(mass_matrix_inverse(m, &mut ws, z).map(|t| t.clone()), &w);
-        says(coriolis_matrix(m, &mut ws, z, z).map(|t| t.clone()), &w);
-        says(dynamics::aba(m, &mut ws, z, z, z).map(|t| t.clone()), &w);
+        says(rnea(m, &mut ws, z, z, z).cloned(), &w);
+        says(inverse_dynamics(m, &mut ws, z, z, z, None).cloned(), &w);
+        says(gravity_torque(m, &mut ws, z).cloned(), &w);
+        says(nonlinear_effects(m, &mut ws, z, z).cloned(), &w);
+        says(crba(m, &mut ws, z).cloned(), &w);
+        says(mass_matrix_inverse(m, &mut ws, z).cloned(), &w);
+        says(coriolis_matrix(m, &mut ws, z, z).cloned(), &w);
+        says(dynamics::aba(m, &mut ws, z, z, z).cloned(), &w);
         for method in [
             ForwardMethod::Aba,
             ForwardMethod::Crba,
             ForwardMethod::WalkerOrin,
         ] {
             says(
-                forward_dynamics(m, &mut ws, z, z, z, None, method).map(|t| t.clone()),
+                forward_dynamics(m, &mut ws, z, z, z, None, method).cloned(),
                 &w,
             );
         }
@@ -80,7 +77,7 @@ fn a_workspace_made_for_another_model_is_refused_by_every_algorithm() {
     let ext = ExternalWrenches::new(&big);
     let mut ws = Workspace::new(&small);
     says(
-        inverse_dynamics(&small, &mut ws, &z2, &z2, &z2, Some(&ext)).map(|t| t.clone()),
+        inverse_dynamics(&small, &mut ws, &z2, &z2, &z2, Some(&ext)).cloned(),
         &["external wrenches", "6 bodies"],
     );
     says(ext.on_body(&ws, 0), &["workspace"]);
@@ -135,15 +132,15 @@ fn wrong_lengths_and_non_finite_values_are_errors() {
     let m = builtin::planar2();
     let mut ws = Workspace::new(&m);
     says(
-        rnea(&m, &mut ws, &[0.0], &[0.0; 2], &[0.0; 2]).map(|t| t.clone()),
+        rnea(&m, &mut ws, &[0.0], &[0.0; 2], &[0.0; 2]).cloned(),
         &["q has 1 values"],
     );
     says(
-        rnea(&m, &mut ws, &[0.0; 2], &[f64::NAN, 0.0], &[0.0; 2]).map(|t| t.clone()),
+        rnea(&m, &mut ws, &[0.0; 2], &[f64::NAN, 0.0], &[0.0; 2]).cloned(),
         &["v", "non-finite"],
     );
     says(
-        dynamics::aba(&m, &mut ws, &[0.0; 2], &[0.0; 2], &[f64::INFINITY, 0.0]).map(|t| t.clone()),
+        dynamics::aba(&m, &mut ws, &[0.0; 2], &[0.0; 2], &[f64::INFINITY, 0.0]).cloned(),
         &["tau", "non-finite"],
     );
     let cf = closed_form(&m, &[0.1, 0.2], &[0.0, 1.0]).unwrap();
@@ -184,20 +181,18 @@ fn simulation_pieces_refuse_wrong_lengths() {
     );
     // Stepper.
     let mut s = Stepper::new(Integrator::Rk4, 2).unwrap();
+    let mut rest = |_: f64, _: &[f64], _: &[f64], a: &mut [f64]| {
+        a.fill(0.0);
+        Ok(())
+    };
     let (mut q, mut v) = (vec![0.0; 3], vec![0.0; 2]);
     says(
-        s.advance(&mut |_, _, _, a| Ok(a.fill(0.0)), 0.0, 1e-3, &mut q, &mut v),
+        s.advance(&mut rest, 0.0, 1e-3, &mut q, &mut v),
         &["2 joints", "q has 3"],
     );
     let mut q = vec![0.0; 2];
     says(
-        s.advance(
-            &mut |_, _, _, a| Ok(a.fill(0.0)),
-            0.0,
-            f64::NAN,
-            &mut q,
-            &mut v,
-        ),
+        s.advance(&mut rest, 0.0, f64::NAN, &mut q, &mut v),
         &["positive finite step"],
     );
     says(
