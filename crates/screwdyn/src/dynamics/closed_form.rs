@@ -78,6 +78,9 @@ pub(crate) fn bar_matrix<T: Real>(h: &Twist<T>) -> Matrix6<T> {
 /// `M`, `C`, `g` (seed 000, "General n-link manipulator dynamics" and "Adding Gravity";
 /// seed 001, "Dynamic Equations in Closed Form"). `τ = M θ̈ + C θ̇ + g − Jᵀ W_ext`.
 ///
+/// # Errors
+/// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a bad `q` or `v`.
+///
 /// ```
 /// use screwdyn::{builtin, dynamics::closed_form};
 /// let m = builtin::planar2();
@@ -166,6 +169,9 @@ pub fn closed_form<T: Real>(model: &Model<T>, q: &[T], v: &[T]) -> Result<Closed
 
 impl<T: Real> ClosedForm<T> {
     /// `W_ext`: the external wrenches stacked in body frames (seed 000).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `fext` was made for another model.
     pub fn stacked_wrenches(&self, fext: &ExternalWrenches<T>) -> Result<DVector<T>> {
         let n = self.pose_in_world.len();
         if fext.len() != n {
@@ -183,6 +189,9 @@ impl<T: Real> ClosedForm<T> {
     }
 
     /// `τ = M θ̈ + C θ̇ + g − Jᵀ W_ext` (seed 000), with the velocity `θ̇` the form was built at.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `qdd` does not have one value per joint or `fext` was made for another model; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞ in `qdd`.
     ///
     /// ```
     /// use screwdyn::{builtin, dynamics::{closed_form, rnea}, Workspace};

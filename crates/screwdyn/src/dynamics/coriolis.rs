@@ -26,6 +26,9 @@ use nalgebra::DMatrix;
 /// `C_kj = s_kᵀ(𝔍ᶜ_j ṡ_j + Bᶜ_j s_j)` for `k` supporting `j` and
 /// `C_jk = (𝔍ᶜ_j s_j)ᵀ ṡ_k + (Bᶜ_jᵀ s_j)ᵀ s_k`: O(n²) on a tree.
 ///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
+///
 /// ```
 /// use screwdyn::{builtin, dynamics::coriolis_matrix, Workspace};
 /// let m = builtin::planar2();

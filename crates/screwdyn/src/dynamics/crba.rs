@@ -20,6 +20,9 @@ use nalgebra::DMatrix;
 /// per-ancestor change of frame). Also fills `ws.screw_in_world`.
 /// Returns `ws.mass_matrix` (both triangles filled).
 ///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
+///
 /// ```
 /// use screwdyn::{builtin, dynamics::crba, Workspace};
 /// let m = builtin::planar2();
@@ -39,6 +42,9 @@ pub fn crba<'w, T: Real>(
 }
 
 /// Alias of [`crba`]: the joint-space mass matrix `M(q)`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
 pub fn mass_matrix<'w, T: Real>(
     model: &Model<T>,
     ws: &'w mut Workspace<T>,
@@ -86,6 +92,9 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
 
 /// `M(q)⁻¹` by CRBA and a Cholesky factorisation. Returns `ws.mass_matrix_inverse`;
 /// `Error::Numerical` when `M` is singular (e.g. a massless chain).
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞. [`Error::Numerical`](crate::Error::Numerical) when `M` is singular, naming the joint.
 ///
 /// ```
 /// use screwdyn::{builtin, dynamics::mass_matrix_inverse, Workspace};

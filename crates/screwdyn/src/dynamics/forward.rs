@@ -126,6 +126,9 @@ fn solve<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, tau: &[T]) -> Result<
 
 /// Forward dynamics by CRBA (`M`), RNEA with `q̈ = 0` (`b`) and a Cholesky solve of
 /// `M q̈ = τ − b`. Returns `ws.qdd`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞. [`Error::Numerical`](crate::Error::Numerical) when `M` is singular, naming the joint.
 pub fn forward_dynamics_crba<'w, T: Real>(
     model: &Model<T>,
     ws: &'w mut Workspace<T>,
@@ -143,6 +146,9 @@ pub fn forward_dynamics_crba<'w, T: Real>(
 /// Seed 004 §6.4, the Walker–Orin simulator: ① `b` = SUB1(q, q̇, q̈ = 0, f_ext) (RNEA);
 /// ② column `j` of `H(q)` = SUB2(q, q̈ = e_j) (RNEA without velocity, gravity or external
 /// wrenches); ③ solve `H q̈ = τ − b`. Returns `ws.qdd` (and leaves `M` in `ws.mass_matrix`).
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞. [`Error::Numerical`](crate::Error::Numerical) when `M` is singular, naming the joint.
 pub fn forward_dynamics_walker_orin<'w, T: Real>(
     model: &Model<T>,
     ws: &'w mut Workspace<T>,

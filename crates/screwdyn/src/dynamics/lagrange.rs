@@ -53,6 +53,9 @@ impl<T: Real> LagrangeCoefficients<T> {
 /// `∂𝔍_i/∂q_k = −(ad_{s_k}ᵀ 𝔍_i + 𝔍_i ad_{s_k})` when `k` supports `i`; differentiate
 /// `M = Σ_i J_iᵀ 𝔍_i J_i` (seed 001) term by term. O(n⁴); allocates.
 ///
+/// # Errors
+/// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a bad `q`.
+///
 /// ```
 /// use screwdyn::{builtin, dynamics::mass_matrix_derivatives};
 /// let m = builtin::planar2();
@@ -108,6 +111,9 @@ pub fn mass_matrix_derivatives<T: Real>(model: &Model<T>, q: &[T]) -> Result<Vec
 /// Seed 004's `D_ij`, `D_ijk` and `D_i` at `q`, with `D_ijk` the Christoffel symbols of the
 /// first kind from the analytic `∂M/∂q` of [`mass_matrix_derivatives`].
 ///
+/// # Errors
+/// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a bad `q`.
+///
 /// ```
 /// use screwdyn::{builtin, dynamics::lagrange_coefficients};
 /// let m = builtin::planar2(); // m1 = m2 = l1 = l2 = 1
@@ -142,6 +148,9 @@ pub fn lagrange_coefficients<T: Real>(
 /// others are locked (`q̈ = 0`), at rest without gravity: the Schur complement
 /// `M_ii − M_iF M_FF⁻¹ M_Fi` (seed 004: `D11 − D12²/D22` for the two-joint arm). `free[joint]`
 /// is ignored. Allocates.
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) for a joint index out of range or a set that does not include it; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch)/[`Error::NonFinite`](crate::Error::NonFinite) for a bad `q`; [`Error::Numerical`](crate::Error::Numerical) for a singular block of `M`.
 ///
 /// ```
 /// use screwdyn::{builtin, dynamics::effective_inertia, Workspace};
@@ -189,6 +198,9 @@ pub fn effective_inertia<T: Real>(
 }
 
 /// Effective inertia at `joint` with every other joint locked: `D_ii` (seed 004, case ①).
+///
+/// # Errors
+/// As [`effective_inertia`].
 pub fn effective_inertia_locked<T: Real>(
     model: &Model<T>,
     ws: &mut Workspace<T>,
@@ -201,6 +213,9 @@ pub fn effective_inertia_locked<T: Real>(
 
 /// Effective inertia at `joint` with every other joint free: `1 / (M⁻¹)_ii`, the Schur
 /// complement of seed 004's case ② (`D11 − D12²/D22` for two joints).
+///
+/// # Errors
+/// As [`effective_inertia`].
 pub fn effective_inertia_free<T: Real>(
     model: &Model<T>,
     ws: &mut Workspace<T>,

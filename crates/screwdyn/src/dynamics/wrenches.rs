@@ -89,6 +89,9 @@ impl<T: Real> ExternalWrenches<T> {
     }
 
     /// Adds `W_ext^{i,i}`: a wrench of the environment on body `body`, in the body frame.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when the model has no body `body`; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞ in `w`.
     pub fn add_local(&mut self, body: usize, w: Wrench<T>) -> Result<()> {
         self.check_body(body)?;
         check_wrench(&w, "the external wrench")?;
@@ -98,6 +101,9 @@ impl<T: Real> ExternalWrenches<T> {
 
     /// Adds a wrench of the environment on body `body`, in the base frame {0} (moment about the
     /// base origin); converted at call time with `Ad_{H_i^0}ᵀ`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when the model has no body `body`; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞ in `w`.
     pub fn add_world(&mut self, body: usize, w: Wrench<T>) -> Result<()> {
         self.check_body(body)?;
         check_wrench(&w, "the external wrench")?;
@@ -109,6 +115,9 @@ impl<T: Real> ExternalWrenches<T> {
     /// Adds a tip wrench `W_tip^{e,e}`: the wrench that frame `frame` applies to the environment,
     /// written in that frame (seed 000: `τ = M q̈ + C q̇ + J_eᵀ W_tip`). A frame on the fixed base
     /// is rejected.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when the model has no frame `frame`, the frame is fixed to the base, or the set was made for another model; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞ in `w`.
     pub fn add_tip(&mut self, model: &Model<T>, frame: usize, w: Wrench<T>) -> Result<()> {
         self.check(model)?;
         let f = model.frame(frame)?;

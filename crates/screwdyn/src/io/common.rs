@@ -60,6 +60,9 @@ pub(crate) struct PoseSpec {
 
 impl PoseSpec {
     /// The pose, or a phrase saying what is wrong.
+    ///
+    /// # Errors
+    /// A phrase saying which value is malformed (the loader adds file and line).
     pub fn to_se3(&self) -> std::result::Result<Se3, String> {
         let n = self.rpy.is_some() as u8
             + self.quaternion.is_some() as u8
@@ -129,6 +132,9 @@ pub(crate) fn inertia_matrix(i: [f64; 6]) -> Matrix3<f64> {
 }
 
 impl InertiaSpec {
+    ///
+    /// # Errors
+    /// A phrase saying which value is malformed (the loader adds file and line).
     pub fn to_inertia(&self) -> std::result::Result<SpatialInertia, String> {
         if let Some(rows) = self.spatial_inertia {
             if self.mass.is_some() || self.com.is_some() || self.inertia.is_some() {

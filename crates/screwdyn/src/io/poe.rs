@@ -65,6 +65,9 @@ pub struct PoeExtras {
 
 /// Builds a model from Modern Robotics' `M`, `Slist`, `Mlist`, `Glist` (gravity
 /// `(0, 0, −9.81)`; use [`Model::with_gravity`] to change it).
+///
+/// # Errors
+/// [`Error::InvalidModel`] when the lists disagree in length, a screw or matrix is malformed, or a name repeats.
 pub fn from_poe(
     name: &str,
     m: Option<&Se3>,
@@ -78,6 +81,9 @@ pub fn from_poe(
 
 /// [`from_poe`] returning the [`ModelBuilder`], to add frames, names and gravity; `what` prefixes
 /// messages (e.g. the file name).
+///
+/// # Errors
+/// As [`from_poe`].
 pub fn poe_builder(
     name: &str,
     m: Option<&Se3>,
@@ -248,6 +254,9 @@ fn se3_rows(rows: &[[f64; 4]; 4], what: &str, file: &str) -> Result<Se3> {
 }
 
 /// Parses a PoE TOML description (see the module documentation for the keys).
+///
+/// # Errors
+/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
 pub fn parse_poe(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let f: PoeFile = common::from_toml(text, file)?;
     let n = f.Slist.len();

@@ -269,6 +269,9 @@ fn parse_joint(ctx: &Ctx, n: Node) -> Result<UJoint> {
 }
 
 /// Parses URDF text into a [`Model`]; `file` names the source in messages (`file:line: …`).
+///
+/// # Errors
+/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
 pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let doc = Document::parse(text).map_err(|e| {
         let p = e.pos();
@@ -500,6 +503,9 @@ fn xml_escape(s: &str) -> String {
 /// revolute joint without position limits is written as `continuous`; infinite limits are
 /// left out. Gravity is not part of URDF and is not written. Helical joints cannot be written
 /// (URDF has none): that is an error.
+///
+/// # Errors
+/// [`Error::InvalidModel`] for a joint URDF cannot express (a helical joint, or an axis that does not pass through the child origin).
 pub fn to_urdf_string(model: &Model) -> Result<String> {
     let mut out = String::new();
     let mut links = String::new();

@@ -79,6 +79,9 @@ pub(crate) fn frame_pose_unchecked<T: Real>(ws: &Workspace<T>, f: &Frame<T>) -> 
 /// joints supporting body `i`, with `S_j^0 = Ad_{H_j^0(0)} S_j^{j,λ(j)}` the screw axes in the
 /// base frame at home. An independent formula, used to check the recursion; it allocates.
 ///
+/// # Errors
+/// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a bad `q`.
+///
 /// ```
 /// use screwdyn::{builtin, kinematics::{forward_kinematics, forward_kinematics_poe}, Workspace};
 /// let m = builtin::planar2();

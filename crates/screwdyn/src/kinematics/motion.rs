@@ -11,6 +11,9 @@ use crate::workspace::Workspace;
 /// Forward kinematics and body twists: `V_i^{i,0} = Ad_{H_{λ(i)}^i} V_{λ(i)} + S_i q̇_i`
 /// (seed 001, parent-child twist relation). Writes `ws.twist`.
 ///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
+///
 /// ```
 /// use screwdyn::{builtin, Workspace, kinematics::forward_velocity};
 /// let m = builtin::planar2();
@@ -40,6 +43,9 @@ pub fn forward_velocity<T: Real>(
 /// Forward kinematics, twists and accelerations of every body with the base at rest:
 /// `V̇_i = Ad_{H_{λ(i)}^i} V̇_{λ(i)} − ad_{S_i q̇_i}(Ad_{H_{λ(i)}^i} V_{λ(i)}) + S_i q̈_i`
 /// (seed 002, "Analytic expression of V̇"). Writes `ws.twist` and `ws.twist_dot`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
 ///
 /// ```
 /// use screwdyn::{builtin, Workspace, kinematics::forward_acceleration};
@@ -91,6 +97,9 @@ fn propagate_acceleration<T: Real>(
 
 /// `J̇(q, q̇) q̇` of frame `f` in `reference`: the frame's acceleration when `q̈ = 0`
 /// (overwrites the workspace's twists and accelerations).
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞. [`Error::InvalidArgument`](crate::Error::InvalidArgument) when the model has no frame `frame`.
 ///
 /// ```
 /// use screwdyn::{builtin, Workspace, kinematics::{frame_jdot_qdot, Reference}};

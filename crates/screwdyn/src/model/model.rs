@@ -273,6 +273,9 @@ impl<T: Real> Model<T> {
     /// A copy of the model with these viscous damping and Coulomb friction coefficients, one
     /// per joint (non-negative and finite).
     ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch)/[`Error::NonFinite`](crate::Error::NonFinite) for a vector of the wrong length or with NaN/∞; [`Error::InvalidArgument`](crate::Error::InvalidArgument) for a negative value.
+    ///
     /// ```
     /// let m = screwdyn::builtin::planar2().with_joint_friction(&[0.5, 0.2], &[0.0, 0.1]).unwrap();
     /// assert_eq!(m.joints()[1].damping, 0.2);
@@ -356,6 +359,9 @@ impl<T: Real> Model<T> {
 
     /// The index of the frame called `name`.
     ///
+    /// # Errors
+    /// [`Error::UnknownName`](crate::Error::UnknownName) listing the known names.
+    ///
     /// ```
     /// let m = screwdyn::builtin::planar2();
     /// assert!(m.frame_id("link2").is_ok());
@@ -373,6 +379,9 @@ impl<T: Real> Model<T> {
             })
     }
     /// The index of the moving body (link) called `name`.
+    ///
+    /// # Errors
+    /// [`Error::UnknownName`](crate::Error::UnknownName) listing the known names.
     pub fn body_id(&self, name: &str) -> Result<usize> {
         self.bodies
             .iter()
@@ -384,6 +393,9 @@ impl<T: Real> Model<T> {
             })
     }
     /// The index of the joint called `name`.
+    ///
+    /// # Errors
+    /// [`Error::UnknownName`](crate::Error::UnknownName) listing the known names.
     pub fn joint_id(&self, name: &str) -> Result<usize> {
         self.joints
             .iter()
@@ -409,6 +421,9 @@ impl<T: Real> Model<T> {
     }
 
     /// Checks that a joint-space vector has `nq` finite entries; `what` names it in the error.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) naming the joints, or [`Error::NonFinite`](crate::Error::NonFinite) naming the position.
     ///
     /// ```
     /// let m = screwdyn::builtin::planar2();

@@ -79,6 +79,9 @@ pub struct TorqueSeries {
 
 impl TorqueSeries {
     /// From sample times (strictly increasing) and one torque vector per time.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) for no samples, rows of different lengths or times that do not increase strictly; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞.
     pub fn new(times: Vec<f64>, values: Vec<Vec<f64>>) -> Result<Self> {
         if times.is_empty() || times.len() != values.len() {
             return Err(Error::InvalidArgument(format!(
@@ -178,6 +181,9 @@ impl PdGravity {
     }
 
     /// Gains per joint; `model` is the controller's model (it may differ from the plant).
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch)/[`Error::NonFinite`](crate::Error::NonFinite) for a target or gain vector of the wrong length or with NaN/∞.
     pub fn new(model: Model, target: Vec<f64>, kp: Vec<f64>, kd: Vec<f64>) -> Result<Self> {
         model.check_vector(&target, "the PD target")?;
         model.check_vector(&kp, "kp")?;
@@ -223,6 +229,9 @@ pub struct ComputedTorque {
 
 impl ComputedTorque {
     /// Tracks `reference` with gains `kp`, `kd`, using the controller's own `model`.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch)/[`Error::NonFinite`](crate::Error::NonFinite) for a bad gain vector; [`Error::InvalidArgument`](crate::Error::InvalidArgument) when the reference has another number of joints.
     pub fn new(
         model: Model,
         reference: Box<dyn Trajectory>,

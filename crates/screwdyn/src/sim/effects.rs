@@ -84,6 +84,9 @@ impl EffectGains {
     /// The gains of `effects` for `model`, scaled by the joint inertias `I_i = 1/(M⁻¹)_ii` at
     /// `q0`, for a step of `dt`. Errors name the bad setting.
     ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) for a time constant, damping ratio or smoothing speed that is not finite and positive (non-negative for the ratio); errors of [`mass_matrix_inverse`](crate::dynamics::mass_matrix_inverse) at `q0`.
+    ///
     /// ```
     /// use screwdyn::sim::{EffectGains, JointEffects};
     /// // The 1 kg, 1 m pendulum moves I = m l² = 1 kg·m²: k = I/T², d = 2ζI/T.

@@ -128,6 +128,9 @@ pub struct Trapezoid {
 
 impl Trapezoid {
     /// Profiles from `q0` to `qf` under per-joint limits `vmax`, `amax` (positive).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) for vectors of different lengths, non-positive limits or duration; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞.
     pub fn new(
         q0: &[f64],
         qf: &[f64],
@@ -225,6 +228,9 @@ pub struct Quintic {
 
 impl Quintic {
     /// The general boundary-value quintic.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) for vectors of different lengths, non-positive limits or duration; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞.
     pub fn new(
         start: (&[f64], &[f64], &[f64]),
         end: (&[f64], &[f64], &[f64]),
@@ -268,6 +274,9 @@ impl Quintic {
     }
 
     /// From rest at `q0` to rest at `qf` in `duration` seconds.
+    ///
+    /// # Errors
+    /// As [`Quintic::new`].
     pub fn rest_to_rest(q0: &[f64], qf: &[f64], duration: f64) -> Result<Self> {
         let z = vec![0.0; q0.len()];
         Quintic::new((q0, &z, &z), (qf, &z, &z), duration)
@@ -319,6 +328,9 @@ pub struct Waypoints {
 
 impl Waypoints {
     /// Through `points[k]` at `times[k]` (strictly increasing, starting anywhere).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) for vectors of different lengths, non-positive limits or duration; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞.
     pub fn new(times: &[f64], points: &[Vec<f64>]) -> Result<Self> {
         if times.len() != points.len() || times.len() < 2 {
             return Err(Error::InvalidArgument(format!(
