@@ -73,8 +73,13 @@ impl PoseSpec {
         let mut h = if let Some([r, p, y]) = self.rpy {
             Se3::from_rpy(r, p, y)
         } else if let Some([w, x, y, z]) = self.quaternion {
-            let q = Quaternion::new(w, x, y, z);
-            if q.norm().is_nan() || q.norm() <= 1e-9 {
+            // Scaled first, so that a huge quaternion normalises instead of overflowing.
+            let scale = [w, x, y, z].iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+            if !(scale.is_finite() && scale > 0.0) {
+                return Err("has a zero quaternion (or a non-finite one)".into());
+            }
+            let q = Quaternion::new(w / scale, x / scale, y / scale, z / scale);
+            if q.norm() * scale <= 1e-9 {
                 return Err("has a zero quaternion".into());
             }
             Se3::new(
