@@ -247,7 +247,7 @@ fn parse_joint(ctx: &Ctx, n: Node) -> Result<UJoint> {
         if let Some(v) = ctx.vec3(a, "xyz", &owner)? {
             // Scaled first, so that a huge axis such as 1e308 1e308 0 normalises too.
             let scale = v.amax();
-            if !(scale > 0.0) || (v / scale).norm() * scale < 1e-12 {
+            if scale <= 0.0 || (v / scale).norm() * scale < 1e-12 {
                 if kind != "fixed" {
                     return Err(ctx.model_err(
                         ctx.line(a),
