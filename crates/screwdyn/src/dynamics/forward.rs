@@ -138,6 +138,7 @@ pub fn forward_dynamics_crba<'w, T: Real>(
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<&'w DVector<T>> {
     prepare(model, ws, q, v, tau, fext)?;
+    ws.ensure_square()?;
     crba_given_poses(model, ws);
     solve(model, ws, tau)?;
     Ok(&ws.qdd)
@@ -158,6 +159,7 @@ pub fn forward_dynamics_walker_orin<'w, T: Real>(
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<&'w DVector<T>> {
     prepare(model, ws, q, v, tau, fext)?;
+    ws.ensure_square()?;
     let zero = Twist::zeros();
     for j in 0..model.nv() {
         rnea_passes(
