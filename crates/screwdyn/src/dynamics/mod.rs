@@ -23,6 +23,7 @@ mod closed_form;
 mod coriolis;
 mod crba;
 pub(crate) mod energy;
+mod inputs;
 mod forward;
 mod lagrange;
 mod rnea;
