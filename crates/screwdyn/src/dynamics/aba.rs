@@ -1,7 +1,7 @@
 //! Forward dynamics by Featherstone's articulated-body algorithm (O(n)), in the seeds' notation.
 
-use super::rnea::base_acceleration;
 use super::inputs::checked_poses;
+use super::rnea::base_acceleration;
 use super::wrenches::ExternalWrenches;
 use crate::error::{Error, Result};
 use crate::model::Model;

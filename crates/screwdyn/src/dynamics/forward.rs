@@ -4,8 +4,8 @@
 use super::aba::articulated_body;
 use super::cholesky::{cholesky_in_place, cholesky_solve_in_place, singular_error};
 use super::crba::crba_given_poses;
-use super::rnea::{base_acceleration, rnea_passes};
 use super::inputs::checked_poses;
+use super::rnea::{base_acceleration, rnea_passes};
 use super::wrenches::ExternalWrenches;
 use crate::error::{Error, Result};
 use crate::model::Model;

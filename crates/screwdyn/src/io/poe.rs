@@ -308,12 +308,21 @@ pub fn parse_poe(text: &str, file: &str, options: &LoadOptions) -> Result<Model>
         effort: f.effort.clone(),
         strict: options.strict,
     };
-    let name = f
-        .name
-        .clone()
-        .unwrap_or_else(|| super::native::default_name(file));
-    let mut b = poe_builder(&name, m.as_ref(), &slist, &mlist, &glist, &extras, file)?;
+    let header = common::Header {
+        name: f.name.as_deref(),
+        base: f.base.as_deref(),
+        gravity: f.gravity,
+        frames: &f.frame,
+    };
+    let mut b = poe_builder(
+        &header.model_name(file),
+        m.as_ref(),
+        &slist,
+        &mlist,
+        &glist,
+        &extras,
+        file,
+    )?;
     b.gravity(common::gravity(f.gravity));
-    common::add_frames(&mut b, &f.frame, file, text)?;
-    common::build(&b, file)
+    header.finish(b, file, text)
 }
