@@ -355,6 +355,9 @@ pub struct TorqueProfileArgs {
     /// Sampling step (s).
     #[arg(long, default_value_t = 1e-3)]
     pub dt: f64,
+    /// Refuse profiles with more samples than this (a profile is held in memory).
+    #[arg(long, default_value_t = screwdyn::sim::MAX_PROFILE_SAMPLES)]
+    pub max_samples: usize,
     /// Write the samples (t, q, v, a, tau, energies) to a .csv or .json file.
     #[arg(long, value_name = "FILE")]
     pub output: Option<PathBuf>,

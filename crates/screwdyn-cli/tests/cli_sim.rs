@@ -464,3 +464,65 @@ fn recorded_frame_positions_follow_the_planar_closed_form() {
         "no frame named 'nope'",
     );
 }
+
+/// Issue 12.3: a run ends exactly at --duration (a last, shorter step), and run files quote
+/// joint names that CSV needs quoted.
+#[test]
+fn runs_end_at_the_duration_and_csv_headers_quote_joint_names() {
+    for (dt, steps) in [("0.3", 4), ("5", 1)] {
+        let v = json(&[
+            "simulate",
+            "builtin:pendulum",
+            "--q0",
+            "0.2",
+            "--dt",
+            dt,
+            "--duration",
+            "1",
+        ]);
+        // Without --output, JSON is the run itself: one entry per sample.
+        let t = v["t"].as_array().unwrap();
+        assert_eq!(t.len(), steps + 1, "--dt {dt}");
+        assert_eq!(f(&t[steps]), 1.0, "--dt {dt}");
+    }
+    let urdf = tmp("quoted.urdf");
+    std::fs::write(
+        &urdf,
+        r#"<robot name="q"><link name="base"/>
+<link name="a"><inertial><origin xyz="1 0 0"/><mass value="1"/><inertia ixx="0" iyy="0" izz="0" ixy="0" ixz="0" iyz="0"/></inertial></link>
+<joint name="j&quot;2,x" type="continuous"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/></joint></robot>"#,
+    )
+    .unwrap();
+    let run = tmp("quoted_run.csv");
+    ok(&[
+        "simulate",
+        urdf.to_str().unwrap(),
+        "--duration",
+        "0.01",
+        "--output",
+        run.to_str().unwrap(),
+    ]);
+    let mut r = csv::Reader::from_path(&run).unwrap();
+    let headers: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
+    assert_eq!(headers[1], "q.j\"2,x");
+    assert_eq!(headers.len(), 8);
+    assert_eq!(r.records().count(), 11);
+    // A profile that would need more samples than --max-samples is refused before it starts.
+    fails(
+        &[
+            "torque-profile",
+            "builtin:planar2",
+            "--trajectory",
+            "quintic",
+            "--qf",
+            "1,1",
+            "--duration",
+            "1",
+            "--dt",
+            "1e-3",
+            "--max-samples",
+            "100",
+        ],
+        "more than the limit of 100",
+    );
+}

@@ -643,7 +643,7 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
         )));
     }
     let (traj, what) = trajectory(a, &m, &q0, &qf)?;
-    let p = sim::torque_profile(&m, traj.as_ref(), a.dt)?;
+    let p = sim::torque_profile_limited(&m, traj.as_ref(), a.dt, a.max_samples)?;
     let rec = &p.samples;
     if let (Some(path), Some(kind)) = (&a.output, output_kind) {
         let file = std::fs::File::create(path)
