@@ -59,6 +59,9 @@ pub enum Command {
     Export(ExportArgs),
     /// Per-call timing (median ns) of the core algorithms on random states.
     Bench(BenchArgs),
+    /// Symbolic equations of motion (M, C, g, τ, FK, Jacobian, energies, regressor) as text,
+    /// LaTeX, JSON or code (C, Python, Rust, MATLAB).
+    Symbolic(Box<SymbolicArgs>),
 }
 
 #[derive(Args, Debug)]
@@ -414,4 +417,64 @@ pub struct BenchArgs {
     /// Output format.
     #[arg(long, value_enum)]
     pub format: Option<Format>,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SymbolicFormat {
+    /// Unicode text like the lecture notes (θ, θ̇, c₁₂ with a legend).
+    Text,
+    /// LaTeX (an aligned block).
+    Latex,
+    /// A Python function (keyword arguments for the symbols; returns nested lists).
+    Python,
+    /// A C function writing a row-major `double *out`.
+    C,
+    /// A Rust function returning a nested array.
+    Rust,
+    /// A MATLAB/Octave function.
+    Matlab,
+    /// JSON: SymPy-parsable expressions (q1, qd1, qdd1) and the symbols' values.
+    Json,
+}
+
+/// `screwdyn symbolic MODEL --quantity …` (issue 14).
+#[derive(Args, Debug)]
+pub struct SymbolicArgs {
+    /// A .urdf or .toml file, or builtin:<name>.
+    pub model: String,
+    /// mass-matrix, coriolis, gravity, torque, fk, jacobian, energy or regressor.
+    #[arg(long, default_value = "mass-matrix")]
+    pub quantity: String,
+    /// Parameters kept as symbols: all, groups (mass, com, inertia, gravity, lengths) or names
+    /// (m_link2, a_2, Ixx_link1, g, … — planar2: m1, m2, L1, L2, g), comma-separated. Groups take
+    /// the non-zero parameters only. Default: none (all numeric).
+    #[arg(long, default_value = "")]
+    pub symbols: String,
+    /// The frame of fk and jacobian (default: the last body's frame).
+    #[arg(long)]
+    pub frame: Option<String>,
+    /// The Jacobian's reference.
+    #[arg(long, value_enum, default_value = "local")]
+    pub reference: ReferenceArg,
+    /// Which C: seed (seed 000's literal closed form) or christoffel.
+    #[arg(long, default_value = "seed")]
+    pub coriolis_form: String,
+    /// Text/LaTeX grouping: inertial (m2 (L1² + …)), config ((m1 + m2) L1² + …) or none.
+    #[arg(long, default_value = "inertial")]
+    pub collect: String,
+    /// Output format.
+    #[arg(long, value_enum, default_value = "text")]
+    pub format: SymbolicFormat,
+    /// Write cos(θ1 + θ2) instead of c₁₂.
+    #[arg(long)]
+    pub no_abbrev: bool,
+    /// The largest number of terms one expanded expression may have (text, LaTeX, JSON).
+    #[arg(long, default_value_t = screwdyn::symbolic::DEFAULT_MAX_TERMS)]
+    pub max_terms: usize,
+    /// Write to this file instead of stdout.
+    #[arg(long)]
+    pub output: Option<PathBuf>,
+    /// Accept inertias that are not physically consistent and massless leaf bodies.
+    #[arg(long)]
+    pub allow_nonphysical: bool,
 }

@@ -81,7 +81,10 @@ fn planar2_mass_matrix_is_seed_003_term_by_term() {
     assert_eq!(entry(&d, 0, 1, 0), &m12);
     assert_eq!(entry(&d, 0, 1, 1), &m22);
     // Printed as the issue writes it (collected on the masses) and as seed 003 lays it out.
-    assert_eq!(d.entry_text(0, 0, 0), "m1 L1² + m2 (L1² + 2 L1 L2 c₂ + L2²)");
+    assert_eq!(
+        d.entry_text(0, 0, 0),
+        "m1 L1² + m2 (L1² + 2 L1 L2 c₂ + L2²)"
+    );
     let p = Printer::new(&d.params, Style::Text { abbrev: true }, Collect::Config);
     assert_eq!(p.poly(&m11), "(m1 + m2) L1² + 2 m2 L1 L2 c₂ + m2 L2²");
     assert_eq!(p.poly(&m12), "m2 L1 L2 c₂ + m2 L2²");
@@ -100,10 +103,7 @@ fn planar2_velocity_and_gravity_terms_are_seed_003() {
     assert_eq!(entry(&d, 1, 0, 0), &cv1);
     assert_eq!(entry(&d, 1, 1, 0), &cv2);
     let p = Printer::new(&d.params, Style::Text { abbrev: true }, Collect::Config);
-    assert_eq!(
-        p.poly(&cv1),
-        "−2 m2 L1 L2 s₂ θ̇₁ θ̇₂ − m2 L1 L2 s₂ θ̇₂²"
-    );
+    assert_eq!(p.poly(&cv1), "−2 m2 L1 L2 s₂ θ̇₁ θ̇₂ − m2 L1 L2 s₂ θ̇₂²");
     // Seed 004's Christoffel coefficients: D112 = D121 = −m2 l1 l2 s2, D122 = −m2 l1 l2 s2,
     // D211 = m2 l1 l2 s2, so C = [D112 θ̇2, D121 θ̇1 + D122 θ̇2; D211 θ̇1, 0].
     let o = Options {
@@ -203,7 +203,11 @@ fn planar2_with_link_inertias() {
     let mut b = ModelBuilder::new("planar2");
     let z = Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0);
     let inertia = |m: f64, i: [f64; 3]| {
-        SpatialInertia::new(m, Vector3::zeros(), Matrix3::from_diagonal(&Vector3::from(i)))
+        SpatialInertia::new(
+            m,
+            Vector3::zeros(),
+            Matrix3::from_diagonal(&Vector3::from(i)),
+        )
     };
     b.gravity(Vector3::new(0.0, -9.81, 0.0))
         .link(
@@ -414,9 +418,18 @@ fn panda_numeric() {
         let x = random_vec(&mut rng, 7, 3.0);
         let expect: Vec<f64> = match q {
             Quantity::MassMatrix => crba(&m, &mut ws, &x).unwrap().iter().copied().collect(),
-            _ => gravity_torque(&m, &mut ws, &x).unwrap().iter().copied().collect(),
+            _ => gravity_torque(&m, &mut ws, &x)
+                .unwrap()
+                .iter()
+                .copied()
+                .collect(),
         };
-        assert_close(&d.eval(0, &x, &[0.0; 7], &[0.0; 7]), &expect, 1e-12, "panda poly");
+        assert_close(
+            &d.eval(0, &x, &[0.0; 7], &[0.0; 7]),
+            &expect,
+            1e-12,
+            "panda poly",
+        );
     }
 }
 
@@ -454,41 +467,73 @@ fn symbolic_lengths_and_inertias_evaluate_like_the_numbers() {
             let a = random_vec(&mut rng, n, 2.0);
             let expect: Vec<f64> = match q {
                 Quantity::MassMatrix => crba(&m, &mut ws, &x).unwrap().iter().copied().collect(),
-                Quantity::Gravity => gravity_torque(&m, &mut ws, &x).unwrap().iter().copied().collect(),
-                _ => rnea(&m, &mut ws, &x, &v, &a).unwrap().iter().copied().collect(),
+                Quantity::Gravity => gravity_torque(&m, &mut ws, &x)
+                    .unwrap()
+                    .iter()
+                    .copied()
+                    .collect(),
+                _ => rnea(&m, &mut ws, &x, &v, &a)
+                    .unwrap()
+                    .iter()
+                    .copied()
+                    .collect(),
             };
             let got = unit.eval(&x, &v, &a, &unit.param_values());
             assert_close(&got, &expect, 1e-12, &format!("{name} {q:?} all symbols"));
         }
         let g = derive(&m, Quantity::Gravity, &o).unwrap();
         let x = random_vec(&mut rng, n, 3.0);
-        let expect: Vec<f64> = gravity_torque(&m, &mut ws, &x).unwrap().iter().copied().collect();
-        assert_close(&g.eval(0, &x, &[0.0; 8][..n], &[0.0; 8][..n]), &expect, 1e-12, "poly g");
+        let expect: Vec<f64> = gravity_torque(&m, &mut ws, &x)
+            .unwrap()
+            .iter()
+            .copied()
+            .collect();
+        assert_close(
+            &g.eval(0, &x, &[0.0; 8][..n], &[0.0; 8][..n]),
+            &expect,
+            1e-12,
+            "poly g",
+        );
     }
 }
 
 #[test]
 fn bad_input_gives_clear_errors() {
     let m = builtin::planar2();
-    let e = derive(&m, Quantity::MassMatrix, &Options {
-        symbols: "m7".into(),
-        ..Options::default()
-    })
+    let e = derive(
+        &m,
+        Quantity::MassMatrix,
+        &Options {
+            symbols: "m7".into(),
+            ..Options::default()
+        },
+    )
     .unwrap_err()
     .to_string();
     assert!(e.contains("unknown symbol 'm7'") && e.contains("m1"), "{e}");
     let panda = builtin::load("panda").unwrap();
-    let e = derive(&panda, Quantity::Torque, &Options {
-        max_terms: 1000,
-        ..Options::default()
-    })
+    let e = derive(
+        &panda,
+        Quantity::Torque,
+        &Options {
+            max_terms: 1000,
+            ..Options::default()
+        },
+    )
     .unwrap_err()
     .to_string();
-    assert!(e.contains("more than 1000 terms") && e.contains("--max-terms"), "{e}");
-    let e = derive(&m, Quantity::Fk, &Options {
-        frame: Some("hand".into()),
-        ..Options::default()
-    })
+    assert!(
+        e.contains("more than 1000 terms") && e.contains("--max-terms"),
+        "{e}"
+    );
+    let e = derive(
+        &m,
+        Quantity::Fk,
+        &Options {
+            frame: Some("hand".into()),
+            ..Options::default()
+        },
+    )
     .unwrap_err()
     .to_string();
     assert!(e.contains("no frame named 'hand'"), "{e}");
@@ -497,15 +542,27 @@ fn bad_input_gives_clear_errors() {
 #[test]
 fn dh_models_name_lengths_a_and_d() {
     let m = builtin::load("ur5").unwrap();
-    let d = derive(&m, Quantity::Gravity, &Options {
-        symbols: "a_2,d_1,m_upper_arm_link".into(),
-        ..Options::default()
-    })
+    let d = derive(
+        &m,
+        Quantity::Gravity,
+        &Options {
+            symbols: "a_2,d_1,m_upper_arm_link".into(),
+            ..Options::default()
+        },
+    )
     .unwrap();
-    let names: Vec<&str> = d.params.symbols().iter().map(|(_, p)| p.name.as_str()).collect();
+    let names: Vec<&str> = d
+        .params
+        .symbols()
+        .iter()
+        .map(|(_, p)| p.name.as_str())
+        .collect();
     assert_eq!(names, ["m_upper_arm_link", "d_1", "a_2"]);
     // g2 has the term m_upper_arm_link · g · (a_2/2 + …) c2: both symbols appear, d_1 does not
     // (it only lifts the whole arm).
     let g2 = d.entry_text(0, 1, 0);
-    assert!(g2.contains("m_upper_arm_link") && g2.contains("a_2") && !g2.contains("d_1"), "{g2}");
+    assert!(
+        g2.contains("m_upper_arm_link") && g2.contains("a_2") && !g2.contains("d_1"),
+        "{g2}"
+    );
 }

@@ -156,7 +156,9 @@ pub fn generate(model: &Model, quantity: Quantity, options: &Options) -> Result<
         Quantity::Jacobian => {
             let (name, id) = pick_frame(model, options.frame.as_deref())?;
             let f = &model.frames()[id];
-            let body = f.body.ok_or_else(|| Error::InvalidArgument("base frame".into()))?;
+            let body = f
+                .body
+                .ok_or_else(|| Error::InvalidArgument("base frame".into()))?;
             let j = robot.frame_jacobian(body, &pose_const(&f.placement), options.reference);
             (
                 j,

@@ -121,6 +121,7 @@ impl Ring for Sx {
         match (self, o) {
             (Sx::C(a), Sx::C(b)) => Sx::C(a + b),
             (Sx::C(z), x) | (x, Sx::C(z)) if *z == 0.0 => x.clone(),
+            (Sx::C(k), x) | (x, Sx::C(k)) if *k < 0.0 => x.sub(&Sx::C(-k)),
             _ => {
                 if let Some(y) = o.neg_inner() {
                     return self.sub(&y);
@@ -201,12 +202,7 @@ fn order<'a>(a: &'a Sx, b: &'a Sx) -> (&'a Sx, &'a Sx) {
 pub fn op_count(g: &Graph, outputs: &[Sx]) -> usize {
     live_nodes(g, outputs)
         .iter()
-        .filter(|&&id| {
-            !matches!(
-                g.borrow().nodes[id as usize],
-                Op::Const(_) | Op::In(_)
-            )
-        })
+        .filter(|&&id| !matches!(g.borrow().nodes[id as usize], Op::Const(_) | Op::In(_)))
         .count()
 }
 

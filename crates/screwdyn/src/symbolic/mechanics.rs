@@ -90,15 +90,27 @@ impl<R: Ring> SymRobot<R> {
                     let rp = j.home.rotation * rc_vec + j.home.translation;
                     let wp = j.home.rotation * nalgebra::Vector3::from(w);
                     let foot = rp - wp * wp.dot(&rp);
-                    let rc: V3<R> = if through_child {
-                        V3::zero()
+                    // Where the axis passes: through the child origin (r_c = 0), through the
+                    // parent origin (r_c = −R0ᵀ p, so the offset turns with the joint:
+                    // t = R0 Rot R0ᵀ p), or through a point fixed in the parent.
+                    enum Axis {
+                        Child,
+                        Parent,
+                        Fixed,
+                    }
+                    let axis = if through_child {
+                        Axis::Child
                     } else if foot.norm() < 1e-12 * scale {
-                        // The axis passes through the parent origin: r_c = R0ᵀ(0 − p).
-                        home.r.tr_mul_v(&p.neg())
+                        Axis::Parent
                     } else {
-                        // Axis fixed in the parent: r_c = R0ᵀ(r_p − p).
-                        home.r
-                            .tr_mul_v(&V3::constant([0, 1, 2].map(|a| rp[a])).sub(&p))
+                        Axis::Fixed
+                    };
+                    let rc: V3<R> = match axis {
+                        Axis::Child => V3::zero(),
+                        Axis::Parent => home.r.tr_mul_v(&p.neg()),
+                        Axis::Fixed => home
+                            .r
+                            .tr_mul_v(&V3::constant([0, 1, 2].map(|a| rp[a])).sub(&p)),
                     };
                     let wv = V3::<R>::constant(w);
                     let s = Tw {
@@ -118,8 +130,12 @@ impl<R: Ring> SymRobot<R> {
                         })
                     }));
                     let r = home.r.mul_m(&rot);
-                    // p + R0 (r_c − Rot r_c) + R0 ω h θ
-                    let mut t = p.add(&home.r.mul_v(&rc.sub(&rot.mul_v(&rc))));
+                    // t = p + R0 (r_c − Rot r_c) + R0 ω h θ
+                    let mut t = match axis {
+                        Axis::Child => p.clone(),
+                        Axis::Parent => home.r.mul_v(&rot.mul_v(&home.r.tr_mul_v(&p))),
+                        Axis::Fixed => p.add(&home.r.mul_v(&rc.sub(&rot.mul_v(&rc)))),
+                    };
                     if h != 0.0 {
                         t = t.add(&home.r.mul_v(&wv.times(&vars.q[i].scale(h))));
                     }
@@ -406,12 +422,7 @@ impl<R: Ring> SymRobot<R> {
 
     /// The Jacobian (6×n, row-major, angular rows first) of a frame on `body` placed at
     /// `placement` in it, in `reference`.
-    pub fn frame_jacobian(
-        &self,
-        body: usize,
-        placement: &Pose<R>,
-        reference: Reference,
-    ) -> Vec<R> {
+    pub fn frame_jacobian(&self, body: usize, placement: &Pose<R>, reference: Reference) -> Vec<R> {
         let n = self.n;
         let jac = self.body_jacobians();
         let world = self.world_poses()[body].compose(placement);

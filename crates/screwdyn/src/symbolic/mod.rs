@@ -46,6 +46,7 @@ mod mechanics;
 mod params;
 mod poly;
 mod print;
+mod render;
 mod ring;
 
 pub use codegen::{generate, CodeUnit, Language};
@@ -144,7 +145,9 @@ impl std::str::FromStr for CoriolisForm {
         match s {
             "seed" | "closed-form" => Ok(CoriolisForm::Seed),
             "christoffel" => Ok(CoriolisForm::Christoffel),
-            _ => Err(format!("unknown Coriolis form '{s}' (use seed or christoffel)")),
+            _ => Err(format!(
+                "unknown Coriolis form '{s}' (use seed or christoffel)"
+            )),
         }
     }
 }
@@ -214,8 +217,12 @@ impl Derivation {
     /// parameters.
     pub fn entry_text(&self, k: usize, r: usize, c: usize) -> String {
         let m = &self.matrices[k];
-        Printer::new(&self.params, Style::Text { abbrev: true }, Collect::Inertial)
-            .poly(&m.entries[r * m.cols + c])
+        Printer::new(
+            &self.params,
+            Style::Text { abbrev: true },
+            Collect::Inertial,
+        )
+        .poly(&m.entries[r * m.cols + c])
     }
     /// Evaluates matrix `k` at a state, with the symbols at the model's values.
     pub fn eval(&self, k: usize, q: &[f64], v: &[f64], a: &[f64]) -> Vec<f64> {
@@ -236,10 +243,7 @@ impl Derivation {
 }
 
 fn angle(mask: u64, q: &[f64]) -> f64 {
-    (0..64)
-        .filter(|b| mask & (1 << b) != 0)
-        .map(|b| q[b])
-        .sum()
+    (0..64).filter(|b| mask & (1 << b) != 0).map(|b| q[b]).sum()
 }
 
 /// The polynomial variables: `c_i`, `s_i`, `θ_i`, `θ̇_i`, `θ̈_i`, and each parameter as a symbol
@@ -360,12 +364,9 @@ pub fn derive(model: &Model, quantity: Quantity, options: &Options) -> Result<De
                 square("K", vec![robot.kinetic_energy(&vars.qd)], 1, 1),
                 square("P", vec![robot.potential_energy()], 1, 1),
             ],
-            Quantity::Regressor => vec![square(
-                "Y",
-                robot.regressor(&vars.qd, &vars.qdd),
-                n,
-                10 * n,
-            )],
+            Quantity::Regressor => {
+                vec![square("Y", robot.regressor(&vars.qd, &vars.qdd), n, 10 * n)]
+            }
             Quantity::Fk => {
                 let (_, id) = frame.clone().expect("picked above");
                 let h = frame_pose_in(&robot, model, id);

@@ -194,20 +194,24 @@ impl ParamTable {
                     }
                 }
                 name => {
-                    let k = self.params.iter().position(|p| p.name == name).ok_or_else(|| {
-                        let known: Vec<&str> = self
-                            .params
-                            .iter()
-                            .filter(|p| p.value != 0.0)
-                            .map(|p| p.name.as_str())
-                            .take(24)
-                            .collect();
-                        Error::InvalidArgument(format!(
-                            "unknown symbol '{name}' (use all, mass, com, inertia, gravity, \
+                    let k = self
+                        .params
+                        .iter()
+                        .position(|p| p.name == name)
+                        .ok_or_else(|| {
+                            let known: Vec<&str> = self
+                                .params
+                                .iter()
+                                .filter(|p| p.value != 0.0)
+                                .map(|p| p.name.as_str())
+                                .take(24)
+                                .collect();
+                            Error::InvalidArgument(format!(
+                                "unknown symbol '{name}' (use all, mass, com, inertia, gravity, \
                              lengths or parameter names such as {})",
-                            known.join(", ")
-                        ))
-                    })?;
+                                known.join(", ")
+                            ))
+                        })?;
                     self.params[k].symbolic = true;
                 }
             }

@@ -352,7 +352,9 @@ impl Poly {
             .iter()
             .chain(other.terms.iter())
             .fold(0.0_f64, |s, (_, c)| s.max(c.abs()));
-        d.terms.iter().all(|(_, c)| c.abs() <= rel * scale.max(1e-300))
+        d.terms
+            .iter()
+            .all(|(_, c)| c.abs() <= rel * scale.max(1e-300))
     }
 }
 

@@ -200,7 +200,10 @@ impl<'a> Printer<'a> {
     }
 
     fn indices(&self, m: u64) -> Vec<usize> {
-        (0..64).filter(|b| m & (1 << b) != 0).map(|b| b + 1).collect()
+        (0..64)
+            .filter(|b| m & (1 << b) != 0)
+            .map(|b| b + 1)
+            .collect()
     }
 
     fn sub_list(&self, idx: &[usize]) -> String {
@@ -274,7 +277,11 @@ impl<'a> Printer<'a> {
                 let dd = matches!(v, Var::Qdd(_));
                 match self.style {
                     Style::Text { abbrev: true } => {
-                        format!("θ{}{}", if dd { "\u{308}" } else { "\u{307}" }, digits(i, &SUB))
+                        format!(
+                            "θ{}{}",
+                            if dd { "\u{308}" } else { "\u{307}" },
+                            digits(i, &SUB)
+                        )
                     }
                     Style::Text { abbrev: false } => {
                         format!("θ{}{i}", if dd { "\u{308}" } else { "\u{307}" })
@@ -456,7 +463,11 @@ impl<'a> Printer<'a> {
             .filter_map(|v| match v {
                 Var::Cos(m) | Var::Sin(m) => {
                     let short = self.var(v);
-                    let f = if matches!(v, Var::Cos(_)) { "cos" } else { "sin" };
+                    let f = if matches!(v, Var::Cos(_)) {
+                        "cos"
+                    } else {
+                        "sin"
+                    };
                     let idx = self.indices(m);
                     let arg = match self.style {
                         Style::Latex { .. } => idx
