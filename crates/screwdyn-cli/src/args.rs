@@ -62,6 +62,9 @@ pub enum Command {
     /// Symbolic equations of motion (M, C, g, τ, FK, Jacobian, energies, regressor) as text,
     /// LaTeX, JSON or code (C, Python, Rust, MATLAB).
     Symbolic(Box<SymbolicArgs>),
+    /// Inertia tensor of a shape (box, cylinder, sphere, rod, point) about a point, in turned
+    /// axes (seed 003: parallel-axis theorem).
+    Inertia(InertiaArgs),
 }
 
 #[derive(Args, Debug)]
@@ -477,4 +480,29 @@ pub struct SymbolicArgs {
     /// Accept inertias that are not physically consistent and massless leaf bodies.
     #[arg(long)]
     pub allow_nonphysical: bool,
+}
+
+/// `screwdyn inertia SHAPE --mass M --size … [--about x,y,z] [--rotate r,p,y]`.
+#[derive(Args, Debug)]
+pub struct InertiaArgs {
+    /// box, cylinder, sphere, rod or point.
+    pub shape: String,
+    /// Mass (kg).
+    #[arg(long)]
+    pub mass: f64,
+    /// Sizes: box w,l,h (along x, y, z); cylinder r,h (axis z); sphere r; rod length (along z);
+    /// point none.
+    #[arg(long, allow_hyphen_values = true)]
+    pub size: Option<String>,
+    /// The point to take the inertia about, in the shape's frame (origin at the centre of mass),
+    /// e.g. a box's corner -w/2,-l/2,-h/2 (default: the centre of mass).
+    #[arg(long, allow_hyphen_values = true, value_name = "X,Y,Z")]
+    pub about: Option<String>,
+    /// Turns the output axes by roll,pitch,yaw (rad, URDF rpy) relative to the shape's:
+    /// I = Rᵀ I_shape R.
+    #[arg(long, allow_hyphen_values = true, value_name = "R,P,Y")]
+    pub rotate: Option<String>,
+    /// Output format (default: table on a terminal, JSON otherwise).
+    #[arg(long, value_enum)]
+    pub format: Option<Format>,
 }

@@ -4,6 +4,7 @@
 mod bench;
 mod dynamics;
 mod explain;
+mod inertia;
 mod kinematics;
 mod model;
 mod sim;
@@ -40,6 +41,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::TorqueProfile(a) => sim::torque_profile(&a),
         Command::Bench(a) => bench::bench(&a),
         Command::Symbolic(a) => symbolic::symbolic(&a),
+        Command::Inertia(a) => inertia::inertia(&a),
     }
 }
 

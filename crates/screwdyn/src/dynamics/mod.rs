@@ -18,6 +18,7 @@
 //! ```
 
 mod aba;
+mod classic_newton_euler;
 mod closed_form;
 mod coriolis;
 mod crba;
@@ -28,6 +29,7 @@ mod rnea;
 mod wrenches;
 
 pub use aba::{aba, aba_with};
+pub use classic_newton_euler::{classic_newton_euler, ClassicLink};
 pub use closed_form::{closed_form, ClosedForm};
 pub use coriolis::coriolis_matrix;
 pub use crba::{crba, mass_matrix, mass_matrix_inverse, CompositeInertia};

@@ -70,6 +70,12 @@ impl Derivation {
         } else {
             out.push_str(&format!("# symbols (model value): {}\n", syms.join("; ")));
         }
+        let terms: usize = self
+            .matrices
+            .iter()
+            .flat_map(|m| m.entries.iter().map(|e| e.len()))
+            .sum();
+        out.push_str(&format!("# expanded form: {terms} terms in all\n"));
         for m in &self.matrices {
             for r in 0..m.rows {
                 for c in 0..m.cols {
