@@ -46,7 +46,7 @@ pub enum Command {
     #[command(visible_alias = "aba")]
     ForwardDynamics(ForwardDynamicsArgs),
     /// The seeds' closed form: the stacked A, L, S, 𝔍, J and M, C, g (small robots).
-    ClosedForm(QvArgs),
+    ClosedForm(ClosedFormArgs),
     /// Seed 004's Lagrangian coefficients D_ij, D_ijk, D_i and the effective inertias.
     Lagrange(QArgs),
     /// The RNEA iterations step by step in the seeds' notation (H, V, V̇ out; W, τ back).
@@ -215,6 +215,20 @@ pub struct ExplainArgs {
     pub a: Option<String>,
     #[command(flatten)]
     pub wrenches: WrenchArgs,
+    /// lie-group (the seeds' twist/wrench trace), or the classic vector Newton–Euler table per
+    /// link: craig (seed 003) or luh-walker-paul (seed 004).
+    #[arg(long, value_enum, default_value = "lie-group")]
+    pub style: ExplainStyle,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ExplainStyle {
+    /// The seeds' Lie-group RNEA: H, V, V̇ out; W, τ back.
+    LieGroup,
+    /// Craig's iterative Newton–Euler (seed 003): ω, ω̇, v̇, v̇_C, F, N out; f, n, τ in.
+    Craig,
+    /// Luh, Walker & Paul's recursive algorithm (seed 004), same quantities.
+    LuhWalkerPaul,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -505,4 +519,14 @@ pub struct InertiaArgs {
     /// Output format (default: table on a terminal, JSON otherwise).
     #[arg(long, value_enum)]
     pub format: Option<Format>,
+}
+
+/// `closed-form`: `--q`, `--v` and the acceleration `--a` for the stacked V̇, W and τ.
+#[derive(Args, Debug)]
+pub struct ClosedFormArgs {
+    #[command(flatten)]
+    pub qv: QvArgs,
+    /// Joint accelerations θ̈ for V̇, W and τ = Sᵀ W (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub a: Option<String>,
 }

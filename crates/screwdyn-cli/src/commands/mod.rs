@@ -2,6 +2,7 @@
 //! wrenches and the states of numeric commands (from flags or `--input states.csv`).
 
 mod bench;
+mod classic;
 mod dynamics;
 mod explain;
 mod inertia;
