@@ -48,7 +48,7 @@ pub enum Command {
     /// The seeds' closed form: the stacked A, L, S, 𝔍, J and M, C, g (small robots).
     ClosedForm(ClosedFormArgs),
     /// Seed 004's Lagrangian coefficients D_ij, D_ijk, D_i and the effective inertias.
-    Lagrange(QArgs),
+    Lagrange(LagrangeArgs),
     /// The RNEA iterations step by step in the seeds' notation (H, V, V̇ out; W, τ back).
     Explain(ExplainArgs),
     /// Simulates the robot under a controller; writes the run (CSV/JSON) and plots it.
@@ -502,7 +502,7 @@ pub struct InertiaArgs {
     /// box, cylinder, sphere, rod or point.
     pub shape: String,
     /// Mass (kg).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub mass: f64,
     /// Sizes: box w,l,h (along x, y, z); cylinder r,h (axis z); sphere r; rod length (along z);
     /// point none.
@@ -529,4 +529,24 @@ pub struct ClosedFormArgs {
     /// Joint accelerations θ̈ for V̇, W and τ = Sᵀ W (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub a: Option<String>,
+}
+
+/// `lagrange`: numeric `D_ij`, `D_ijk`, `D_i` at `--q`, or with `--steps` seed 004's symbolic
+/// steps.
+#[derive(Args, Debug)]
+pub struct LagrangeArgs {
+    #[command(flatten)]
+    pub qa: QArgs,
+    /// Print seed 004's symbolic steps ∂L/∂θ̇, d/dt(∂L/∂θ̇), ∂L/∂θ and τ instead of numbers.
+    #[arg(long)]
+    pub steps: bool,
+    /// With --steps: the parameters kept as symbols (as in `symbolic --symbols`).
+    #[arg(long, default_value = "all")]
+    pub symbols: String,
+    /// With --steps: cos(θ1 + θ2) instead of c₁₂.
+    #[arg(long)]
+    pub no_abbrev: bool,
+    /// With --steps: the largest number of terms of one expression.
+    #[arg(long, default_value_t = screwdyn::symbolic::DEFAULT_MAX_TERMS)]
+    pub max_terms: usize,
 }

@@ -578,3 +578,115 @@ fn bad_input_is_one_sentence() {
         "unknown Coriolis form",
     );
 }
+
+#[test]
+fn inertia_of_seed_003_shapes() {
+    let j: serde_json::Value = serde_json::from_str(&ok(&[
+        "inertia",
+        "box",
+        "--mass",
+        "12",
+        "--size",
+        "1,2,3",
+        "--about",
+        "-0.5,-1,-1.5",
+        "--format",
+        "json",
+    ]))
+    .unwrap();
+    // Seed 003: m/3 (l² + h²) = 52, −m/4 w l = −6, −m/4 h w = −9, −m/4 h l = −18.
+    let i = common::mat(&j["inertia"]);
+    common::close(&i[0], &[52.0, -6.0, -9.0], 1e-14);
+    common::close(&i[1], &[-6.0, 40.0, -18.0], 1e-14);
+    common::close(&i[2], &[-9.0, -18.0, 20.0], 1e-14);
+    // Tutorial question 1: the cylinder about its end, m r²/4 + m h²/3.
+    let j: serde_json::Value = serde_json::from_str(&ok(&[
+        "inertia", "cylinder", "--mass", "2", "--size", "0.1,1", "--about", "0,0,-0.5", "--format",
+        "json",
+    ]))
+    .unwrap();
+    let i = common::mat(&j["inertia"]);
+    common::close(
+        &[i[0][0], i[2][2]],
+        &[2.0 * 0.01 / 4.0 + 2.0 / 3.0, 0.01],
+        1e-14,
+    );
+    fails(
+        &["inertia", "box", "--mass", "1", "--size", "1,2"],
+        "a box takes 3 sizes",
+    );
+    fails(&["inertia", "cone", "--mass", "1"], "unknown shape 'cone'");
+    fails(
+        &["inertia", "sphere", "--mass", "-1", "--size", "1"],
+        "mass",
+    );
+}
+
+#[test]
+fn explain_classic_style_matches_rnea() {
+    let args = ["--q", "0.3,-0.8", "--v", "1.1,-0.6", "--a", "0.4,0.9"];
+    let mut c = vec![
+        "explain",
+        "builtin:planar2",
+        "--style",
+        "craig",
+        "--format",
+        "json",
+    ];
+    c.extend(args);
+    let j: serde_json::Value = serde_json::from_str(&ok(&c)).unwrap();
+    let mut r = vec!["inverse-dynamics", "builtin:planar2", "--format", "json"];
+    r.extend(args);
+    let t: serde_json::Value = serde_json::from_str(&ok(&r)).unwrap();
+    common::close(&common::vec(&j["tau"]), &common::vec(&t["tau"]), 1e-12);
+    assert!(j["note"].as_str().unwrap().contains("ω × v"));
+    let text = ok(&[
+        "explain",
+        "builtin:planar2",
+        "--style",
+        "luh-walker-paul",
+        "--format",
+        "table",
+    ]);
+    assert!(
+        text.contains("Luh–Walker–Paul") && text.contains("v̇_C"),
+        "{text}"
+    );
+}
+
+#[test]
+fn closed_form_prints_the_stacked_recursion() {
+    let args = ["--q", "0.3,-0.8", "--v", "1.1,-0.6", "--a", "0.4,0.9"];
+    let mut c = vec!["closed-form", "builtin:planar2", "--format", "json"];
+    c.extend(args);
+    let j: serde_json::Value = serde_json::from_str(&ok(&c)).unwrap();
+    let mut r = vec!["inverse-dynamics", "builtin:planar2", "--format", "json"];
+    r.extend(args);
+    let t: serde_json::Value = serde_json::from_str(&ok(&r)).unwrap();
+    common::close(&common::vec(&j["tau"]), &common::vec(&t["tau"]), 1e-12);
+    for key in ["V", "Vdot", "W", "ad_S_qdot", "ad_V", "Vdot_base"] {
+        assert!(j.get(key).is_some(), "{key}");
+    }
+    // τ_i = S_iᵀ W_i with planar2's S_i = (0, 0, 1, 0, L_i, 0), L_i = 1 (ẑ through the joint,
+    // one link length behind the frame).
+    let w = common::vec(&j["W"]);
+    let tau = common::vec(&j["tau"]);
+    common::close(&tau, &[w[2] + w[4], w[8] + w[10]], 1e-12);
+}
+
+#[test]
+fn lagrange_steps_print_seed_004() {
+    let t = ok(&["lagrange", "builtin:planar2", "--steps"]);
+    assert!(
+        t.contains("∂L/∂θ1 = −(m1 + m2) g L1 c₁ − m2 g L2 c₁₂"),
+        "{t}"
+    );
+    assert!(
+        t.contains("d/dt(∂L/∂θ̇2) = m2 L1 L2 c₂ θ̈₁ − m2 L1 L2 s₂ θ̇₁ θ̇₂ + m2 L2² θ̈₁ + m2 L2² θ̈₂"),
+        "{t}"
+    );
+    fails(
+        &["lagrange", "builtin:planar2", "--steps", "--q", "0,0"],
+        "drop --q",
+    );
+}

@@ -16,7 +16,11 @@ fn check(model: &Model, rng: &mut StdRng) {
     );
     let table = classic_newton_euler(model, &q, &v, &a).unwrap();
     let mut ws = Workspace::new(model);
-    let tau: Vec<f64> = rnea(model, &mut ws, &q, &v, &a).unwrap().iter().copied().collect();
+    let tau: Vec<f64> = rnea(model, &mut ws, &q, &v, &a)
+        .unwrap()
+        .iter()
+        .copied()
+        .collect();
     let classic: Vec<f64> = table.iter().map(|l| l.tau).collect();
     assert_close(&classic, &tau, 1e-12, "τ classic vs RNEA");
     for (i, link) in table.iter().enumerate() {
@@ -33,10 +37,25 @@ fn check(model: &Model, rng: &mut StdRng) {
             "ω̇",
         );
         let classical = twd.fixed_rows::<3>(3).into_owned() + omega.cross(&vel);
-        assert_close(link.v_dot.as_slice(), classical.as_slice(), 1e-12, "v̇ = v̇_body + ω × v");
+        assert_close(
+            link.v_dot.as_slice(),
+            classical.as_slice(),
+            1e-12,
+            "v̇ = v̇_body + ω × v",
+        );
         // (n, f) is the RNEA wrench W (moment about the frame origin).
-        assert_close(link.n.as_slice(), w.fixed_rows::<3>(0).into_owned().as_slice(), 1e-11, "n");
-        assert_close(link.f.as_slice(), w.fixed_rows::<3>(3).into_owned().as_slice(), 1e-11, "f");
+        assert_close(
+            link.n.as_slice(),
+            w.fixed_rows::<3>(0).into_owned().as_slice(),
+            1e-11,
+            "n",
+        );
+        assert_close(
+            link.f.as_slice(),
+            w.fixed_rows::<3>(3).into_owned().as_slice(),
+            1e-11,
+            "f",
+        );
     }
 }
 
@@ -64,7 +83,11 @@ fn seed_003_two_link_rows() {
     // Our link frames sit at the link ends (the CoMs): the seed's frame-1 acceleration of the
     // CoM rotated… the CoM of link 1 is the origin of frame 1, whose axes are the seed's frame-1
     // axes: ¹v̇_C1 is the same vector.
-    let vc1 = [-l1 * qd1 * qd1 + g * q1.sin(), l1 * qdd1 + g * q1.cos(), 0.0];
+    let vc1 = [
+        -l1 * qd1 * qd1 + g * q1.sin(),
+        l1 * qdd1 + g * q1.cos(),
+        0.0,
+    ];
     assert_close(t[0].v_dot_com.as_slice(), &vc1, 1e-12, "¹v̇_C1");
     assert_close(t[0].force.as_slice(), &vc1.map(|x| m1 * x), 1e-12, "¹F1");
     let tau2 = m2 * l1 * l2 * q2.sin() * qd1 * qd1

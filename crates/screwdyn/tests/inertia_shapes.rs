@@ -10,13 +10,23 @@ fn seed_003_box_about_its_corner() {
     let (m, w, l, h) = (2.0, 0.3, 0.2, 0.1);
     let i = Shape::parse("box", &[w, l, h])
         .unwrap()
-        .inertia_about(m, &Vector3::new(-w / 2.0, -l / 2.0, -h / 2.0), &Matrix3::identity())
+        .inertia_about(
+            m,
+            &Vector3::new(-w / 2.0, -l / 2.0, -h / 2.0),
+            &Matrix3::identity(),
+        )
         .unwrap();
     // Seed 003: [m/3 (l² + h²), −m/4 w l, −m/4 h w; …; …, m/3 (w² + l²)].
     let seed = Matrix3::new(
-        m / 3.0 * (l * l + h * h), -m / 4.0 * w * l, -m / 4.0 * h * w,
-        -m / 4.0 * w * l, m / 3.0 * (w * w + h * h), -m / 4.0 * h * l,
-        -m / 4.0 * h * w, -m / 4.0 * h * l, m / 3.0 * (w * w + l * l),
+        m / 3.0 * (l * l + h * h),
+        -m / 4.0 * w * l,
+        -m / 4.0 * h * w,
+        -m / 4.0 * w * l,
+        m / 3.0 * (w * w + h * h),
+        -m / 4.0 * h * l,
+        -m / 4.0 * h * w,
+        -m / 4.0 * h * l,
+        m / 3.0 * (w * w + l * l),
     );
     assert!((i - seed).amax() < 1e-15);
     assert!((i - box_about_corner(m, w, l, h).unwrap()).amax() < 1e-15);
@@ -65,7 +75,10 @@ shape = { type = "cylinder", size = [0.05, 0.5] }
     let e = screwdyn::io::load_str(&both, "shaped.toml", &Default::default())
         .unwrap_err()
         .to_string();
-    assert!(e.contains("both a shape and an inertia") && e.contains("shaped.toml"), "{e}");
+    assert!(
+        e.contains("both a shape and an inertia") && e.contains("shaped.toml"),
+        "{e}"
+    );
     let bad = text.replace("size = [0.05, 0.5]", "size = [0.05]");
     let e = screwdyn::io::load_str(&bad, "shaped.toml", &Default::default())
         .unwrap_err()

@@ -566,3 +566,55 @@ fn dh_models_name_lengths_a_and_d() {
         "{g2}"
     );
 }
+
+/// Seed 004's Lagrangian steps for the two-link arm, symbol for symbol.
+#[test]
+fn lagrange_steps_are_seed_004() {
+    let st = screwdyn::symbolic::lagrange_steps(&builtin::planar2(), &all()).unwrap();
+    let d = derive(&builtin::planar2(), Quantity::MassMatrix, &all()).unwrap();
+    let (m1, m2, l1, l2) = (sym(&d, "m1"), sym(&d, "m2"), sym(&d, "L1"), sym(&d, "L2"));
+    let gd = derive(&builtin::planar2(), Quantity::Gravity, &all()).unwrap();
+    let g = sym(&gd, "g");
+    let k = prod(&[&m2, &l1, &l2]);
+    // ∂L/∂θ̇1 = (m1 + m2) l1² θ̇1 + m2 l2² θ̇1 + m2 l2² θ̇2 + 2 m2 l1 l2 c2 θ̇1 + m2 l1 l2 c2 θ̇2
+    let dl1 = prod(&[&m1.add(&m2), &l1, &l1, &qd(1)])
+        .add(&prod(&[&m2, &l2, &l2, &qd(1)]))
+        .add(&prod(&[&m2, &l2, &l2, &qd(2)]))
+        .add(&prod(&[&k, &c(2), &qd(1)]).scale(2.0))
+        .add(&prod(&[&k, &c(2), &qd(2)]));
+    assert_eq!(st.dl_dqd[0], dl1);
+    // d/dt ∂L/∂θ̇2 = m2 l2² θ̈1 + m2 l2² θ̈2 + m2 l1 l2 c2 θ̈1 − m2 l1 l2 s2 θ̇1 θ̇2
+    let ddt2 = prod(&[&m2, &l2, &l2, &qdd(1)])
+        .add(&prod(&[&m2, &l2, &l2, &qdd(2)]))
+        .add(&prod(&[&k, &c(2), &qdd(1)]))
+        .sub(&prod(&[&k, &s(2), &qd(1), &qd(2)]));
+    assert_eq!(st.ddt_dl_dqd[1], ddt2);
+    // d/dt ∂L/∂θ̇1 = [...] θ̈1 + (m2 l2² + m2 l1 l2 c2) θ̈2 − 2 m2 l1 l2 s2 θ̇1 θ̇2 − m2 l1 l2 s2 θ̇2²
+    let ddt1 = prod(&[
+        &prod(&[&m1.add(&m2), &l1, &l1])
+            .add(&prod(&[&m2, &l2, &l2]))
+            .add(&prod(&[&k, &c(2)]).scale(2.0)),
+        &qdd(1),
+    ])
+    .add(&prod(&[
+        &prod(&[&m2, &l2, &l2]).add(&prod(&[&k, &c(2)])),
+        &qdd(2),
+    ]))
+    .sub(&prod(&[&k, &s(2), &qd(1), &qd(2)]).scale(2.0))
+    .sub(&prod(&[&k, &s(2), &qd(2), &qd(2)]));
+    assert_eq!(st.ddt_dl_dqd[0], ddt1);
+    // ∂L/∂θ1 = −(m1 + m2) g l1 c1 − m2 g l2 c12
+    let dq1 = prod(&[&m1.add(&m2), &g, &l1, &c(1)])
+        .add(&prod(&[&m2, &g, &l2, &c12()]))
+        .neg();
+    assert_eq!(st.dl_dq[0], dq1);
+    // ∂L/∂θ2 = −m2 l1 l2 s2 (θ̇1² + θ̇1 θ̇2) − m2 g l2 c12
+    let dq2 = prod(&[&k, &s(2), &qd(1).mul(&qd(1)).add(&qd(1).mul(&qd(2)))])
+        .add(&prod(&[&m2, &g, &l2, &c12()]))
+        .neg();
+    assert_eq!(st.dl_dq[1], dq2);
+    // And τ from Lagrange is τ from Newton–Euler.
+    let t = derive(&builtin::planar2(), Quantity::Torque, &all()).unwrap();
+    assert_eq!(st.tau[0], t.matrices[0].entries[0]);
+    assert_eq!(st.tau[1], t.matrices[0].entries[1]);
+}

@@ -45,7 +45,12 @@ pub fn explain_classic(a: &ExplainArgs) -> Result<(), CliError> {
     ];
     run_states(&m, &a.common, &flags, |s| {
         let t = classic_newton_euler(&m, &s.q, &s.v, &s.a)?;
-        let xyz = || ["x", "y", "z"].iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        let xyz = || {
+            ["x", "y", "z"]
+                .iter()
+                .map(|s| s.to_string())
+                .collect::<Vec<_>>()
+        };
         let v3 = |x: &Vector3<f64>| Value::Vector(xyz(), x.iter().copied().collect());
         let mut text = format!("{title}\n");
         let mut links = Vec::new();

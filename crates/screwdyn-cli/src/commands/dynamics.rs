@@ -2,7 +2,9 @@
 //! closed form and seed 004's Lagrangian coefficients.
 
 use super::{external_wrenches, load, names, run_states};
-use crate::args::{ClosedFormArgs, ForwardDynamicsArgs, InverseDynamicsArgs, QArgs, QvArgs};
+use crate::args::{
+    ClosedFormArgs, ForwardDynamicsArgs, InverseDynamicsArgs, LagrangeArgs, QArgs, QvArgs,
+};
 use crate::output::{Report, Value};
 use crate::CliError;
 use nalgebra::DMatrix;
@@ -161,7 +163,8 @@ pub fn closed_form(args: &ClosedFormArgs) -> Result<(), CliError> {
     run_states(&m, &a.common, &flags, |s| {
         let cf = dynamics::closed_form(&m, &s.q, &s.v)?;
         let (vdot, w, tau) = cf.stacked_dynamics(&s.a)?;
-        let stacked = |x: &nalgebra::DVector<f64>| Value::Vector(six.clone(), x.iter().copied().collect());
+        let stacked =
+            |x: &nalgebra::DVector<f64>| Value::Vector(six.clone(), x.iter().copied().collect());
         let sq = |x: &DMatrix<f64>| Value::Matrix(six.clone(), six.clone(), x.clone());
         let tall = |x: &DMatrix<f64>| Value::Matrix(six.clone(), j.clone(), x.clone());
         let mut r = base(&m);
@@ -196,7 +199,10 @@ pub fn closed_form(args: &ClosedFormArgs) -> Result<(), CliError> {
             ("ad_S_qdot", "ad_{Sθ̇} = blkdiag(ad_{S_i θ̇_i})"),
             ("V", "V = L S θ̇ (stacked body twists)"),
             ("ad_V", "ad_V = blkdiag(ad_{V_i})"),
-            ("Vdot_base", "V̇_base: block 1 = Ad_{H_0^1} V̇_g, V̇_g = (0, −g)"),
+            (
+                "Vdot_base",
+                "V̇_base: block 1 = Ad_{H_0^1} V̇_g, V̇_g = (0, −g)",
+            ),
             ("Vdot", "V̇ = L S θ̈ − L ad_{Sθ̇} A V + L V̇_base"),
             ("W", "W = Lᵀ 𝔍 V̇ − Lᵀ ad_Vᵀ 𝔍 V"),
             ("tau", "τ = Sᵀ W"),
@@ -225,7 +231,11 @@ pub fn closed_form(args: &ClosedFormArgs) -> Result<(), CliError> {
 }
 
 /// `lagrange`: seed 004's `D_ij`, `D_ijk`, `D_i` and the effective inertias.
-pub fn lagrange(a: &QArgs) -> Result<(), CliError> {
+pub fn lagrange(args: &LagrangeArgs) -> Result<(), CliError> {
+    if args.steps {
+        return lagrange_steps(args);
+    }
+    let a = &args.qa;
     let m = load(&a.common.model, a.common.gravity.as_deref())?;
     let j = names(&m);
     let mut ws = Workspace::new(&m);
@@ -253,4 +263,45 @@ pub fn lagrange(a: &QArgs) -> Result<(), CliError> {
             .add("effective_inertia_free", Value::joints(&j, &free));
         Ok(r)
     })
+}
+
+/// `lagrange --steps`: seed 004's symbolic Euler–Lagrange steps (text, or ASCII in JSON).
+fn lagrange_steps(args: &LagrangeArgs) -> Result<(), CliError> {
+    use screwdyn::symbolic::{lagrange_steps, Collect, Options, Style};
+    let a = &args.qa;
+    if a.q.is_some() || a.common.input.is_some() {
+        return Err(CliError::input(
+            "--steps derives the equations for every θ: drop --q and --input",
+        ));
+    }
+    let m = load(&a.common.model, a.common.gravity.as_deref())?;
+    let options = Options {
+        symbols: args.symbols.clone(),
+        max_terms: args.max_terms,
+        ..Options::default()
+    };
+    let s = lagrange_steps(&m, &options)?;
+    let text = match a.common.model.format {
+        Some(crate::args::Format::Json) => {
+            let lines: Vec<serde_json::Value> = s
+                .render(Style::Ascii, Collect::Inertial)
+                .lines()
+                .filter(|l| !l.starts_with('#'))
+                .map(|l| serde_json::Value::String(l.to_string()))
+                .collect();
+            let mut t = serde_json::to_string_pretty(&serde_json::json!({
+                "model": s.model, "joints": s.joints, "steps": lines
+            }))
+            .map_err(|e| CliError::internal(e.to_string()))?;
+            t.push('\n');
+            t
+        }
+        _ => s.render(
+            Style::Text {
+                abbrev: !args.no_abbrev,
+            },
+            Collect::Config,
+        ),
+    };
+    crate::output::write_stdout(&text)
 }

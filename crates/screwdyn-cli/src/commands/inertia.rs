@@ -33,7 +33,10 @@ pub fn inertia(a: &InertiaArgs) -> Result<(), CliError> {
     let xyz: Vec<String> = ["x", "y", "z"].iter().map(|s| s.to_string()).collect();
     let mut r = Report::new();
     r.add("mass", Value::Scalar(a.mass))
-        .add("com", Value::Vector(xyz.clone(), com.iter().copied().collect()))
+        .add(
+            "com",
+            Value::Vector(xyz.clone(), com.iter().copied().collect()),
+        )
         .add(
             "inertia",
             Value::Matrix(xyz.clone(), xyz, DMatrix::from_fn(3, 3, |r, c| i[(r, c)])),

@@ -133,11 +133,19 @@ impl ShapeSpec {
     /// The `[ixx, ixy, ixz, iyy, iyz, izz]` of mass `m` in this shape about its centre.
     fn inertia(&self, m: Option<f64>) -> std::result::Result<[f64; 6], String> {
         let m = m.ok_or("gives a shape without mass")?;
-        let shape = crate::inertia::Shape::parse(&self.kind, &self.size).map_err(|e| e.to_string())?;
+        let shape =
+            crate::inertia::Shape::parse(&self.kind, &self.size).map_err(|e| e.to_string())?;
         let [r, p, y] = self.rpy.unwrap_or([0.0; 3]);
         let rot = crate::spatial::Se3::from_rpy(r, p, y).rotation;
         let i = crate::inertia::rotate(&shape.inertia_com(m).map_err(|e| e.to_string())?, &rot);
-        Ok([i[(0, 0)], i[(0, 1)], i[(0, 2)], i[(1, 1)], i[(1, 2)], i[(2, 2)]])
+        Ok([
+            i[(0, 0)],
+            i[(0, 1)],
+            i[(0, 2)],
+            i[(1, 1)],
+            i[(1, 2)],
+            i[(2, 2)],
+        ])
     }
 }
 

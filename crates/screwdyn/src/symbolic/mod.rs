@@ -42,6 +42,7 @@
 
 mod codegen;
 pub mod dag;
+mod lagrange;
 mod mechanics;
 mod params;
 mod poly;
@@ -51,6 +52,7 @@ mod ring;
 
 pub use codegen::{generate, CodeUnit, Language};
 pub use dag::{Input, Sx};
+pub use lagrange::{lagrange_steps, LagrangeSteps};
 pub use mechanics::{SymRobot, Vars};
 pub use params::{clean, Param, ParamKind, ParamTable};
 pub use poly::{mono_mul, with_term_limit, Mono, Poly, Var};
