@@ -396,12 +396,12 @@ impl<R: Ring> SymRobot<R> {
     pub fn kinetic_energy(&self, qd: &[R]) -> R {
         let mut v: Vec<Tw<R>> = Vec::with_capacity(self.n);
         let mut e = R::zero();
-        for i in 0..self.n {
+        for (i, qdi) in qd.iter().enumerate().take(self.n) {
             let mut vi = match self.parents[i] {
                 Some(p) => self.joint_pose[i].inv_act_twist(&v[p]),
                 None => Tw::zero(),
             };
-            vi = vi.add(&self.screw[i].times(&qd[i]));
+            vi = vi.add(&self.screw[i].times(qdi));
             e = e.add(&vi.dot(&self.inertia[i].apply(&vi)));
             v.push(vi);
         }

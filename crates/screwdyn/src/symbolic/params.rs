@@ -127,13 +127,13 @@ impl ParamTable {
             }
         }
         for (i, b) in bodies.iter().enumerate() {
-            for a in 0..3 {
+            for (a, ax) in AX.iter().enumerate() {
                 params.push(Param {
-                    name: format!("c{}{}", AX[a], body_tag(i)),
+                    name: format!("c{}{}", ax, body_tag(i)),
                     value: b.inertia.com[a],
                     kind: ParamKind::Com(i, a),
                     symbolic: false,
-                    meaning: format!("centre of mass {} of {}", AX[a], b.name),
+                    meaning: format!("centre of mass {} of {}", ax, b.name),
                 });
             }
         }
@@ -146,26 +146,26 @@ impl ParamTable {
         });
         for (i, j) in model.joints().iter().enumerate() {
             let dh = !seeds && standard_dh_shape(model, i);
-            for a in 0..3 {
+            for (a, ax) in AX.iter().enumerate() {
                 let name = if seeds {
                     if a == 0 {
                         format!("L{}", i + 1)
                     } else {
-                        format!("L{}{}", AX[a], i + 1)
+                        format!("L{}{}", ax, i + 1)
                     }
                 } else if dh && a == 0 {
                     format!("a_{}", i + 1)
                 } else if dh && a == 2 {
                     format!("d_{}", i + 1)
                 } else {
-                    format!("p{}_{}", AX[a], i + 1)
+                    format!("p{}_{}", ax, i + 1)
                 };
                 params.push(Param {
                     name,
                     value: clean(j.home.translation[a]),
                     kind: ParamKind::Length(i, a),
                     symbolic: false,
-                    meaning: format!("offset {} of joint {} in its parent", AX[a], j.name),
+                    meaning: format!("offset {} of joint {} in its parent", ax, j.name),
                 });
             }
         }

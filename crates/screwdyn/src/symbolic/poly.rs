@@ -155,7 +155,7 @@ impl Poly {
     pub fn term(mono: Mono, coef: f64) -> Self {
         let mut acc = HashMap::new();
         let mut m = mono;
-        m.sort_by(|a, b| a.0.cmp(&b.0));
+        m.sort_by_key(|a| a.0);
         push_reduced(m, coef, &mut acc);
         finish(acc)
     }
@@ -171,12 +171,13 @@ impl Poly {
     pub fn from_terms(terms: impl IntoIterator<Item = (Mono, f64)>) -> Self {
         let mut acc = HashMap::new();
         for (mut m, c) in terms {
-            m.sort_by(|a, b| a.0.cmp(&b.0));
+            m.sort_by_key(|a| a.0);
             push_reduced(m, c, &mut acc);
         }
         finish(acc)
     }
     /// Number of terms.
+    #[allow(clippy::len_without_is_empty)] // `is_zero` is the polynomial's emptiness
     pub fn len(&self) -> usize {
         self.terms.len()
     }

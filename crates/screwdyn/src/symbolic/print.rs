@@ -357,7 +357,7 @@ impl<'a> Printer<'a> {
                     out.push_str(minus);
                 }
             } else {
-                out.push_str(if neg { &" − "[..] } else { " + " });
+                out.push_str(if neg { " − " } else { " + " });
                 if neg && !matches!(self.style, Style::Text { .. }) {
                     out.truncate(out.len() - " − ".len());
                     out.push_str(" - ");
