@@ -103,7 +103,13 @@ impl ParamTable {
             if seeds {
                 format!("{}", i + 1)
             } else {
-                format!("_{}", bodies[i].name)
+                // Link names become identifiers of generated code: other characters → '_'.
+                let id: String = bodies[i]
+                    .name
+                    .chars()
+                    .map(|c| if c.is_ascii_alphanumeric() || c == '_' { c } else { '_' })
+                    .collect();
+                format!("_{id}")
             }
         };
         for (i, b) in bodies.iter().enumerate() {
