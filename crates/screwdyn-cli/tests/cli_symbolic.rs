@@ -40,7 +40,7 @@ fn uses(q: &str) -> (bool, bool, bool) {
 fn expected(m: &Model, q: &str, x: &[f64], v: &[f64], a: &[f64]) -> Vec<f64> {
     let mut ws = Workspace::new(m);
     let n = m.nq();
-    let tool = m.body_frame(n - 1);
+    let tool = m.body_frame(n - 1).unwrap();
     match q {
         "mass-matrix" => crba(m, &mut ws, x)
             .unwrap()
@@ -64,6 +64,7 @@ fn expected(m: &Model, q: &str, x: &[f64], v: &[f64], a: &[f64]) -> Vec<f64> {
         "fk" => {
             forward_kinematics(m, &mut ws, x).unwrap();
             frame_pose(m, &ws, tool)
+                .unwrap()
                 .to_matrix()
                 .transpose()
                 .iter()
@@ -73,7 +74,7 @@ fn expected(m: &Model, q: &str, x: &[f64], v: &[f64], a: &[f64]) -> Vec<f64> {
         "jacobian" => {
             compute_joint_jacobians(m, &mut ws, x).unwrap();
             let mut j = Matrix6xX::zeros(n);
-            frame_jacobian(m, &ws, tool, Reference::Local, &mut j);
+            frame_jacobian(m, &ws, tool, Reference::Local, &mut j).unwrap();
             j.transpose().iter().copied().collect()
         }
         "energy" => vec![

@@ -264,7 +264,7 @@ fn check_numeric(model: &Model, states: usize, poly: bool) {
     let n = model.nq();
     let mut rng = StdRng::seed_from_u64(n as u64 + 17);
     let mut ws = Workspace::new(model);
-    let tool = model.body_frame(n - 1);
+    let tool = model.body_frame(n - 1).unwrap();
     let opts = Options {
         max_terms: 200_000,
         ..Options::default()
@@ -322,13 +322,13 @@ fn check_numeric(model: &Model, states: usize, poly: bool) {
                 ],
                 Quantity::Fk => {
                     screwdyn::kinematics::forward_kinematics(model, &mut ws, &q).unwrap();
-                    let h = frame_pose(model, &ws, tool).to_matrix();
+                    let h = frame_pose(model, &ws, tool).unwrap().to_matrix();
                     h.transpose().iter().copied().collect()
                 }
                 Quantity::Jacobian => {
                     compute_joint_jacobians(model, &mut ws, &q).unwrap();
                     let mut j = Matrix6xX::zeros(n);
-                    frame_jacobian(model, &ws, tool, Reference::Local, &mut j);
+                    frame_jacobian(model, &ws, tool, Reference::Local, &mut j).unwrap();
                     j.transpose().iter().copied().collect()
                 }
                 Quantity::Regressor => {

@@ -35,6 +35,7 @@ pub fn symbolic(a: &SymbolicArgs) -> Result<(), CliError> {
             model: a.model.clone(),
             format: None,
             allow_nonphysical: a.allow_nonphysical,
+            strict: false,
         },
         None,
     )?;

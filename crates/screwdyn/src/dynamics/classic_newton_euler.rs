@@ -84,7 +84,7 @@ pub fn classic_newton_euler(
         let (r, p) = (h.rotation, h.translation);
         let s = Vector3::new(joint.screw[0], joint.screw[1], joint.screw[2]);
         let vs = Vector3::new(joint.screw[3], joint.screw[4], joint.screw[5]);
-        let (w0, wd0, v0, vd0) = match model.parent(i) {
+        let (w0, wd0, v0, vd0) = match model.parents()[i] {
             Some(k) => (out[k].omega, out[k].omega_dot, out[k].v, out[k].v_dot),
             None => (zero, zero, zero, -model.gravity()),
         };
@@ -119,7 +119,7 @@ pub fn classic_newton_euler(
     for i in (0..n).rev() {
         let (r, p, s, vs) = poses[i];
         out[i].tau = out[i].n.dot(&s) + out[i].f.dot(&vs);
-        if let Some(k) = model.parent(i) {
+        if let Some(k) = model.parents()[i] {
             let f = r * out[i].f;
             let moment = r * out[i].n + p.cross(&f);
             out[k].f += f;

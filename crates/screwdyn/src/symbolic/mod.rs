@@ -277,7 +277,7 @@ pub fn poly_vars(n: usize, table: &ParamTable) -> Vars<Poly> {
 pub(crate) fn pick_frame(model: &Model, frame: Option<&str>) -> Result<(String, usize)> {
     let id = match frame {
         Some(f) => model.frame_id(f)?,
-        None => model.body_frame(model.nbodies() - 1),
+        None => model.body_frame(model.nbodies() - 1)?,
     };
     let f = &model.frames()[id];
     if f.body.is_none() {
