@@ -496,6 +496,9 @@ pub struct SymbolicArgs {
     /// The largest number of terms one expanded expression may have (text, LaTeX, JSON).
     #[arg(long, default_value_t = screwdyn::symbolic::DEFAULT_MAX_TERMS)]
     pub max_terms: usize,
+    /// The largest number of operations generated code may have (c, rust, python, matlab).
+    #[arg(long, default_value_t = screwdyn::symbolic::DEFAULT_MAX_OPS)]
+    pub max_ops: usize,
     /// Write to this file instead of stdout.
     #[arg(long)]
     pub output: Option<PathBuf>,

@@ -48,8 +48,10 @@ pub fn symbolic(a: &SymbolicArgs) -> Result<(), CliError> {
         .collect
         .parse()
         .map_err(|e: String| CliError::input(format!("--collect: {e}")))?;
-    if a.max_terms == 0 {
-        return Err(CliError::input("--max-terms must be at least 1"));
+    if a.max_terms == 0 || a.max_ops == 0 {
+        return Err(CliError::input(
+            "--max-terms and --max-ops must be at least 1",
+        ));
     }
     let options = Options {
         symbols: a.symbols.clone(),
@@ -61,6 +63,7 @@ pub fn symbolic(a: &SymbolicArgs) -> Result<(), CliError> {
         },
         coriolis,
         max_terms: a.max_terms,
+        max_ops: a.max_ops,
     };
     let language = match a.format {
         SymbolicFormat::C => Some(Language::C),

@@ -96,13 +96,48 @@ fn graph_vars(g: &Graph, n: usize, table: &ParamTable) -> Vars<Sx> {
 /// [`Error::InvalidArgument`] for an unknown symbol or frame or a model without joints.
 pub fn generate(model: &Model, quantity: Quantity, options: &Options) -> Result<CodeUnit> {
     check_model(model)?;
-    let n = model.nq();
     let mut table = ParamTable::new(model);
     table.select(&options.symbols)?;
     let g: Graph = Default::default();
-    let vars = graph_vars(&g, n, &table);
-    let robot = SymRobot::new(model, &table, &vars);
-    let (outputs, rows, cols, description) = match quantity {
+    let built = dag::with_node_limit(options.max_ops, || {
+        build(model, quantity, options, &g, &table)
+    });
+    let (outputs, rows, cols, description) = built.ok_or_else(|| {
+        Error::InvalidArgument(format!(
+            "the generated {} of '{}' needs more than {} operations (the max-ops limit); raise \
+             it (--max-ops) if the machine has the memory",
+            quantity.function_name().replace('_', " "),
+            model.name(),
+            options.max_ops
+        ))
+    })??;
+    Ok(CodeUnit {
+        model: model.name().to_string(),
+        joints: model.joint_names().iter().map(|s| s.to_string()).collect(),
+        quantity,
+        params: table,
+        graph: g,
+        outputs,
+        rows,
+        cols,
+        description,
+    })
+}
+
+type Built = (Vec<Sx>, usize, usize, String);
+
+fn build(
+    model: &Model,
+    quantity: Quantity,
+    options: &Options,
+    g: &Graph,
+    table: &ParamTable,
+) -> Result<Built> {
+    let n = model.nq();
+    let g = g.clone();
+    let vars = graph_vars(&g, n, table);
+    let robot = SymRobot::new(model, table, &vars);
+    Ok(match quantity {
         Quantity::MassMatrix => (robot.mass_matrix(), n, n, "M(q), n×n".to_string()),
         Quantity::Coriolis => {
             let c = match options.coriolis {
@@ -170,17 +205,6 @@ pub fn generate(model: &Model, quantity: Quantity, options: &Options) -> Result<
                 ),
             )
         }
-    };
-    Ok(CodeUnit {
-        model: model.name().to_string(),
-        joints: model.joint_names().iter().map(|s| s.to_string()).collect(),
-        quantity,
-        params: table,
-        graph: g,
-        outputs,
-        rows,
-        cols,
-        description,
     })
 }
 

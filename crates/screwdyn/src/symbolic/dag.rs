@@ -55,10 +55,30 @@ pub struct Dag {
     table: HashMap<Op, u32>,
 }
 
+thread_local! {
+    static NODE_LIMIT: std::cell::Cell<usize> = const { std::cell::Cell::new(usize::MAX) };
+    static NODES_OVER: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Runs `f` with at most `limit` nodes per graph; `None` when a graph grew past it (the
+/// computation then runs on without growing memory and its result is discarded).
+pub fn with_node_limit<T>(limit: usize, f: impl FnOnce() -> T) -> Option<T> {
+    let old = NODE_LIMIT.with(|l| l.replace(limit));
+    NODES_OVER.with(|o| o.set(false));
+    let out = f();
+    NODE_LIMIT.with(|l| l.set(old));
+    let over = NODES_OVER.with(|o| o.replace(false));
+    (!over).then_some(out)
+}
+
 impl Dag {
     fn intern(&mut self, op: Op) -> u32 {
         if let Some(&id) = self.table.get(&op) {
             return id;
+        }
+        if self.nodes.len() >= NODE_LIMIT.with(|l| l.get()).max(1) {
+            NODES_OVER.with(|o| o.set(true));
+            return 0;
         }
         let id = self.nodes.len() as u32;
         self.nodes.push(op);

@@ -167,6 +167,8 @@ pub struct Options {
     pub coriolis: CoriolisForm,
     /// The largest number of terms one expanded expression may have ([`derive`] only).
     pub max_terms: usize,
+    /// The largest number of graph nodes code generation may build ([`generate`] only).
+    pub max_ops: usize,
 }
 
 impl Default for Options {
@@ -177,12 +179,15 @@ impl Default for Options {
             reference: Reference::Local,
             coriolis: CoriolisForm::Seed,
             max_terms: DEFAULT_MAX_TERMS,
+            max_ops: DEFAULT_MAX_OPS,
         }
     }
 }
 
 /// The default of [`Options::max_terms`].
 pub const DEFAULT_MAX_TERMS: usize = 20_000;
+/// The default of [`Options::max_ops`].
+pub const DEFAULT_MAX_OPS: usize = 2_000_000;
 /// The largest model (joints) the polynomial form takes (angle bit masks are 64 bits).
 pub const MAX_JOINTS: usize = 64;
 
