@@ -12,6 +12,15 @@ const NOTE: &str = "The Lie-group trace (explain without --style) lists V̇ = (�
 derivative of the body twist; the classical acceleration of the frame origin here is \
 v̇ = v̇_body + ω × v. The forces agree: (n, f) is the trace's wrench W and τ = Sᵀ W.";
 
+/// `label` padded to 8 columns, not counting combining marks (the dots of `ω̇`, `v̇`).
+fn pad(label: &str) -> String {
+    let width = label
+        .chars()
+        .filter(|c| !('\u{300}'..='\u{36f}').contains(c))
+        .count();
+    format!("{label}{}", " ".repeat(8usize.saturating_sub(width)))
+}
+
 fn vec3(x: &Vector3<f64>) -> String {
     format!("({}, {}, {})", fmt(x.x), fmt(x.y), fmt(x.z))
 }
@@ -67,9 +76,9 @@ pub fn explain_classic(a: &ExplainArgs) -> Result<(), CliError> {
                 ("f", &l.f),
                 ("n", &l.n),
             ] {
-                text.push_str(&format!("  {label:<8} = {}\n", vec3(x)));
+                text.push_str(&format!("  {} = {}\n", pad(label), vec3(x)));
             }
-            text.push_str(&format!("  {:<8} = {}\n", "τ", fmt(l.tau)));
+            text.push_str(&format!("  {} = {}\n", pad("τ"), fmt(l.tau)));
             links.push((
                 body.clone(),
                 Value::Map(vec![
