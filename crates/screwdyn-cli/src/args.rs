@@ -46,9 +46,9 @@ pub enum Command {
     #[command(visible_alias = "aba")]
     ForwardDynamics(ForwardDynamicsArgs),
     /// The seeds' closed form: the stacked A, L, S, 𝔍, J and M, C, g (small robots).
-    ClosedForm(QvArgs),
+    ClosedForm(ClosedFormArgs),
     /// Seed 004's Lagrangian coefficients D_ij, D_ijk, D_i and the effective inertias.
-    Lagrange(QArgs),
+    Lagrange(LagrangeArgs),
     /// The RNEA iterations step by step in the seeds' notation (H, V, V̇ out; W, τ back).
     Explain(ExplainArgs),
     /// Simulates the robot under a controller; writes the run (CSV/JSON) and plots it.
@@ -59,6 +59,12 @@ pub enum Command {
     Export(ExportArgs),
     /// Per-call timing (median ns) of the core algorithms on random states.
     Bench(BenchArgs),
+    /// Symbolic equations of motion (M, C, g, τ, FK, Jacobian, energies, regressor) as text,
+    /// LaTeX, JSON or code (C, Python, Rust, MATLAB).
+    Symbolic(Box<SymbolicArgs>),
+    /// Inertia tensor of a shape (box, cylinder, sphere, rod, point) about a point, in turned
+    /// axes (seed 003: parallel-axis theorem).
+    Inertia(InertiaArgs),
 }
 
 #[derive(Args, Debug)]
@@ -213,6 +219,20 @@ pub struct ExplainArgs {
     pub a: Option<String>,
     #[command(flatten)]
     pub wrenches: WrenchArgs,
+    /// lie-group (the seeds' twist/wrench trace), or the classic vector Newton–Euler table per
+    /// link: craig (seed 003) or luh-walker-paul (seed 004).
+    #[arg(long, value_enum, default_value = "lie-group")]
+    pub style: ExplainStyle,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ExplainStyle {
+    /// The seeds' Lie-group RNEA: H, V, V̇ out; W, τ back.
+    LieGroup,
+    /// Craig's iterative Newton–Euler (seed 003): ω, ω̇, v̇, v̇_C, F, N out; f, n, τ in.
+    Craig,
+    /// Luh, Walker & Paul's recursive algorithm (seed 004), same quantities.
+    LuhWalkerPaul,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -425,4 +445,122 @@ pub struct BenchArgs {
     /// Output format.
     #[arg(long, value_enum)]
     pub format: Option<Format>,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SymbolicFormat {
+    /// Unicode text like the lecture notes (θ, θ̇, c₁₂ with a legend).
+    Text,
+    /// LaTeX (an aligned block).
+    Latex,
+    /// A Python function (keyword arguments for the symbols; returns nested lists).
+    Python,
+    /// A C function writing a row-major `double *out`.
+    C,
+    /// A Rust function returning a nested array.
+    Rust,
+    /// A MATLAB/Octave function.
+    Matlab,
+    /// JSON: SymPy-parsable expressions (q1, qd1, qdd1) and the symbols' values.
+    Json,
+}
+
+/// `screwdyn symbolic MODEL --quantity …` (issue 14).
+#[derive(Args, Debug)]
+pub struct SymbolicArgs {
+    /// A .urdf or .toml file, or builtin:<name>.
+    pub model: String,
+    /// mass-matrix, coriolis, gravity, torque, fk, jacobian, energy or regressor.
+    #[arg(long, default_value = "mass-matrix")]
+    pub quantity: String,
+    /// Parameters kept as symbols: all, groups (mass, com, inertia, gravity, lengths) or names
+    /// (m_link2, a_2, Ixx_link1, g, … — planar2: m1, m2, L1, L2, g), comma-separated. Groups take
+    /// the non-zero parameters only. Default: none (all numeric).
+    #[arg(long, default_value = "")]
+    pub symbols: String,
+    /// The frame of fk and jacobian (default: the last body's frame).
+    #[arg(long)]
+    pub frame: Option<String>,
+    /// The Jacobian's reference.
+    #[arg(long, value_enum, default_value = "local")]
+    pub reference: ReferenceArg,
+    /// Which C: seed (seed 000's literal closed form) or christoffel.
+    #[arg(long, default_value = "seed")]
+    pub coriolis_form: String,
+    /// Text/LaTeX grouping: inertial (m2 (L1² + …)), config ((m1 + m2) L1² + …) or none.
+    #[arg(long, default_value = "inertial")]
+    pub collect: String,
+    /// Output format.
+    #[arg(long, value_enum, default_value = "text")]
+    pub format: SymbolicFormat,
+    /// Write cos(θ1 + θ2) instead of c₁₂.
+    #[arg(long)]
+    pub no_abbrev: bool,
+    /// The largest number of terms one expanded expression may have (text, LaTeX, JSON).
+    #[arg(long, default_value_t = screwdyn::symbolic::DEFAULT_MAX_TERMS)]
+    pub max_terms: usize,
+    /// The largest number of operations generated code may have (c, rust, python, matlab).
+    #[arg(long, default_value_t = screwdyn::symbolic::DEFAULT_MAX_OPS)]
+    pub max_ops: usize,
+    /// Write to this file instead of stdout.
+    #[arg(long)]
+    pub output: Option<PathBuf>,
+    /// Accept inertias that are not physically consistent and massless leaf bodies.
+    #[arg(long)]
+    pub allow_nonphysical: bool,
+}
+
+/// `screwdyn inertia SHAPE --mass M --size … [--about x,y,z] [--rotate r,p,y]`.
+#[derive(Args, Debug)]
+pub struct InertiaArgs {
+    /// box, cylinder, sphere, rod or point.
+    pub shape: String,
+    /// Mass (kg).
+    #[arg(long, allow_hyphen_values = true)]
+    pub mass: f64,
+    /// Sizes: box w,l,h (along x, y, z); cylinder r,h (axis z); sphere r; rod length (along z);
+    /// point none.
+    #[arg(long, allow_hyphen_values = true)]
+    pub size: Option<String>,
+    /// The point to take the inertia about, in the shape's frame (origin at the centre of mass),
+    /// e.g. a box's corner -w/2,-l/2,-h/2 (default: the centre of mass).
+    #[arg(long, allow_hyphen_values = true, value_name = "X,Y,Z")]
+    pub about: Option<String>,
+    /// Turns the output axes by roll,pitch,yaw (rad, URDF rpy) relative to the shape's:
+    /// I = Rᵀ I_shape R.
+    #[arg(long, allow_hyphen_values = true, value_name = "R,P,Y")]
+    pub rotate: Option<String>,
+    /// Output format (default: table on a terminal, JSON otherwise).
+    #[arg(long, value_enum)]
+    pub format: Option<Format>,
+}
+
+/// `closed-form`: `--q`, `--v` and the acceleration `--a` for the stacked V̇, W and τ.
+#[derive(Args, Debug)]
+pub struct ClosedFormArgs {
+    #[command(flatten)]
+    pub qv: QvArgs,
+    /// Joint accelerations θ̈ for V̇, W and τ = Sᵀ W (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub a: Option<String>,
+}
+
+/// `lagrange`: numeric `D_ij`, `D_ijk`, `D_i` at `--q`, or with `--steps` seed 004's symbolic
+/// steps.
+#[derive(Args, Debug)]
+pub struct LagrangeArgs {
+    #[command(flatten)]
+    pub qa: QArgs,
+    /// Print seed 004's symbolic steps ∂L/∂θ̇, d/dt(∂L/∂θ̇), ∂L/∂θ and τ instead of numbers.
+    #[arg(long)]
+    pub steps: bool,
+    /// With --steps: the parameters kept as symbols (as in `symbolic --symbols`).
+    #[arg(long, default_value = "all")]
+    pub symbols: String,
+    /// With --steps: cos(θ1 + θ2) instead of c₁₂.
+    #[arg(long)]
+    pub no_abbrev: bool,
+    /// With --steps: the largest number of terms of one expression.
+    #[arg(long, default_value_t = screwdyn::symbolic::DEFAULT_MAX_TERMS)]
+    pub max_terms: usize,
 }

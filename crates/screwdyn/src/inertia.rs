@@ -201,3 +201,135 @@ pub fn combine<T: Real>(bodies: &[SpatialInertia<T>]) -> SpatialInertia<T> {
         .iter()
         .fold(SpatialInertia::zero(), |acc, b| acc.combined(b))
 }
+
+/// A shape primitive of uniform density (the CLI's `screwdyn inertia` and the native TOML
+/// format's `shape = { type = "box", size = [w, l, h] }`). Axes: a box's sides along x, y, z; a
+/// cylinder's and a rod's axis along z.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// A solid box with sides `w` (x), `l` (y), `h` (z).
+    Box {
+        /// Side along x.
+        w: f64,
+        /// Side along y.
+        l: f64,
+        /// Side along z.
+        h: f64,
+    },
+    /// A solid cylinder of radius `r` and length `h` along z.
+    Cylinder {
+        /// Radius.
+        r: f64,
+        /// Length along z.
+        h: f64,
+    },
+    /// A solid sphere of radius `r`.
+    Sphere {
+        /// Radius.
+        r: f64,
+    },
+    /// A thin rod of length `length` along z.
+    Rod {
+        /// Length along z.
+        length: f64,
+    },
+    /// A point mass.
+    Point,
+}
+
+impl Shape {
+    /// The shape called `kind` (`box`, `cylinder`, `sphere`, `rod`, `point`) with its sizes
+    /// (`w,l,h`; `r,h`; `r`; `length`; none).
+    ///
+    /// ```
+    /// use screwdyn::inertia::Shape;
+    /// assert_eq!(Shape::parse("cylinder", &[0.1, 0.5]).unwrap(), Shape::Cylinder { r: 0.1, h: 0.5 });
+    /// assert!(Shape::parse("box", &[1.0]).unwrap_err().to_string().contains("3 sizes"));
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for an unknown kind or a wrong number of sizes.
+    pub fn parse(kind: &str, size: &[f64]) -> Result<Shape> {
+        let want = match kind {
+            "box" | "cuboid" => 3,
+            "cylinder" => 2,
+            "sphere" | "rod" => 1,
+            "point" => 0,
+            _ => {
+                return Err(Error::InvalidArgument(format!(
+                    "unknown shape '{kind}' (use box, cylinder, sphere, rod or point)"
+                )))
+            }
+        };
+        if size.len() != want {
+            let what = match want {
+                3 => "w, l, h",
+                2 => "radius, length",
+                1 if kind == "rod" => "length",
+                1 => "radius",
+                _ => "nothing",
+            };
+            return Err(Error::InvalidArgument(format!(
+                "a {kind} takes {want} sizes ({what}), got {}",
+                size.len()
+            )));
+        }
+        Ok(match kind {
+            "box" | "cuboid" => Shape::Box {
+                w: size[0],
+                l: size[1],
+                h: size[2],
+            },
+            "cylinder" => Shape::Cylinder {
+                r: size[0],
+                h: size[1],
+            },
+            "sphere" => Shape::Sphere { r: size[0] },
+            "rod" => Shape::Rod { length: size[0] },
+            _ => Shape::Point,
+        })
+    }
+
+    /// The rotational inertia of mass `m` in this shape about its centre of mass, shape axes.
+    ///
+    /// # Errors
+    /// [`Error::InvalidModel`] for a negative or non-finite mass or size.
+    pub fn inertia_com(&self, m: f64) -> Result<Matrix3<f64>> {
+        match *self {
+            Shape::Box { w, l, h } => cuboid(m, w, l, h),
+            Shape::Cylinder { r, h } => solid_cylinder(m, r, h),
+            Shape::Sphere { r } => solid_sphere(m, r),
+            Shape::Rod { length } => thin_rod(m, length),
+            Shape::Point => {
+                check("point mass", &[("mass", m)])?;
+                Ok(Matrix3::zeros())
+            }
+        }
+    }
+
+    /// The inertia about a point and in turned axes: the output frame has its origin at
+    /// `about` (in the shape's frame, whose origin is the centre of mass) and axes
+    /// `R = rotation` relative to the shape's, so `I = Rᵀ (ᶜI + m(pᵀp 1 − p pᵀ)) R` with `p = −about`
+    /// the centre of mass seen from the new origin (seed 003's parallel-axis theorem).
+    ///
+    /// ```
+    /// use nalgebra::{Matrix3, Vector3};
+    /// use screwdyn::inertia::{box_about_corner, Shape};
+    /// // Seed 003: the box about its corner.
+    /// let b = Shape::Box { w: 1.0, l: 2.0, h: 3.0 };
+    /// let i = b.inertia_about(12.0, &Vector3::new(-0.5, -1.0, -1.5), &Matrix3::identity()).unwrap();
+    /// assert!((i - box_about_corner(12.0, 1.0, 2.0, 3.0).unwrap()).amax() < 1e-12);
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Shape::inertia_com`].
+    pub fn inertia_about(
+        &self,
+        m: f64,
+        about: &Vector3<f64>,
+        rotation: &Matrix3<f64>,
+    ) -> Result<Matrix3<f64>> {
+        let i = parallel_axis(&self.inertia_com(m)?, m, &(-about));
+        Ok(rotation.transpose() * i * rotation)
+    }
+}

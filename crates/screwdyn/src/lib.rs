@@ -27,6 +27,7 @@ pub mod model;
 mod scalar;
 pub mod sim;
 pub mod spatial;
+pub mod symbolic;
 mod workspace;
 
 pub use error::{Error, Result};

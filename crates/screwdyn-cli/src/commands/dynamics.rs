@@ -2,7 +2,9 @@
 //! closed form and seed 004's Lagrangian coefficients.
 
 use super::{external_wrenches, load, names, run_states};
-use crate::args::{ForwardDynamicsArgs, InverseDynamicsArgs, QArgs, QvArgs};
+use crate::args::{
+    ClosedFormArgs, ForwardDynamicsArgs, InverseDynamicsArgs, LagrangeArgs, QArgs, QvArgs,
+};
 use crate::output::{Report, Value};
 use crate::CliError;
 use nalgebra::DMatrix;
@@ -148,13 +150,21 @@ fn stacked_labels(m: &Model) -> Vec<String> {
 }
 
 /// `closed-form`: the seeds' `A`, `L`, `S`, `𝔍`, `J`, `M`, `C`, `g` at one state.
-pub fn closed_form(a: &QvArgs) -> Result<(), CliError> {
+pub fn closed_form(args: &ClosedFormArgs) -> Result<(), CliError> {
+    let a = &args.qv;
     let m = load(&a.common.model, a.common.gravity.as_deref())?;
     let j = names(&m);
     let six = stacked_labels(&m);
-    let flags = [("q", a.q.as_deref()), ("v", a.v.as_deref())];
+    let flags = [
+        ("q", a.q.as_deref()),
+        ("v", a.v.as_deref()),
+        ("a", args.a.as_deref()),
+    ];
     run_states(&m, &a.common, &flags, |s| {
         let cf = dynamics::closed_form(&m, &s.q, &s.v)?;
+        let (vdot, w, tau) = cf.stacked_dynamics(&s.a)?;
+        let stacked =
+            |x: &nalgebra::DVector<f64>| Value::Vector(six.clone(), x.iter().copied().collect());
         let sq = |x: &DMatrix<f64>| Value::Matrix(six.clone(), six.clone(), x.clone());
         let tall = |x: &DMatrix<f64>| Value::Matrix(six.clone(), j.clone(), x.clone());
         let mut r = base(&m);
@@ -165,7 +175,14 @@ pub fn closed_form(a: &QvArgs) -> Result<(), CliError> {
             .add("J", tall(&cf.j))
             .add("mass_matrix", Value::joint_matrix(&j, &cf.m))
             .add("coriolis_matrix", Value::joint_matrix(&j, &cf.c))
-            .add("gravity_torque", Value::joints(&j, cf.g.as_slice()));
+            .add("gravity_torque", Value::joints(&j, cf.g.as_slice()))
+            .add("ad_S_qdot", sq(&cf.ad_s_qdot))
+            .add("V", stacked(&cf.v))
+            .add("ad_V", sq(&cf.ad_v))
+            .add("Vdot_base", stacked(&cf.vdot_base))
+            .add("Vdot", stacked(&vdot))
+            .add("W", stacked(&w))
+            .add("tau", Value::joints(&j, tau.as_slice()));
         let mut t = String::from(
             "The seeds' closed form (seeds 000/001): V = L S θ̇, J = L S,\n\
              M = Sᵀ Lᵀ 𝔍 L S, C = Sᵀ Lᵀ [−𝔍 L ad_{Sθ̇} A − ad_{LSθ̇}ᵀ 𝔍] L S, g = Sᵀ Lᵀ 𝔍 L V̇_base.\n\n",
@@ -179,6 +196,16 @@ pub fn closed_form(a: &QvArgs) -> Result<(), CliError> {
             ("mass_matrix", "M(θ)"),
             ("coriolis_matrix", "C(θ, θ̇) (the seeds' literal form)"),
             ("gravity_torque", "g(θ)"),
+            ("ad_S_qdot", "ad_{Sθ̇} = blkdiag(ad_{S_i θ̇_i})"),
+            ("V", "V = L S θ̇ (stacked body twists)"),
+            ("ad_V", "ad_V = blkdiag(ad_{V_i})"),
+            (
+                "Vdot_base",
+                "V̇_base: block 1 = Ad_{H_0^1} V̇_g, V̇_g = (0, −g)",
+            ),
+            ("Vdot", "V̇ = L S θ̈ − L ad_{Sθ̇} A V + L V̇_base"),
+            ("W", "W = Lᵀ 𝔍 V̇ − Lᵀ ad_Vᵀ 𝔍 V"),
+            ("tau", "τ = Sᵀ W"),
         ] {
             let v = &r
                 .items
@@ -204,7 +231,11 @@ pub fn closed_form(a: &QvArgs) -> Result<(), CliError> {
 }
 
 /// `lagrange`: seed 004's `D_ij`, `D_ijk`, `D_i` and the effective inertias.
-pub fn lagrange(a: &QArgs) -> Result<(), CliError> {
+pub fn lagrange(args: &LagrangeArgs) -> Result<(), CliError> {
+    if args.steps {
+        return lagrange_steps(args);
+    }
+    let a = &args.qa;
     let m = load(&a.common.model, a.common.gravity.as_deref())?;
     let j = names(&m);
     let mut ws = Workspace::new(&m);
@@ -232,4 +263,45 @@ pub fn lagrange(a: &QArgs) -> Result<(), CliError> {
             .add("effective_inertia_free", Value::joints(&j, &free));
         Ok(r)
     })
+}
+
+/// `lagrange --steps`: seed 004's symbolic Euler–Lagrange steps (text, or ASCII in JSON).
+fn lagrange_steps(args: &LagrangeArgs) -> Result<(), CliError> {
+    use screwdyn::symbolic::{lagrange_steps, Collect, Options, Style};
+    let a = &args.qa;
+    if a.q.is_some() || a.common.input.is_some() {
+        return Err(CliError::input(
+            "--steps derives the equations for every θ: drop --q and --input",
+        ));
+    }
+    let m = load(&a.common.model, a.common.gravity.as_deref())?;
+    let options = Options {
+        symbols: args.symbols.clone(),
+        max_terms: args.max_terms,
+        ..Options::default()
+    };
+    let s = lagrange_steps(&m, &options)?;
+    let text = match a.common.model.format {
+        Some(crate::args::Format::Json) => {
+            let lines: Vec<serde_json::Value> = s
+                .render(Style::Ascii, Collect::Inertial)
+                .lines()
+                .filter(|l| !l.starts_with('#'))
+                .map(|l| serde_json::Value::String(l.to_string()))
+                .collect();
+            let mut t = serde_json::to_string_pretty(&serde_json::json!({
+                "model": s.model, "joints": s.joints, "steps": lines
+            }))
+            .map_err(|e| CliError::internal(e.to_string()))?;
+            t.push('\n');
+            t
+        }
+        _ => s.render(
+            Style::Text {
+                abbrev: !args.no_abbrev,
+            },
+            Collect::Config,
+        ),
+    };
+    crate::output::write_stdout(&text)
 }

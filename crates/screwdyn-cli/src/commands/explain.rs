@@ -123,6 +123,9 @@ pub fn narrative(m: &Model, it: &RneaTrace) -> String {
 
 /// `screwdyn explain MODEL --q --v --a`.
 pub fn explain(a: &ExplainArgs) -> Result<(), CliError> {
+    if a.style != crate::args::ExplainStyle::LieGroup {
+        return super::classic::explain_classic(a);
+    }
     let m = load(&a.common.model, a.common.gravity.as_deref())?;
     let j = names(&m);
     let ext = external_wrenches(&m, &a.wrenches.wrench, &a.wrenches.tip_wrench)?;

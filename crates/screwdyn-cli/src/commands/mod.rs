@@ -2,11 +2,14 @@
 //! wrenches and the states of numeric commands (from flags or `--input states.csv`).
 
 mod bench;
+mod classic;
 mod dynamics;
 mod explain;
+mod inertia;
 mod kinematics;
 mod model;
 mod sim;
+mod symbolic;
 
 use crate::args::{Cli, Command, Common, ModelArgs};
 use crate::output::{self, Report};
@@ -38,6 +41,8 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Simulate(a) => sim::simulate(&a),
         Command::TorqueProfile(a) => sim::torque_profile(&a),
         Command::Bench(a) => bench::bench(&a),
+        Command::Symbolic(a) => symbolic::symbolic(&a),
+        Command::Inertia(a) => inertia::inertia(&a),
     }
 }
 

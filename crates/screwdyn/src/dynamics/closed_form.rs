@@ -231,4 +231,40 @@ impl<T: Real> ClosedForm<T> {
         }
         Ok(tau)
     }
+
+    /// The stacked recursion of seed 000 at acceleration `θ̈`:
+    /// `V̇ = L S θ̈ − L ad_{Sθ̇} A V + L V̇_base` (gravity through `V̇_base`),
+    /// `W = Lᵀ 𝔍 V̇ − Lᵀ ad_Vᵀ 𝔍 V` and `τ = Sᵀ W`. Returns `(V̇, W, τ)`.
+    ///
+    /// ```
+    /// use screwdyn::{builtin, dynamics::{closed_form, rnea}, Workspace};
+    /// let m = builtin::planar2();
+    /// let (q, v, a) = ([0.3, -0.7], [1.0, 2.0], [0.5, -0.25]);
+    /// let (vdot, w, tau) = closed_form(&m, &q, &v).unwrap().stacked_dynamics(&a).unwrap();
+    /// let mut ws = Workspace::new(&m);
+    /// assert!((rnea(&m, &mut ws, &q, &v, &a).unwrap() - &tau).amax() < 1e-12);
+    /// assert!((vdot.fixed_rows::<6>(6) - ws.twist_dot[1]).amax() < 1e-12);
+    /// assert!((w.fixed_rows::<6>(0) - ws.wrench[0]).amax() < 1e-12);
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) when `qdd` does not have
+    /// one entry per joint.
+    pub fn stacked_dynamics(&self, qdd: &[T]) -> Result<(DVector<T>, DVector<T>, DVector<T>)> {
+        let n = self.s.ncols();
+        if qdd.len() != n {
+            return Err(crate::Error::DimensionMismatch {
+                what: "a".into(),
+                got: qdd.len(),
+                expected: n,
+                names: format!("{n} joints"),
+            });
+        }
+        let a = DVector::from_column_slice(qdd);
+        let vdot = &self.j * a + &self.j_dot * &self.qdot + &self.l * &self.vdot_base;
+        let w = self.l.transpose()
+            * (&self.inertia * &vdot - self.ad_v.transpose() * (&self.inertia * &self.v));
+        let tau = self.s.transpose() * &w;
+        Ok((vdot, w, tau))
+    }
 }

@@ -19,6 +19,7 @@
 
 mod aba;
 mod cholesky;
+mod classic_newton_euler;
 mod closed_form;
 mod coriolis;
 mod crba;
@@ -31,6 +32,7 @@ mod trace;
 mod wrenches;
 
 pub use aba::aba;
+pub use classic_newton_euler::{classic_newton_euler, ClassicLink};
 pub use closed_form::{closed_form, ClosedForm, MAX_CLOSED_FORM_JOINTS};
 pub use coriolis::coriolis_matrix;
 pub use crba::{crba, mass_matrix, mass_matrix_inverse};

@@ -19,6 +19,7 @@
 //! | `body.limits = { lower, upper, velocity, effort }` | each optional, infinite when absent |
 //! | `body.damping`, `body.friction` | viscous and Coulomb coefficients |
 //! | `body.mass`, `body.com`, `body.inertia` | mass, CoM in the link frame, inertia about the CoM `[ixx, ixy, ixz, iyy, iyz, izz]` |
+//! | `body.shape` | or a uniform shape centred at `com`: `{ type = "box", size = [w, l, h] }`, `cylinder` `[r, h]` (axis z), `sphere` `[r]`, `rod` `[length]` (along z), `point`; optional `rpy` turns its axes |
 //! | `body.spatial_inertia` | or the full 6×6 `𝔍^{i,i}` (6 rows, angular first, about the link origin) |
 //! | `[[frame]]` `name`, `link`, `pose = { xyz, rpy \| … }` | extra frames (tool points...) |
 //!
@@ -110,6 +111,42 @@ struct BodySpec {
     inertia: Option<[f64; 6]>,
     #[serde(default)]
     spatial_inertia: Option<[[f64; 6]; 6]>,
+    /// A shape primitive centred at `com` giving the inertia (issue 14).
+    #[serde(default)]
+    shape: Option<ShapeSpec>,
+}
+
+/// `shape = { type = "cylinder", size = [r, h], rpy = [..] }`: uniform density, centred at the
+/// body's `com`, axes turned by `rpy` in the link frame; replaces `inertia`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ShapeSpec {
+    #[serde(rename = "type")]
+    kind: String,
+    #[serde(default)]
+    size: Vec<f64>,
+    #[serde(default)]
+    rpy: Option<[f64; 3]>,
+}
+
+impl ShapeSpec {
+    /// The `[ixx, ixy, ixz, iyy, iyz, izz]` of mass `m` in this shape about its centre.
+    fn inertia(&self, m: Option<f64>) -> std::result::Result<[f64; 6], String> {
+        let m = m.ok_or("gives a shape without mass")?;
+        let shape =
+            crate::inertia::Shape::parse(&self.kind, &self.size).map_err(|e| e.to_string())?;
+        let [r, p, y] = self.rpy.unwrap_or([0.0; 3]);
+        let rot = crate::spatial::Se3::from_rpy(r, p, y).rotation;
+        let i = crate::inertia::rotate(&shape.inertia_com(m).map_err(|e| e.to_string())?, &rot);
+        Ok([
+            i[(0, 0)],
+            i[(0, 1)],
+            i[(0, 2)],
+            i[(1, 1)],
+            i[(1, 2)],
+            i[(2, 2)],
+        ])
+    }
 }
 
 /// The robot name used when a file gives none: the file name without directory and extension.
@@ -140,10 +177,17 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
             .home
             .to_se3()
             .map_err(|w| bad(format!("home pose {w}")))?;
+        let shape_inertia = match &body.shape {
+            Some(_) if body.inertia.is_some() || body.spatial_inertia.is_some() => {
+                return Err(bad("gives both a shape and an inertia".into()))
+            }
+            Some(shape) => Some(shape.inertia(body.mass).map_err(&bad)?),
+            None => body.inertia,
+        };
         let inertia = InertiaSpec {
             mass: body.mass,
             com: body.com,
-            inertia: body.inertia,
+            inertia: shape_inertia,
             spatial_inertia: body.spatial_inertia,
         }
         .to_inertia()
