@@ -87,7 +87,11 @@ pub fn rnea_trace<'py>(
     d.set_item("joint_names", model.joint_names())?;
     d.set_item(
         "link_names",
-        model.bodies().iter().map(|b| b.name.as_str()).collect::<Vec<_>>(),
+        model
+            .bodies()
+            .iter()
+            .map(|b| b.name.as_str())
+            .collect::<Vec<_>>(),
     )?;
     d.set_item("parents", model.parents().to_vec())?;
     d.set_item("q", vector(py, q)?)?;

@@ -73,8 +73,15 @@ pub fn joint_states<'a>(
     let nq = model.nq();
     match shape.len() {
         1 => {
-            model.check_vector(&data, name).map_err(crate::errors::call_err)?;
-            Ok(States { name, data, n: None, width: nq })
+            model
+                .check_vector(&data, name)
+                .map_err(crate::errors::call_err)?;
+            Ok(States {
+                name,
+                data,
+                n: None,
+                width: nq,
+            })
         }
         2 => {
             if shape[1] != nq {
@@ -88,7 +95,12 @@ pub fn joint_states<'a>(
                     shape_text(&shape)
                 )));
             }
-            Ok(States { name, data, n: Some(shape[0]), width: nq })
+            Ok(States {
+                name,
+                data,
+                n: Some(shape[0]),
+                width: nq,
+            })
         }
         _ => Err(PyValueError::new_err(format!(
             "{name} has shape {}, expected ({nq},) for one state or (N, {nq}) for N stacked states",
@@ -107,8 +119,18 @@ pub fn fixed_states<'a>(
     let shape = arr.shape().to_vec();
     let data = contiguous(arr);
     match shape.as_slice() {
-        [w] if *w == width => Ok(States { name, data, n: None, width }),
-        [n, w] if *w == width && stackable => Ok(States { name, data, n: Some(*n), width }),
+        [w] if *w == width => Ok(States {
+            name,
+            data,
+            n: None,
+            width,
+        }),
+        [n, w] if *w == width && stackable => Ok(States {
+            name,
+            data,
+            n: Some(*n),
+            width,
+        }),
         _ => Err(PyValueError::new_err(format!(
             "{name} has shape {}, expected ({width},){}",
             shape_text(&shape),
@@ -162,7 +184,11 @@ pub fn rows_array<'py>(
 
 /// A dense matrix as a row-major array.
 pub fn matrix<'py>(py: Python<'py>, m: &nalgebra::DMatrix<f64>) -> PyResult<Bound<'py, PyAny>> {
-    array(py, m.transpose().as_slice().to_vec(), &[m.nrows(), m.ncols()])
+    array(
+        py,
+        m.transpose().as_slice().to_vec(),
+        &[m.nrows(), m.ncols()],
+    )
 }
 
 /// A vector as a 1-D array.

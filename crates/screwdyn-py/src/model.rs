@@ -53,8 +53,10 @@ impl PyModel {
     ) -> PyResult<Self> {
         let opts = options(allow_nonphysical);
         let mut model = match &source {
-            Source::Builtin(name) => screwdyn::io::load_model_with(&format!("builtin:{name}"), &opts)
-                .map_err(|e| load_err(e, None))?,
+            Source::Builtin(name) => {
+                screwdyn::io::load_model_with(&format!("builtin:{name}"), &opts)
+                    .map_err(|e| load_err(e, None))?
+            }
             Source::Text { text, file } => {
                 screwdyn::io::load_str(text, file, &opts).map_err(|e| load_err(e, None))?
             }
@@ -169,13 +171,15 @@ impl PyModel {
         if let Some(d) = fext {
             for (k, w) in d.iter() {
                 let b = self.link(&k)?;
-                ext.add_local(b, wrench(&w, "a wrench of fext")?).map_err(call_err)?;
+                ext.add_local(b, wrench(&w, "a wrench of fext")?)
+                    .map_err(call_err)?;
             }
         }
         if let Some(d) = fext_world {
             for (k, w) in d.iter() {
                 let b = self.link(&k)?;
-                ext.add_world(b, wrench(&w, "a wrench of fext_world")?).map_err(call_err)?;
+                ext.add_world(b, wrench(&w, "a wrench of fext_world")?)
+                    .map_err(call_err)?;
             }
         }
         if let Some(d) = tip_wrenches {
@@ -230,21 +234,32 @@ pub fn load(path_or_builtin: &Bound<'_, PyAny>, allow_nonphysical: bool) -> PyRe
             Err(_) => path_or_builtin
                 .extract::<PathBuf>()
                 .map_err(|_| {
-                    PyTypeError::new_err("load takes a path (str or os.PathLike) or 'builtin:<name>'")
+                    PyTypeError::new_err(
+                        "load takes a path (str or os.PathLike) or 'builtin:<name>'",
+                    )
                 })?
                 .to_string_lossy()
                 .into_owned(),
         };
         if let Some(name) = path.strip_prefix("builtin:") {
-            return PyModel::rebuild(Source::Builtin(name.to_string()), allow_nonphysical, None, None);
+            return PyModel::rebuild(
+                Source::Builtin(name.to_string()),
+                allow_nonphysical,
+                None,
+                None,
+            );
         }
         let opts = options(allow_nonphysical);
         let model =
             screwdyn::io::load_model_with(&path, &opts).map_err(|e| load_err(e, Some(&path)))?;
         // The text the model was parsed from, kept for pickling (the library has no exact
         // serialiser: a pickled model is parsed again from the same text).
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| load_err(screwdyn::Error::Io(format!("{path}: cannot be read ({e})")), Some(&path)))?;
+        let text = std::fs::read_to_string(&path).map_err(|e| {
+            load_err(
+                screwdyn::Error::Io(format!("{path}: cannot be read ({e})")),
+                Some(&path),
+            )
+        })?;
         Ok(PyModel {
             model,
             source: Source::Text { text, file: path },
@@ -285,7 +300,10 @@ pub fn load_string(
             format!("{name}{ext}")
         };
         PyModel::rebuild(
-            Source::Text { text: text.to_string(), file },
+            Source::Text {
+                text: text.to_string(),
+                file,
+            },
             allow_nonphysical,
             None,
             None,
@@ -314,7 +332,11 @@ pub fn _unpickle_model(
         let source = match kind {
             "builtin" => Source::Builtin(text),
             "text" => Source::Text { text, file },
-            _ => return Err(ModelError::new_err(format!("unknown pickled model kind '{kind}'"))),
+            _ => {
+                return Err(ModelError::new_err(format!(
+                    "unknown pickled model kind '{kind}'"
+                )))
+            }
         };
         PyModel::rebuild(source, allow_nonphysical, gravity, joint_friction)
     })
@@ -351,7 +373,11 @@ impl PyModel {
     /// Joint names, in the order of every joint-space array.
     #[getter]
     fn joint_names(&self) -> Vec<String> {
-        self.model.joint_names().into_iter().map(String::from).collect()
+        self.model
+            .joint_names()
+            .into_iter()
+            .map(String::from)
+            .collect()
     }
 
     /// Joint kinds: revolute, continuous, prismatic or helical.
@@ -395,14 +421,24 @@ impl PyModel {
     /// Velocity limits (rad/s or m/s; `inf` when unlimited).
     #[getter]
     fn velocity_limits<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let v: Vec<f64> = self.model.joints().iter().map(|j| j.limits.velocity).collect();
+        let v: Vec<f64> = self
+            .model
+            .joints()
+            .iter()
+            .map(|j| j.limits.velocity)
+            .collect();
         convert::vector(py, &v)
     }
 
     /// Effort limits (N·m or N; `inf` when unlimited).
     #[getter]
     fn effort_limits<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let v: Vec<f64> = self.model.joints().iter().map(|j| j.limits.effort).collect();
+        let v: Vec<f64> = self
+            .model
+            .joints()
+            .iter()
+            .map(|j| j.limits.effort)
+            .collect();
         convert::vector(py, &v)
     }
 
@@ -472,10 +508,17 @@ impl PyModel {
     }
 
     /// A copy of the model with the given viscous damping and Coulomb friction per joint.
-    fn with_joint_friction(&self, damping: ArrayIn<'_>, friction: ArrayIn<'_>) -> PyResult<PyModel> {
+    fn with_joint_friction(
+        &self,
+        damping: ArrayIn<'_>,
+        friction: ArrayIn<'_>,
+    ) -> PyResult<PyModel> {
         let d = joint_states(&self.model, &damping, "damping")?;
         let f = joint_states(&self.model, &friction, "friction")?;
-        let (d, f) = (d.single("with_joint_friction")?.to_vec(), f.single("with_joint_friction")?.to_vec());
+        let (d, f) = (
+            d.single("with_joint_friction")?.to_vec(),
+            f.single("with_joint_friction")?.to_vec(),
+        );
         PyModel::rebuild(
             self.source.clone(),
             self.allow_nonphysical,
@@ -519,7 +562,9 @@ impl PyModel {
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
         let py = slf.py();
         let this = slf.borrow();
-        let f = py.import("screwdyn._screwdyn")?.getattr("_unpickle_model")?;
+        let f = py
+            .import("screwdyn._screwdyn")?
+            .getattr("_unpickle_model")?;
         let (kind, text, file) = match &this.source {
             Source::Builtin(n) => ("builtin", n.clone(), String::new()),
             Source::Text { text, file } => ("text", text.clone(), file.clone()),
@@ -570,13 +615,20 @@ impl PyModel {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
             let nf = self.model.frames().len();
-            let all = run(py, &self.model, &[&q], &[nf, 4, 4], threads, |m, s, r, o| {
-                kinematics::forward_kinematics(m, &mut s.ws, r[0])?;
-                for (f, of) in o.chunks_mut(16).enumerate() {
-                    convert::write_pose(&kinematics::frame_pose(m, &s.ws, f), of);
-                }
-                Ok(())
-            })?;
+            let all = run(
+                py,
+                &self.model,
+                &[&q],
+                &[nf, 4, 4],
+                threads,
+                |m, s, r, o| {
+                    kinematics::forward_kinematics(m, &mut s.ws, r[0])?;
+                    for (f, of) in o.chunks_mut(16).enumerate() {
+                        convert::write_pose(&kinematics::frame_pose(m, &s.ws, f), of);
+                    }
+                    Ok(())
+                },
+            )?;
             let d = PyDict::new(py);
             for (f, frame) in self.model.frames().iter().enumerate() {
                 let item = if q.n.is_some() {
@@ -686,11 +738,18 @@ impl PyModel {
             let q = joint_states(&self.model, &q, "q")?;
             let v = joint_states(&self.model, &v, "v")?;
             let a = joint_states(&self.model, &a, "a")?;
-            run(py, &self.model, &[&q, &v, &a], &[6], threads, |m, s, r, o| {
-                kinematics::forward_acceleration(m, &mut s.ws, r[0], r[1], r[2])?;
-                o.copy_from_slice(kinematics::frame_acceleration(m, &s.ws, f, rf).as_slice());
-                Ok(())
-            })
+            run(
+                py,
+                &self.model,
+                &[&q, &v, &a],
+                &[6],
+                threads,
+                |m, s, r, o| {
+                    kinematics::forward_acceleration(m, &mut s.ws, r[0], r[1], r[2])?;
+                    o.copy_from_slice(kinematics::frame_acceleration(m, &s.ws, f, rf).as_slice());
+                    Ok(())
+                },
+            )
         })
     }
 
@@ -748,10 +807,20 @@ impl PyModel {
             let v = self.opt(&v, "v")?;
             let a = self.opt(&a, "a")?;
             let nq = self.model.nq();
-            run(py, &self.model, &[&q, &v, &a], &[nq], threads, |m, s, r: &Rows<'_>, o| {
-                put(o, dynamics::inverse_dynamics(m, &mut s.ws, r[0], r[1], r[2], ext.as_ref())?);
-                Ok(())
-            })
+            run(
+                py,
+                &self.model,
+                &[&q, &v, &a],
+                &[nq],
+                threads,
+                |m, s, r: &Rows<'_>, o| {
+                    put(
+                        o,
+                        dynamics::inverse_dynamics(m, &mut s.ws, r[0], r[1], r[2], ext.as_ref())?,
+                    );
+                    Ok(())
+                },
+            )
         })
     }
 
@@ -805,10 +874,17 @@ impl PyModel {
             let q = joint_states(&self.model, &q, "q")?;
             let v = joint_states(&self.model, &v, "v")?;
             let nq = self.model.nq();
-            run(py, &self.model, &[&q, &v], &[nq, nq], threads, |m, s, r, o| {
-                convert::write_rows(dynamics::coriolis_matrix(m, &mut s.ws, r[0], r[1])?, o);
-                Ok(())
-            })
+            run(
+                py,
+                &self.model,
+                &[&q, &v],
+                &[nq, nq],
+                threads,
+                |m, s, r, o| {
+                    convert::write_rows(dynamics::coriolis_matrix(m, &mut s.ws, r[0], r[1])?, o);
+                    Ok(())
+                },
+            )
         })
     }
 
@@ -874,13 +950,28 @@ impl PyModel {
             let v = joint_states(&self.model, &v, "v")?;
             let tau = joint_states(&self.model, &tau, "tau")?;
             let nq = self.model.nq();
-            run(py, &self.model, &[&q, &v, &tau], &[nq], threads, |m, s, r, o| {
-                put(
-                    o,
-                    dynamics::forward_dynamics_with(m, &mut s.ws, r[0], r[1], r[2], ext.as_ref(), how)?,
-                );
-                Ok(())
-            })
+            run(
+                py,
+                &self.model,
+                &[&q, &v, &tau],
+                &[nq],
+                threads,
+                |m, s, r, o| {
+                    put(
+                        o,
+                        dynamics::forward_dynamics_with(
+                            m,
+                            &mut s.ws,
+                            r[0],
+                            r[1],
+                            r[2],
+                            ext.as_ref(),
+                            how,
+                        )?,
+                    );
+                    Ok(())
+                },
+            )
         })
     }
 
@@ -896,10 +987,17 @@ impl PyModel {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
             let v = joint_states(&self.model, &v, "v")?;
-            scalar_out(run(py, &self.model, &[&q, &v], &[], threads, |m, s, r, o| {
-                o[0] = dynamics::kinetic_energy(m, &mut s.ws, r[0], r[1])?;
-                Ok(())
-            })?)
+            scalar_out(run(
+                py,
+                &self.model,
+                &[&q, &v],
+                &[],
+                threads,
+                |m, s, r, o| {
+                    o[0] = dynamics::kinetic_energy(m, &mut s.ws, r[0], r[1])?;
+                    Ok(())
+                },
+            )?)
         })
     }
 
@@ -932,10 +1030,17 @@ impl PyModel {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
             let v = joint_states(&self.model, &v, "v")?;
-            scalar_out(run(py, &self.model, &[&q, &v], &[], threads, |m, s, r, o| {
-                o[0] = dynamics::total_energy(m, &mut s.ws, r[0], r[1])?;
-                Ok(())
-            })?)
+            scalar_out(run(
+                py,
+                &self.model,
+                &[&q, &v],
+                &[],
+                threads,
+                |m, s, r, o| {
+                    o[0] = dynamics::total_energy(m, &mut s.ws, r[0], r[1])?;
+                    Ok(())
+                },
+            )?)
         })
     }
 
@@ -951,10 +1056,17 @@ impl PyModel {
         guard(|| {
             let tau = joint_states(&self.model, &tau, "tau")?;
             let v = joint_states(&self.model, &v, "v")?;
-            scalar_out(run(py, &self.model, &[&tau, &v], &[], threads, |m, _s, r, o| {
-                o[0] = dynamics::power(m, r[0], r[1])?;
-                Ok(())
-            })?)
+            scalar_out(run(
+                py,
+                &self.model,
+                &[&tau, &v],
+                &[],
+                threads,
+                |m, _s, r, o| {
+                    o[0] = dynamics::power(m, r[0], r[1])?;
+                    Ok(())
+                },
+            )?)
         })
     }
 
@@ -990,7 +1102,12 @@ impl PyModel {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
             let v = self.opt(&v, "v")?;
-            analysis::closed_form(py, &self.model, q.single("closed_form")?, v.single("closed_form")?)
+            analysis::closed_form(
+                py,
+                &self.model,
+                q.single("closed_form")?,
+                v.single("closed_form")?,
+            )
         })
     }
 
@@ -1010,8 +1127,11 @@ impl PyModel {
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
-            let dm = dynamics::mass_matrix_derivatives(&self.model, q.single("mass_matrix_derivatives")?)
-                .map_err(call_err)?;
+            let dm = dynamics::mass_matrix_derivatives(
+                &self.model,
+                q.single("mass_matrix_derivatives")?,
+            )
+            .map_err(call_err)?;
             let n = self.model.nq();
             let mut out = vec![0.0; n * n * n];
             for (k, o) in out.chunks_mut(n * n).enumerate() {
@@ -1036,22 +1156,23 @@ impl PyModel {
             let q = joint_states(&self.model, &q, "q")?;
             let q = q.single("effective_inertia")?;
             let n = self.model.nq();
-            let mask: Vec<bool> = match free {
-                None => vec![false; n],
-                Some(f) if f.extract::<String>().map(|s| s == "all").unwrap_or(false) => vec![true; n],
-                Some(f) if f.extract::<String>().is_ok() => {
-                    return Err(PyValueError::new_err(
-                        "free is None (others locked), \"all\" or a list of joint names or indices",
-                    ))
-                }
-                Some(f) => {
-                    let mut m = vec![false; n];
-                    for item in f.try_iter()? {
-                        m[self.joint(&item?)?] = true;
+            let mask: Vec<bool> =
+                match free {
+                    None => vec![false; n],
+                    Some(f) if f.extract::<String>().map(|s| s == "all").unwrap_or(false) => {
+                        vec![true; n]
                     }
-                    m
-                }
-            };
+                    Some(f) if f.extract::<String>().is_ok() => return Err(PyValueError::new_err(
+                        "free is None (others locked), \"all\" or a list of joint names or indices",
+                    )),
+                    Some(f) => {
+                        let mut m = vec![false; n];
+                        for item in f.try_iter()? {
+                            m[self.joint(&item?)?] = true;
+                        }
+                        m
+                    }
+                };
             let mut ws = screwdyn::Workspace::new(&self.model);
             dynamics::effective_inertia(&self.model, &mut ws, q, j, &mask).map_err(call_err)
         })

@@ -88,7 +88,10 @@ impl PyTrajectory {
                 synchronised,
             )
             .map_err(call_err)?;
-            Ok(PyTrajectory { traj: Traj::Trapezoid(t), kind: "trapezoid" })
+            Ok(PyTrajectory {
+                traj: Traj::Trapezoid(t),
+                kind: "trapezoid",
+            })
         })
     }
 
@@ -114,9 +117,17 @@ impl PyTrajectory {
                 Some(a) => vec1(a, name),
                 None => Ok(zero.clone()),
             };
-            let (v0, vf, a0, af) = (opt(&v0, "v0")?, opt(&vf, "vf")?, opt(&a0, "a0")?, opt(&af, "af")?);
+            let (v0, vf, a0, af) = (
+                opt(&v0, "v0")?,
+                opt(&vf, "vf")?,
+                opt(&a0, "a0")?,
+                opt(&af, "af")?,
+            );
             let t = Quintic::new((&q0, &v0, &a0), (&qf, &vf, &af), duration).map_err(call_err)?;
-            Ok(PyTrajectory { traj: Traj::Quintic(t), kind: "quintic" })
+            Ok(PyTrajectory {
+                traj: Traj::Quintic(t),
+                kind: "quintic",
+            })
         })
     }
 
@@ -132,9 +143,15 @@ impl PyTrajectory {
                 ));
             }
             let p = points.as_array();
-            let rows: Vec<Vec<f64>> = p.outer_iter().map(|r| r.iter().copied().collect()).collect();
+            let rows: Vec<Vec<f64>> = p
+                .outer_iter()
+                .map(|r| r.iter().copied().collect())
+                .collect();
             let t = Waypoints::new(&times, &rows).map_err(call_err)?;
-            Ok(PyTrajectory { traj: Traj::Waypoints(t), kind: "waypoints" })
+            Ok(PyTrajectory {
+                traj: Traj::Waypoints(t),
+                kind: "waypoints",
+            })
         })
     }
 
@@ -167,7 +184,11 @@ impl PyTrajectory {
                 let r = k * n..(k + 1) * n;
                 tr.sample(tk, &mut q[r.clone()], &mut v[r.clone()], &mut a[r]);
             }
-            let shape: Vec<usize> = if t.ndim() == 0 { vec![n] } else { vec![times.len(), n] };
+            let shape: Vec<usize> = if t.ndim() == 0 {
+                vec![n]
+            } else {
+                vec![times.len(), n]
+            };
             PyTuple::new(
                 py,
                 [
@@ -343,7 +364,9 @@ fn controller(pm: &PyModel, c: &Bound<'_, PyAny>) -> PyResult<Option<Ctl>> {
         "computed_torque" => {
             let t = spec.get_item(1)?;
             let t = t.cast::<PyTrajectory>().map_err(|_| {
-                PyTypeError::new_err("computed-torque control needs a screwdyn.Trajectory as reference")
+                PyTypeError::new_err(
+                    "computed-torque control needs a screwdyn.Trajectory as reference",
+                )
             })?;
             Ctl::Computed(t.get().traj.clone(), jv(2, "kp")?, jv(3, "kd")?)
         }
@@ -357,10 +380,18 @@ fn controller(pm: &PyModel, c: &Bound<'_, PyAny>) -> PyResult<Option<Ctl>> {
                     "torque series values must have shape (K, nq): one torque row per time",
                 ));
             }
-            let rows = v.as_array().outer_iter().map(|r| r.iter().copied().collect()).collect();
+            let rows = v
+                .as_array()
+                .outer_iter()
+                .map(|r| r.iter().copied().collect())
+                .collect();
             Ctl::Series(times, rows)
         }
-        other => return Err(PyValueError::new_err(format!("unknown controller kind '{other}'"))),
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "unknown controller kind '{other}'"
+            )))
+        }
     }))
 }
 
@@ -377,9 +408,9 @@ pub fn simulate<'py>(
     let mut dist = Vec::new();
     for d in a.disturbances.iter() {
         // (link, wrench, start, end, in_world) from screwdyn.Disturbance.
-        let t = d.cast::<PyTuple>().map_err(|_| {
-            PyTypeError::new_err("disturbances is a list of screwdyn.Disturbance")
-        })?;
+        let t = d
+            .cast::<PyTuple>()
+            .map_err(|_| PyTypeError::new_err("disturbances is a list of screwdyn.Disturbance"))?;
         let w: ArrayIn<'_> = t.get_item(1)?.extract()?;
         let w = fixed_states(&w, "a disturbance wrench", 6, false)?;
         dist.push(Disturbance {
