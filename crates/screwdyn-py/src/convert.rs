@@ -54,10 +54,12 @@ impl States<'_> {
     }
 }
 
+/// The values in row-major (C) order: borrowed when the array is C-contiguous, else copied in
+/// logical order (`as_slice` alone would accept a Fortran-ordered array in memory order).
 fn contiguous<'a>(arr: &'a ArrayIn<'_>) -> Cow<'a, [f64]> {
     match arr.as_slice() {
-        Ok(s) => Cow::Borrowed(s),
-        Err(_) => Cow::Owned(arr.as_array().iter().copied().collect()),
+        Ok(s) if arr.is_c_contiguous() => Cow::Borrowed(s),
+        _ => Cow::Owned(arr.as_array().iter().copied().collect()),
     }
 }
 

@@ -72,6 +72,9 @@ def test_shapes_lists_and_broadcasting(ur5):
     # non-contiguous input (a column slice) is read correctly
     big = np.hstack([q, q])
     np.testing.assert_array_equal(ur5.crba(big[:, :6]), ur5.crba(q))
+    # Fortran-ordered and transposed inputs are read in logical (row) order
+    np.testing.assert_array_equal(ur5.rnea(np.asfortranarray(q), v, a), ur5.rnea(q, v, a))
+    np.testing.assert_array_equal(ur5.crba(np.ascontiguousarray(q.T).T), ur5.crba(q))
     # zero states
     assert ur5.rnea(np.zeros((0, 6)), np.zeros((0, 6)), np.zeros((0, 6))).shape == (0, 6)
     # frame_poses batches every frame
