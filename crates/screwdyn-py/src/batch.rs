@@ -8,6 +8,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rayon::prelude::*;
 use screwdyn::{Model, Workspace};
+use std::sync::Mutex;
 
 /// Per-thread buffers: the library's workspace and a Jacobian.
 pub struct Scratch {
@@ -47,6 +48,7 @@ pub fn check_threads(threads: Option<usize>) -> PyResult<Option<usize>> {
 pub fn run<'py, F>(
     py: Python<'py>,
     model: &Model,
+    cache: &Mutex<Option<Scratch>>,
     args: &[&States<'_>],
     out_shape: &[usize],
     threads: Option<usize>,
@@ -66,9 +68,17 @@ where
         r
     };
     let Some(n) = batch_len(args)? else {
+        // One state: reuse the model's cached workspace (no allocation but the result), or a
+        // fresh one if another thread holds it.
         let mut out = vec![0.0; width];
-        let mut s = Scratch::new(model);
-        kernel(model, &mut s, &rows(0), &mut out).map_err(|e| in_state(e, None))?;
+        let r = match cache.try_lock() {
+            Ok(mut guard) => {
+                let s = guard.get_or_insert_with(|| Scratch::new(model));
+                kernel(model, s, &rows(0), &mut out)
+            }
+            Err(_) => kernel(model, &mut Scratch::new(model), &rows(0), &mut out),
+        };
+        r.map_err(|e| in_state(e, None))?;
         return array(py, out, out_shape);
     };
     let mut out = vec![0.0; n * width];

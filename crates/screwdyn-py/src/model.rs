@@ -1,7 +1,7 @@
 //! `screwdyn.Model`: loading, properties, pickling, and every per-state algorithm of the
 //! library (kinematics, Jacobians, dynamics, energies), single or batched.
 
-use crate::batch::{run, Rows};
+use crate::batch::{run, Rows, Scratch};
 use crate::convert::{self, fixed_states, joint_states, ArrayIn, States};
 use crate::errors::{call_err, guard, load_err, ModelError};
 use crate::{analysis, sim};
@@ -15,6 +15,7 @@ use screwdyn::kinematics::{self, Reference};
 use screwdyn::Model;
 use std::borrow::Cow;
 use std::path::PathBuf;
+use std::sync::Mutex;
 
 /// Where a model came from, so that a pickled model is rebuilt by the same library path.
 #[derive(Clone, Debug)]
@@ -38,6 +39,8 @@ pub struct PyModel {
     allow_nonphysical: bool,
     gravity: Option<[f64; 3]>,
     joint_friction: Option<(Vec<f64>, Vec<f64>)>,
+    /// A workspace reused by single-state calls (batches make one per thread).
+    scratch: Mutex<Option<Scratch>>,
 }
 
 fn options(allow_nonphysical: bool) -> LoadOptions {
@@ -73,6 +76,7 @@ impl PyModel {
             allow_nonphysical,
             gravity,
             joint_friction,
+            scratch: Mutex::new(None),
         })
     }
 
@@ -266,6 +270,7 @@ pub fn load(path_or_builtin: &Bound<'_, PyAny>, allow_nonphysical: bool) -> PyRe
             allow_nonphysical,
             gravity: None,
             joint_friction: None,
+            scratch: Mutex::new(None),
         })
     })
 }
@@ -596,11 +601,19 @@ impl PyModel {
         guard(|| {
             let f = self.frame(frame)?;
             let q = joint_states(&self.model, &q, "q")?;
-            run(py, &self.model, &[&q], &[4, 4], threads, |m, s, r, o| {
-                kinematics::forward_kinematics(m, &mut s.ws, r[0])?;
-                convert::write_pose(&kinematics::frame_pose(m, &s.ws, f), o);
-                Ok(())
-            })
+            run(
+                py,
+                &self.model,
+                &self.scratch,
+                &[&q],
+                &[4, 4],
+                threads,
+                |m, s, r, o| {
+                    kinematics::forward_kinematics(m, &mut s.ws, r[0])?;
+                    convert::write_pose(&kinematics::frame_pose(m, &s.ws, f), o);
+                    Ok(())
+                },
+            )
         })
     }
 
@@ -618,6 +631,7 @@ impl PyModel {
             let all = run(
                 py,
                 &self.model,
+                &self.scratch,
                 &[&q],
                 &[nf, 4, 4],
                 threads,
@@ -660,12 +674,20 @@ impl PyModel {
             let rf = self::reference(reference)?;
             let q = joint_states(&self.model, &q, "q")?;
             let nq = self.model.nq();
-            run(py, &self.model, &[&q], &[6, nq], threads, |m, s, r, o| {
-                kinematics::compute_joint_jacobians(m, &mut s.ws, r[0])?;
-                kinematics::frame_jacobian(m, &s.ws, f, rf, &mut s.jac);
-                convert::write_rows(&s.jac, o);
-                Ok(())
-            })
+            run(
+                py,
+                &self.model,
+                &self.scratch,
+                &[&q],
+                &[6, nq],
+                threads,
+                |m, s, r, o| {
+                    kinematics::compute_joint_jacobians(m, &mut s.ws, r[0])?;
+                    kinematics::frame_jacobian(m, &s.ws, f, rf, &mut s.jac);
+                    convert::write_rows(&s.jac, o);
+                    Ok(())
+                },
+            )
         })
     }
 
@@ -683,12 +705,20 @@ impl PyModel {
             let b = self.link(link)?;
             let q = joint_states(&self.model, &q, "q")?;
             let nq = self.model.nq();
-            run(py, &self.model, &[&q], &[6, nq], threads, |m, s, r, o| {
-                kinematics::compute_joint_jacobians(m, &mut s.ws, r[0])?;
-                kinematics::link_jacobian(m, &s.ws, b, &mut s.jac);
-                convert::write_rows(&s.jac, o);
-                Ok(())
-            })
+            run(
+                py,
+                &self.model,
+                &self.scratch,
+                &[&q],
+                &[6, nq],
+                threads,
+                |m, s, r, o| {
+                    kinematics::compute_joint_jacobians(m, &mut s.ws, r[0])?;
+                    kinematics::link_jacobian(m, &s.ws, b, &mut s.jac);
+                    convert::write_rows(&s.jac, o);
+                    Ok(())
+                },
+            )
         })
     }
 
@@ -710,11 +740,19 @@ impl PyModel {
             let rf = self::reference(reference)?;
             let q = joint_states(&self.model, &q, "q")?;
             let v = joint_states(&self.model, &v, "v")?;
-            run(py, &self.model, &[&q, &v], &[6], threads, |m, s, r, o| {
-                kinematics::forward_velocity(m, &mut s.ws, r[0], r[1])?;
-                o.copy_from_slice(kinematics::frame_twist(m, &s.ws, f, rf).as_slice());
-                Ok(())
-            })
+            run(
+                py,
+                &self.model,
+                &self.scratch,
+                &[&q, &v],
+                &[6],
+                threads,
+                |m, s, r, o| {
+                    kinematics::forward_velocity(m, &mut s.ws, r[0], r[1])?;
+                    o.copy_from_slice(kinematics::frame_twist(m, &s.ws, f, rf).as_slice());
+                    Ok(())
+                },
+            )
         })
     }
 
@@ -741,6 +779,7 @@ impl PyModel {
             run(
                 py,
                 &self.model,
+                &self.scratch,
                 &[&q, &v, &a],
                 &[6],
                 threads,
@@ -771,11 +810,19 @@ impl PyModel {
             let rf = self::reference(reference)?;
             let q = joint_states(&self.model, &q, "q")?;
             let v = joint_states(&self.model, &v, "v")?;
-            run(py, &self.model, &[&q, &v], &[6], threads, |m, s, r, o| {
-                let x = kinematics::frame_jdot_qdot(m, &mut s.ws, r[0], r[1], f, rf)?;
-                o.copy_from_slice(x.as_slice());
-                Ok(())
-            })
+            run(
+                py,
+                &self.model,
+                &self.scratch,
+                &[&q, &v],
+                &[6],
+                threads,
+                |m, s, r, o| {
+                    let x = kinematics::frame_jdot_qdot(m, &mut s.ws, r[0], r[1], f, rf)?;
+                    o.copy_from_slice(x.as_slice());
+                    Ok(())
+                },
+            )
         })
     }
 
@@ -810,6 +857,7 @@ impl PyModel {
             run(
                 py,
                 &self.model,
+                &self.scratch,
                 &[&q, &v, &a],
                 &[nq],
                 threads,
@@ -835,10 +883,18 @@ impl PyModel {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
             let nq = self.model.nq();
-            run(py, &self.model, &[&q], &[nq, nq], threads, |m, s, r, o| {
-                convert::write_rows(dynamics::crba(m, &mut s.ws, r[0])?, o);
-                Ok(())
-            })
+            run(
+                py,
+                &self.model,
+                &self.scratch,
+                &[&q],
+                &[nq, nq],
+                threads,
+                |m, s, r, o| {
+                    convert::write_rows(dynamics::crba(m, &mut s.ws, r[0])?, o);
+                    Ok(())
+                },
+            )
         })
     }
 
@@ -853,10 +909,18 @@ impl PyModel {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
             let nq = self.model.nq();
-            run(py, &self.model, &[&q], &[nq, nq], threads, |m, s, r, o| {
-                convert::write_rows(dynamics::mass_matrix_inverse(m, &mut s.ws, r[0])?, o);
-                Ok(())
-            })
+            run(
+                py,
+                &self.model,
+                &self.scratch,
+                &[&q],
+                &[nq, nq],
+                threads,
+                |m, s, r, o| {
+                    convert::write_rows(dynamics::mass_matrix_inverse(m, &mut s.ws, r[0])?, o);
+                    Ok(())
+                },
+            )
         })
     }
 
@@ -877,6 +941,7 @@ impl PyModel {
             run(
                 py,
                 &self.model,
+                &self.scratch,
                 &[&q, &v],
                 &[nq, nq],
                 threads,
@@ -899,10 +964,18 @@ impl PyModel {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
             let nq = self.model.nq();
-            run(py, &self.model, &[&q], &[nq], threads, |m, s, r, o| {
-                put(o, dynamics::gravity_torque(m, &mut s.ws, r[0])?);
-                Ok(())
-            })
+            run(
+                py,
+                &self.model,
+                &self.scratch,
+                &[&q],
+                &[nq],
+                threads,
+                |m, s, r, o| {
+                    put(o, dynamics::gravity_torque(m, &mut s.ws, r[0])?);
+                    Ok(())
+                },
+            )
         })
     }
 
@@ -919,10 +992,18 @@ impl PyModel {
             let q = joint_states(&self.model, &q, "q")?;
             let v = joint_states(&self.model, &v, "v")?;
             let nq = self.model.nq();
-            run(py, &self.model, &[&q, &v], &[nq], threads, |m, s, r, o| {
-                put(o, dynamics::nonlinear_effects(m, &mut s.ws, r[0], r[1])?);
-                Ok(())
-            })
+            run(
+                py,
+                &self.model,
+                &self.scratch,
+                &[&q, &v],
+                &[nq],
+                threads,
+                |m, s, r, o| {
+                    put(o, dynamics::nonlinear_effects(m, &mut s.ws, r[0], r[1])?);
+                    Ok(())
+                },
+            )
         })
     }
 
@@ -953,6 +1034,7 @@ impl PyModel {
             run(
                 py,
                 &self.model,
+                &self.scratch,
                 &[&q, &v, &tau],
                 &[nq],
                 threads,
@@ -990,6 +1072,7 @@ impl PyModel {
             scalar_out(run(
                 py,
                 &self.model,
+                &self.scratch,
                 &[&q, &v],
                 &[],
                 threads,
@@ -1011,10 +1094,18 @@ impl PyModel {
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
-            scalar_out(run(py, &self.model, &[&q], &[], threads, |m, s, r, o| {
-                o[0] = dynamics::potential_energy(m, &mut s.ws, r[0])?;
-                Ok(())
-            })?)
+            scalar_out(run(
+                py,
+                &self.model,
+                &self.scratch,
+                &[&q],
+                &[],
+                threads,
+                |m, s, r, o| {
+                    o[0] = dynamics::potential_energy(m, &mut s.ws, r[0])?;
+                    Ok(())
+                },
+            )?)
         })
     }
 
@@ -1033,6 +1124,7 @@ impl PyModel {
             scalar_out(run(
                 py,
                 &self.model,
+                &self.scratch,
                 &[&q, &v],
                 &[],
                 threads,
@@ -1059,6 +1151,7 @@ impl PyModel {
             scalar_out(run(
                 py,
                 &self.model,
+                &self.scratch,
                 &[&tau, &v],
                 &[],
                 threads,
@@ -1080,10 +1173,18 @@ impl PyModel {
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
-            run(py, &self.model, &[&q], &[3], threads, |m, s, r, o| {
-                o.copy_from_slice(dynamics::center_of_mass(m, &mut s.ws, r[0])?.as_slice());
-                Ok(())
-            })
+            run(
+                py,
+                &self.model,
+                &self.scratch,
+                &[&q],
+                &[3],
+                threads,
+                |m, s, r, o| {
+                    o.copy_from_slice(dynamics::center_of_mass(m, &mut s.ws, r[0])?.as_slice());
+                    Ok(())
+                },
+            )
         })
     }
 

@@ -139,3 +139,12 @@ def test_external_and_tip_wrenches():
     # Forward dynamics with the same wrench balances the torque: a = 0.
     np.testing.assert_allclose(model.forward_dynamics(q, [0, 0], [2.0, 1.0],
                                tip_wrenches={"link2": [0, 0, 0, 0, 1, 0]}), [0, 0], atol=1e-12)
+
+
+def test_closed_form_to_sympy():
+    sympy = pytest.importorskip("sympy")
+    cf = arm().closed_form([0.3, 0.5], [1.0, -1.0])
+    s = cf.to_sympy()
+    assert isinstance(s["M"], sympy.Matrix) and s["M"].shape == (2, 2)
+    assert float(s["M"][0, 1]) == cf.M[0, 1]
+    assert "\\mathfrak{J}" in cf._repr_markdown_()

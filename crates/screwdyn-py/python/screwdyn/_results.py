@@ -82,7 +82,17 @@ class ClosedForm:
         self.g: np.ndarray = data["g"]
 
     def to_dict(self) -> Dict[str, np.ndarray]:
+        """Every array by name."""
         return {k: v for k, v in vars(self).items() if isinstance(v, np.ndarray)}
+
+    def to_sympy(self) -> Dict[str, Any]:
+        """Every array as a ``sympy.Matrix`` (for pretty printing next to a hand derivation;
+        needs sympy: ``pip install screwdyn[sympy]``)."""
+        try:
+            import sympy
+        except ImportError as e:  # pragma: no cover - exercised only without sympy
+            raise ImportError("to_sympy() needs sympy: pip install screwdyn[sympy]") from e
+        return {k: sympy.Matrix(v.reshape(v.shape[0], -1)) for k, v in self.to_dict().items()}
 
     def __repr__(self) -> str:
         n = len(self.joint_names)
