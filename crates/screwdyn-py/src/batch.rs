@@ -1,11 +1,14 @@
 //! Running a per-state library call over one state or `N` stacked states: the GIL is released
 //! and the states are spread over rayon's threads, each with its own [`Workspace`].
 
-use crate::convert::{array, batch_len, States};
+use crate::convert::{batch_len, States};
 use crate::errors::in_state;
 use nalgebra::Matrix6xX;
+use numpy::ndarray::IxDyn;
+use numpy::{PyArrayDyn, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use pyo3::types::PyFloat;
 use rayon::prelude::*;
 use screwdyn::{Model, Workspace};
 use std::sync::Mutex;
@@ -67,21 +70,23 @@ where
         }
         r
     };
-    let Some(n) = batch_len(args)? else {
-        // One state: reuse the model's cached workspace (no allocation but the result), or a
-        // fresh one if another thread holds it.
-        let mut out = vec![0.0; width];
-        let r = match cache.try_lock() {
-            Ok(mut guard) => {
-                let s = guard.get_or_insert_with(|| Scratch::new(model));
-                kernel(model, s, &rows(0), &mut out)
-            }
-            Err(_) => kernel(model, &mut Scratch::new(model), &rows(0), &mut out),
-        };
-        r.map_err(|e| in_state(e, None))?;
-        return array(py, out, out_shape);
+    let n = batch_len(args)?;
+    if n.is_none() && out_shape.is_empty() {
+        // One state, a scalar result: a Python float.
+        let mut out = [0.0];
+        single(model, cache, &rows(0), &mut out, &kernel)?;
+        return Ok(PyFloat::new(py, out[0]).into_any());
+    }
+    let mut shape: Vec<usize> = n.into_iter().collect();
+    shape.extend_from_slice(out_shape);
+    // The result is written straight into a fresh NumPy array (no copy, no reshape).
+    let arr = PyArrayDyn::<f64>::zeros(py, IxDyn(&shape), false);
+    // SAFETY: the array was just created, is C-contiguous and nothing else refers to it yet.
+    let out = unsafe { arr.as_slice_mut() }.expect("a fresh array is contiguous");
+    let Some(n) = n else {
+        single(model, cache, &rows(0), out, &kernel)?;
+        return Ok(arr.into_any());
     };
-    let mut out = vec![0.0; n * width];
     let result = py.detach(|| -> Result<(), (usize, screwdyn::Error)> {
         if width == 0 || n == 0 {
             return Ok(());
@@ -111,15 +116,35 @@ where
         match threads {
             Some(t) if t != rayon::current_num_threads() => {
                 match rayon::ThreadPoolBuilder::new().num_threads(t).build() {
-                    Ok(pool) => pool.install(|| work(&mut out)),
-                    Err(_) => work(&mut out),
+                    Ok(pool) => pool.install(|| work(out)),
+                    Err(_) => work(out),
                 }
             }
-            _ => work(&mut out),
+            _ => work(out),
         }
     });
     result.map_err(|(k, e)| in_state(e, Some(k)))?;
-    let mut shape = vec![n];
-    shape.extend_from_slice(out_shape);
-    array(py, out, &shape)
+    Ok(arr.into_any())
+}
+
+/// One state: reuses the model's cached workspace (no allocation), or a fresh one if another
+/// thread holds it.
+fn single<F>(
+    model: &Model,
+    cache: &Mutex<Option<Scratch>>,
+    rows: &Rows<'_>,
+    out: &mut [f64],
+    kernel: &F,
+) -> PyResult<()>
+where
+    F: Fn(&Model, &mut Scratch, &Rows<'_>, &mut [f64]) -> screwdyn::Result<()> + Sync,
+{
+    let r = match cache.try_lock() {
+        Ok(mut guard) => {
+            let s = guard.get_or_insert_with(|| Scratch::new(model));
+            kernel(model, s, rows, out)
+        }
+        Err(_) => kernel(model, &mut Scratch::new(model), rows, out),
+    };
+    r.map_err(|e| in_state(e, None))
 }

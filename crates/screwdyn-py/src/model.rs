@@ -215,15 +215,6 @@ fn put(o: &mut [f64], x: &nalgebra::DVector<f64>) {
     o.copy_from_slice(x.as_slice());
 }
 
-/// A scalar result: a Python float for one state, an `(N,)` array for stacked states.
-fn scalar_out<'py>(r: Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
-    if r.getattr("ndim")?.extract::<usize>()? == 0 {
-        let x: f64 = r.call_method0("item")?.extract()?;
-        return Ok(pyo3::types::PyFloat::new(r.py(), x).into_any());
-    }
-    Ok(r)
-}
-
 /// Loads a model from a `.urdf` file, a `.toml` file (DH, modified DH, product of exponentials or
 /// the native format, chosen by its `format` key) or `builtin:<name>`.
 ///
@@ -1069,7 +1060,7 @@ impl PyModel {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
             let v = joint_states(&self.model, &v, "v")?;
-            scalar_out(run(
+            run(
                 py,
                 &self.model,
                 &self.scratch,
@@ -1080,7 +1071,7 @@ impl PyModel {
                     o[0] = dynamics::kinetic_energy(m, &mut s.ws, r[0], r[1])?;
                     Ok(())
                 },
-            )?)
+            )
         })
     }
 
@@ -1094,7 +1085,7 @@ impl PyModel {
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
-            scalar_out(run(
+            run(
                 py,
                 &self.model,
                 &self.scratch,
@@ -1105,7 +1096,7 @@ impl PyModel {
                     o[0] = dynamics::potential_energy(m, &mut s.ws, r[0])?;
                     Ok(())
                 },
-            )?)
+            )
         })
     }
 
@@ -1121,7 +1112,7 @@ impl PyModel {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
             let v = joint_states(&self.model, &v, "v")?;
-            scalar_out(run(
+            run(
                 py,
                 &self.model,
                 &self.scratch,
@@ -1132,7 +1123,7 @@ impl PyModel {
                     o[0] = dynamics::total_energy(m, &mut s.ws, r[0], r[1])?;
                     Ok(())
                 },
-            )?)
+            )
         })
     }
 
@@ -1148,7 +1139,7 @@ impl PyModel {
         guard(|| {
             let tau = joint_states(&self.model, &tau, "tau")?;
             let v = joint_states(&self.model, &v, "v")?;
-            scalar_out(run(
+            run(
                 py,
                 &self.model,
                 &self.scratch,
@@ -1159,7 +1150,7 @@ impl PyModel {
                     o[0] = dynamics::power(m, r[0], r[1])?;
                     Ok(())
                 },
-            )?)
+            )
         })
     }
 
