@@ -3,10 +3,12 @@
 
 use crate::convert::{self, array, matrix, vector};
 use crate::errors::call_err;
+use nalgebra::Vector6;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 use screwdyn::dynamics::{self, ExternalWrenches};
-use screwdyn::{Model, Workspace};
+use screwdyn::spatial::Se3;
+use screwdyn::Model;
 
 pub fn closed_form<'py>(
     py: Python<'py>,
@@ -50,9 +52,9 @@ pub fn lagrange<'py>(py: Python<'py>, model: &Model, q: &[f64]) -> PyResult<Boun
     Ok(d)
 }
 
-/// The quantities of one RNEA run, read from the library's workspace after
-/// `dynamics::inverse_dynamics` (which stores `H_i^{λ(i)}`, `V_i`, `V̇_i`, `W_i` and `τ` there).
-// TODO(issue 11): bind `dynamics::rnea_trace` once it lands on main.
+/// The library's `dynamics::rnea_trace` (seeds 000/002, forward and backward iterations) as a
+/// dict of arrays, plus the model quantities the lecture writes next to them (`S_i`,
+/// `H_i^{λ(i)}(0)`, `𝔍^{i,i}`).
 pub fn rnea_trace<'py>(
     py: Python<'py>,
     model: &Model,
@@ -61,28 +63,27 @@ pub fn rnea_trace<'py>(
     a: &[f64],
     ext: Option<&ExternalWrenches>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let mut ws = Workspace::new(model);
-    dynamics::inverse_dynamics(model, &mut ws, q, v, a, ext).map_err(call_err)?;
+    let tr = dynamics::rnea_trace(model, q, v, a, ext).map_err(call_err)?;
     let n = model.nbodies();
-    let poses = |hs: &[screwdyn::spatial::Se3]| {
+    let poses = |hs: &mut dyn Iterator<Item = Se3>| {
         let mut out = vec![0.0; n * 16];
-        for (h, o) in hs.iter().zip(out.chunks_mut(16)) {
-            convert::write_pose(h, o);
+        for (h, o) in hs.zip(out.chunks_mut(16)) {
+            convert::write_pose(&h, o);
         }
         array(py, out, &[n, 4, 4])
     };
-    let sixes = |xs: &mut dyn Iterator<Item = nalgebra::Vector6<f64>>| {
+    let sixes = |xs: &mut dyn Iterator<Item = Vector6<f64>>| {
         let mut out = Vec::with_capacity(n * 6);
         for x in xs {
             out.extend_from_slice(x.as_slice());
         }
         array(py, out, &[n, 6])
     };
-    let homes: Vec<_> = model.joints().iter().map(|j| j.home).collect();
     let mut inertia = vec![0.0; n * 36];
     for (b, o) in model.bodies().iter().zip(inertia.chunks_mut(36)) {
         convert::write_rows(&b.inertia.matrix(), o);
     }
+    let (fw, bw) = (&tr.forward, &tr.backward);
     let d = PyDict::new(py);
     d.set_item("joint_names", model.joint_names())?;
     d.set_item(
@@ -100,20 +101,37 @@ pub fn rnea_trace<'py>(
     d.set_item("gravity", vector(py, model.gravity().as_slice())?)?;
     d.set_item(
         "base_acceleration",
-        vector(py, dynamics::base_acceleration(model).as_slice())?,
+        vector(py, tr.base_acceleration.as_slice())?,
     )?;
     d.set_item("screw", sixes(&mut model.joints().iter().map(|j| j.screw))?)?;
-    d.set_item("home", poses(&homes)?)?;
+    d.set_item("home", poses(&mut model.joints().iter().map(|j| j.home))?)?;
     d.set_item("inertia", array(py, inertia, &[n, 6, 6])?)?;
-    d.set_item("pose_in_parent", poses(&ws.pose_in_parent[..n])?)?;
-    d.set_item("pose_in_world", poses(&ws.pose_in_world[..n])?)?;
-    d.set_item("twist", sixes(&mut ws.twist[..n].iter().copied())?)?;
-    d.set_item("twist_dot", sixes(&mut ws.twist_dot[..n].iter().copied())?)?;
-    d.set_item("wrench", sixes(&mut ws.wrench[..n].iter().copied())?)?;
-    let external: Vec<_> = (0..n)
-        .map(|i| ext.map_or(nalgebra::Vector6::zeros(), |e| e.on_body(&ws, i)))
-        .collect();
-    d.set_item("external", sixes(&mut external.into_iter())?)?;
-    d.set_item("tau", vector(py, ws.tau.as_slice())?)?;
+    d.set_item(
+        "pose_in_parent",
+        poses(&mut fw.iter().map(|f| f.pose_in_parent))?,
+    )?;
+    d.set_item(
+        "parent_twist",
+        sixes(&mut fw.iter().map(|f| f.parent_twist))?,
+    )?;
+    d.set_item(
+        "parent_twist_dot",
+        sixes(&mut fw.iter().map(|f| f.parent_twist_dot))?,
+    )?;
+    d.set_item("twist", sixes(&mut fw.iter().map(|f| f.twist))?)?;
+    d.set_item("twist_dot", sixes(&mut fw.iter().map(|f| f.twist_dot))?)?;
+    d.set_item("inertial", sixes(&mut bw.iter().map(|b| b.inertial))?)?;
+    d.set_item("external", sixes(&mut bw.iter().map(|b| b.external))?)?;
+    let children = PyList::empty(py);
+    for b in bw {
+        let c = PyDict::new(py);
+        for (k, w) in &b.from_children {
+            c.set_item(*k, vector(py, w.as_slice())?)?;
+        }
+        children.append(c)?;
+    }
+    d.set_item("from_children", children)?;
+    d.set_item("wrench", sixes(&mut bw.iter().map(|b| b.wrench))?)?;
+    d.set_item("tau", vector(py, &tr.tau)?)?;
     Ok(d)
 }

@@ -36,25 +36,25 @@ enum Source {
 pub struct PyModel {
     pub model: Model,
     source: Source,
-    allow_nonphysical: bool,
+    strict: bool,
     gravity: Option<[f64; 3]>,
     joint_friction: Option<(Vec<f64>, Vec<f64>)>,
     /// A workspace reused by single-state calls (batches make one per thread).
     scratch: Mutex<Option<Scratch>>,
 }
 
-fn options(allow_nonphysical: bool) -> LoadOptions {
-    LoadOptions { allow_nonphysical }
+fn options(strict: bool) -> LoadOptions {
+    LoadOptions { strict }
 }
 
 impl PyModel {
     fn rebuild(
         source: Source,
-        allow_nonphysical: bool,
+        strict: bool,
         gravity: Option<[f64; 3]>,
         joint_friction: Option<(Vec<f64>, Vec<f64>)>,
     ) -> PyResult<Self> {
-        let opts = options(allow_nonphysical);
+        let opts = options(strict);
         let mut model = match &source {
             Source::Builtin(name) => {
                 screwdyn::io::load_model_with(&format!("builtin:{name}"), &opts)
@@ -65,7 +65,7 @@ impl PyModel {
             }
         };
         if let Some(g) = gravity {
-            model = model.with_gravity(Vector3::from(g));
+            model = model.with_gravity(Vector3::from(g)).map_err(call_err)?;
         }
         if let Some((d, f)) = &joint_friction {
             model = model.with_joint_friction(d, f).map_err(call_err)?;
@@ -73,7 +73,7 @@ impl PyModel {
         Ok(PyModel {
             model,
             source,
-            allow_nonphysical,
+            strict,
             gravity,
             joint_friction,
             scratch: Mutex::new(None),
@@ -219,10 +219,12 @@ fn put(o: &mut [f64], x: &nalgebra::DVector<f64>) {
 /// the native format, chosen by its `format` key) or `builtin:<name>`.
 ///
 /// Raises FileNotFoundError for a missing file and screwdyn.ModelError (a ValueError) for a
-/// description that cannot be loaded; the message names the file and line.
+/// description that cannot be loaded; the message names the file and line. Physically
+/// inconsistent inertias are findings (`Model.physical_problems`), not errors, unless
+/// `strict=True`.
 #[pyfunction]
-#[pyo3(signature = (path_or_builtin, *, allow_nonphysical = false))]
-pub fn load(path_or_builtin: &Bound<'_, PyAny>, allow_nonphysical: bool) -> PyResult<PyModel> {
+#[pyo3(signature = (path_or_builtin, *, strict = false))]
+pub fn load(path_or_builtin: &Bound<'_, PyAny>, strict: bool) -> PyResult<PyModel> {
     guard(|| {
         let path: String = match path_or_builtin.extract::<String>() {
             Ok(s) => s,
@@ -237,14 +239,9 @@ pub fn load(path_or_builtin: &Bound<'_, PyAny>, allow_nonphysical: bool) -> PyRe
                 .into_owned(),
         };
         if let Some(name) = path.strip_prefix("builtin:") {
-            return PyModel::rebuild(
-                Source::Builtin(name.to_string()),
-                allow_nonphysical,
-                None,
-                None,
-            );
+            return PyModel::rebuild(Source::Builtin(name.to_string()), strict, None, None);
         }
-        let opts = options(allow_nonphysical);
+        let opts = options(strict);
         let model =
             screwdyn::io::load_model_with(&path, &opts).map_err(|e| load_err(e, Some(&path)))?;
         // The text the model was parsed from, kept for pickling (the library has no exact
@@ -258,7 +255,7 @@ pub fn load(path_or_builtin: &Bound<'_, PyAny>, allow_nonphysical: bool) -> PyRe
         Ok(PyModel {
             model,
             source: Source::Text { text, file: path },
-            allow_nonphysical,
+            strict,
             gravity: None,
             joint_friction: None,
             scratch: Mutex::new(None),
@@ -270,12 +267,12 @@ pub fn load(path_or_builtin: &Bound<'_, PyAny>, allow_nonphysical: bool) -> PyRe
 /// description says which of dh, modified-dh, poe or screwdyn it is with its `format` key);
 /// `None` guesses from the text (URDF starts with `<`). `name` names the text in messages.
 #[pyfunction]
-#[pyo3(signature = (text, format = None, *, name = "<string>", allow_nonphysical = false))]
+#[pyo3(signature = (text, format = None, *, name = "<string>", strict = false))]
 pub fn load_string(
     text: &str,
     format: Option<&str>,
     name: &str,
-    allow_nonphysical: bool,
+    strict: bool,
 ) -> PyResult<PyModel> {
     guard(|| {
         let urdf = match format.map(|f| f.to_ascii_lowercase()) {
@@ -300,7 +297,7 @@ pub fn load_string(
                 text: text.to_string(),
                 file,
             },
-            allow_nonphysical,
+            strict,
             None,
             None,
         )
@@ -320,7 +317,7 @@ pub fn _unpickle_model(
     kind: &str,
     text: String,
     file: String,
-    allow_nonphysical: bool,
+    strict: bool,
     gravity: Option<[f64; 3]>,
     joint_friction: Option<(Vec<f64>, Vec<f64>)>,
 ) -> PyResult<PyModel> {
@@ -334,7 +331,7 @@ pub fn _unpickle_model(
                 )))
             }
         };
-        PyModel::rebuild(source, allow_nonphysical, gravity, joint_friction)
+        PyModel::rebuild(source, strict, gravity, joint_friction)
     })
 }
 
@@ -492,9 +489,24 @@ impl PyModel {
                 g[i]
             )));
         }
-        self.model = self.model.with_gravity(Vector3::from(g));
+        self.model = self
+            .model
+            .with_gravity(Vector3::from(g))
+            .map_err(call_err)?;
         self.gravity = Some(g);
         Ok(())
+    }
+
+    /// Physical-consistency findings of the description (inertias not positive semi-definite or
+    /// breaking the triangle inequality, massless moving leaves), one sentence each; empty for a
+    /// consistent model. `load(..., strict=True)` makes them load errors.
+    #[getter]
+    fn physical_problems(&self) -> Vec<String> {
+        self.model
+            .physical_problems()
+            .iter()
+            .map(|f| f.to_string())
+            .collect()
     }
 
     /// Total mass of the moving links (kg).
@@ -515,12 +527,7 @@ impl PyModel {
             d.single("with_joint_friction")?.to_vec(),
             f.single("with_joint_friction")?.to_vec(),
         );
-        PyModel::rebuild(
-            self.source.clone(),
-            self.allow_nonphysical,
-            self.gravity,
-            Some((d, f)),
-        )
+        PyModel::rebuild(self.source.clone(), self.strict, self.gravity, Some((d, f)))
     }
 
     /// The model as URDF text (the library's exporter; gravity is not part of URDF).
@@ -569,7 +576,7 @@ impl PyModel {
             kind,
             text,
             file,
-            this.allow_nonphysical,
+            this.strict,
             this.gravity,
             this.joint_friction.clone(),
         )
@@ -601,7 +608,7 @@ impl PyModel {
                 threads,
                 |m, s, r, o| {
                     kinematics::forward_kinematics(m, &mut s.ws, r[0])?;
-                    convert::write_pose(&kinematics::frame_pose(m, &s.ws, f), o);
+                    convert::write_pose(&kinematics::frame_pose(m, &s.ws, f)?, o);
                     Ok(())
                 },
             )
@@ -629,7 +636,7 @@ impl PyModel {
                 |m, s, r, o| {
                     kinematics::forward_kinematics(m, &mut s.ws, r[0])?;
                     for (f, of) in o.chunks_mut(16).enumerate() {
-                        convert::write_pose(&kinematics::frame_pose(m, &s.ws, f), of);
+                        convert::write_pose(&kinematics::frame_pose(m, &s.ws, f)?, of);
                     }
                     Ok(())
                 },
@@ -674,7 +681,7 @@ impl PyModel {
                 threads,
                 |m, s, r, o| {
                     kinematics::compute_joint_jacobians(m, &mut s.ws, r[0])?;
-                    kinematics::frame_jacobian(m, &s.ws, f, rf, &mut s.jac);
+                    kinematics::frame_jacobian(m, &s.ws, f, rf, &mut s.jac)?;
                     convert::write_rows(&s.jac, o);
                     Ok(())
                 },
@@ -705,7 +712,7 @@ impl PyModel {
                 threads,
                 |m, s, r, o| {
                     kinematics::compute_joint_jacobians(m, &mut s.ws, r[0])?;
-                    kinematics::link_jacobian(m, &s.ws, b, &mut s.jac);
+                    kinematics::link_jacobian(m, &s.ws, b, &mut s.jac)?;
                     convert::write_rows(&s.jac, o);
                     Ok(())
                 },
@@ -740,7 +747,7 @@ impl PyModel {
                 threads,
                 |m, s, r, o| {
                     kinematics::forward_velocity(m, &mut s.ws, r[0], r[1])?;
-                    o.copy_from_slice(kinematics::frame_twist(m, &s.ws, f, rf).as_slice());
+                    o.copy_from_slice(kinematics::frame_twist(m, &s.ws, f, rf)?.as_slice());
                     Ok(())
                 },
             )
@@ -776,7 +783,7 @@ impl PyModel {
                 threads,
                 |m, s, r, o| {
                     kinematics::forward_acceleration(m, &mut s.ws, r[0], r[1], r[2])?;
-                    o.copy_from_slice(kinematics::frame_acceleration(m, &s.ws, f, rf).as_slice());
+                    o.copy_from_slice(kinematics::frame_acceleration(m, &s.ws, f, rf)?.as_slice());
                     Ok(())
                 },
             )
@@ -1032,7 +1039,7 @@ impl PyModel {
                 |m, s, r, o| {
                     put(
                         o,
-                        dynamics::forward_dynamics_with(
+                        dynamics::forward_dynamics(
                             m,
                             &mut s.ws,
                             r[0],

@@ -182,7 +182,8 @@ impl PyTrajectory {
             );
             for (k, &tk) in times.iter().enumerate() {
                 let r = k * n..(k + 1) * n;
-                tr.sample(tk, &mut q[r.clone()], &mut v[r.clone()], &mut a[r]);
+                tr.sample(tk, &mut q[r.clone()], &mut v[r.clone()], &mut a[r])
+                    .map_err(call_err)?;
             }
             let shape: Vec<usize> = if t.ndim() == 0 {
                 vec![n]

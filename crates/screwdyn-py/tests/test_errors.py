@@ -56,7 +56,10 @@ type = "R"
 a = 1.0
 mass = 0.0
 """
-    m = screwdyn.load_string(text, "toml", allow_nonphysical=True)
+    m = screwdyn.load_string(text, "toml")
+    assert m.physical_problems  # a massless moving leaf is a finding, not a load error
+    with pytest.raises(screwdyn.ModelError, match="mass"):
+        screwdyn.load_string(text, "toml", strict=True)
     with pytest.raises(ValueError, match="joint"):
         m.forward_dynamics([0.0], [0.0], [1.0], method="crba")
 

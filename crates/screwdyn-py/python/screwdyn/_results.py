@@ -136,10 +136,13 @@ class RneaTrace:
 
     Per link ``i`` (0-based arrays, 1-based in the display as in the lecture): ``home``
     (``H_i^{λ(i)}(0)``), ``screw`` (``S_i^{i,λ(i)}``), ``pose_in_parent``
-    (``H_i^{λ(i)}(θ_i) = H_i^{λ(i)}(0) e^{S̃_i θ_i}``), ``pose_in_world`` (``H_i^0``), ``twist``
-    (``V_i^{i,0}``), ``twist_dot`` (``V̇_i^{i,0}``), ``inertia`` (``𝔍^{i,i}``), ``external``
-    (``W_ext^{i,i}``), ``wrench`` (``W_{λ(i)}^{i,i}``, the wrench of the parent on link i) and
-    ``tau`` (``τ_i = S_iᵀ W_i``). ``base_acceleration`` is ``V̇_0 = (0, −g)``.
+    (``H_i^{λ(i)}(θ_i) = H_i^{λ(i)}(0) e^{S̃_i θ_i}``), ``parent_twist`` /
+    ``parent_twist_dot`` (``Ad_{H_{λ(i)}^i} V_{λ(i)}``, ``Ad V̇_{λ(i)}``), ``twist``
+    (``V_i^{i,0}``), ``twist_dot`` (``V̇_i^{i,0}``), ``inertia`` (``𝔍^{i,i}``), ``inertial``
+    (``𝔍 V̇ − ad_Vᵀ 𝔍 V``), ``external`` (``W_ext^{i,i}``), ``from_children``, ``wrench``
+    (``W_{λ(i)}^{i,i}``, the wrench of the parent on link i) and ``tau``
+    (``τ_i = S_iᵀ W_i``). ``base_acceleration`` is ``V̇_0 = (0, −g)``. Computed by the
+    library's ``dynamics::rnea_trace``.
     """
 
     def __init__(self, data: Dict[str, Any]):
@@ -147,9 +150,11 @@ class RneaTrace:
         self.link_names: List[str] = list(data["link_names"])
         self.parents: List[Optional[int]] = list(data["parents"])
         for k in ("q", "v", "a", "gravity", "base_acceleration", "screw", "home", "inertia",
-                  "pose_in_parent", "pose_in_world", "twist", "twist_dot", "wrench",
-                  "external", "tau"):
+                  "pose_in_parent", "parent_twist", "parent_twist_dot", "twist", "twist_dot",
+                  "inertial", "external", "wrench", "tau"):
             setattr(self, k, data[k])
+        #: per link, child index → ``Ad_{H_i^c}ᵀ W_c`` (the child's wrench carried back)
+        self.from_children: List[Dict[int, np.ndarray]] = list(data["from_children"])
 
     def _parent(self, i: int) -> str:
         p = self.parents[i]
@@ -175,8 +180,11 @@ class RneaTrace:
         lines.append("Backward iterations, i = n … 1:")
         for i in reversed(range(n)):
             lines.append(f"  i = {i + 1} ({self.joint_names[i]})")
+            lines.append(f"    𝔍 V̇ − ad_Vᵀ 𝔍 V = {_six(self.inertial[i])}")
             if np.any(self.external[i]):
                 lines.append(f"    W_ext = {_six(self.external[i])}")
+            for c, w in self.from_children[i].items():
+                lines.append(f"    Ad_(H_{i + 1}^{c + 1})ᵀ W_{c + 1} = {_six(w)}")
             lines.append(f"    W_{i + 1} = 𝔍 V̇ − ad_Vᵀ 𝔍 V − W_ext + Σ Ad_{{H_c}}ᵀ W_c = {_six(self.wrench[i])}")
             lines.append(f"    τ_{i + 1} = S_{i + 1}ᵀ W_{i + 1} = {_num(self.tau[i])}")
         return "\n".join(lines)
@@ -203,7 +211,11 @@ class RneaTrace:
         for i in reversed(range(n)):
             k, p = i + 1, self._parent(i)
             ext = " - W_{ext}" if np.any(self.external[i]) else ""
-            out.append(f"- $i = {k}$: $$W_{{{p}}}^{{{k},{k}}} = \\mathfrak{{J}}^{{{k},{k}}} \\dot V_{k} - "
+            out.append(f"- $i = {k}$: $$\\mathfrak{{J}}^{{{k},{k}}} \\dot V_{k} - \\mathrm{{ad}}^T_{{V_{k}}} "
+                       f"\\mathfrak{{J}}^{{{k},{k}}} V_{k} = {_six_tex(self.inertial[i])}$$")
+            for c, w in self.from_children[i].items():
+                out.append(f"  $$\\mathrm{{Ad}}^T_{{H_{k}^{{{c + 1}}}}} W_{{{k}}}^{{{c + 1},{c + 1}}} = {_six_tex(w)}$$")
+            out.append(f"  $$W_{{{p}}}^{{{k},{k}}} = \\mathfrak{{J}}^{{{k},{k}}} \\dot V_{k} - "
                        f"\\mathrm{{ad}}^T_{{V_{k}}} \\mathfrak{{J}}^{{{k},{k}}} V_{k}{ext} + "
                        f"\\sum_c \\mathrm{{Ad}}^T_{{H_{k}^c}} W_c = {_six_tex(self.wrench[i])}$$")
             out.append(f"  $$\\tau_{k} = (S_{k}^{{{k},{p}}})^T W_{{{p}}}^{{{k},{k}}} = {_num(self.tau[i])}$$")

@@ -24,11 +24,11 @@ __version__: str
 class ModelError(ValueError):
     """A robot description that cannot be loaded; the message names the file and line."""
 
-def load(path_or_builtin: Union[str, os.PathLike[str]], *, allow_nonphysical: bool = False) -> Model:
+def load(path_or_builtin: Union[str, os.PathLike[str]], *, strict: bool = False) -> Model:
     """Loads a .urdf / .toml (dh, modified-dh, poe, screwdyn) file or ``builtin:<name>``."""
 
 def load_string(text: str, format: Optional[str] = None, *, name: str = "<string>",
-                allow_nonphysical: bool = False) -> Model:
+                strict: bool = False) -> Model:
     """Loads a description from text; ``format`` is ``"urdf"`` or ``"toml"`` (guessed if None)."""
 
 def builtin_names() -> List[str]: ...
@@ -58,6 +58,8 @@ class Model:
     gravity: FloatArray
     """(3,) m/s² in the base frame; settable."""
     total_mass: float
+    physical_problems: List[str]
+    """Physical-consistency findings of the description (empty for a consistent model)."""
 
     def with_joint_friction(self, damping: ArrayLike, friction: ArrayLike) -> Model: ...
     def to_urdf(self) -> str: ...
