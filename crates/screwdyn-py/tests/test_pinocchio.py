@@ -121,3 +121,17 @@ def test_jdot_qdot_by_finite_differences(robot):
         a = np.asarray(s["a"])
         want = m.frame_jacobian(q, name, "world") @ a + m.frame_jdot_qdot(q, v, name, "world")
         close(m.frame_acceleration(q, v, a, name, "world"), want)
+
+
+def test_rnea_trace_on_trees(robot):
+    # The trace's torques are Pinocchio's, and every backward step is seed 000's balance
+    # W_i = 𝔍 V̇ − ad_Vᵀ 𝔍 V − W_ext + Σ_c Ad_{H_i^c}ᵀ W_c with τ_i = S_iᵀ W_i.
+    m, fx = robot
+    s = fx["states"][0]
+    tr = m.rnea_trace(s["q"], s["v"], s["a"])
+    close(tr.tau, s["tau"])
+    for i in range(m.nq):
+        total = tr.inertial[i] - tr.external[i] + sum(tr.from_children[i].values(), np.zeros(6))
+        close(tr.wrench[i], total, 1e-12)
+        assert sorted(tr.from_children[i]) == [c for c, p in enumerate(m.parents) if p == i]
+    close(np.einsum("ij,ij->i", tr.screw, tr.wrench), s["tau"])
