@@ -359,9 +359,37 @@ fn controller(pm: &PyModel, c: &Bound<'_, PyAny>) -> PyResult<Option<Ctl>> {
         let s = joint_states(m, &a, name)?;
         Ok(s.single("the controller")?.to_vec())
     };
+    // Optional gains: `None` takes the library's defaults.
+    let gains = |i: usize,
+                 default: &dyn Fn() -> PyResult<(Vec<f64>, Vec<f64>)>|
+     -> PyResult<(Vec<f64>, Vec<f64>)> {
+        let (kp, kd) = (spec.get_item(i)?, spec.get_item(i + 1)?);
+        let d = if kp.is_none() || kd.is_none() {
+            Some(default()?)
+        } else {
+            None
+        };
+        let kp = if kp.is_none() {
+            d.as_ref().map(|d| d.0.clone()).unwrap_or_default()
+        } else {
+            jv(i, "kp")?
+        };
+        let kd = if kd.is_none() {
+            d.map(|d| d.1).unwrap_or_default()
+        } else {
+            jv(i + 1, "kd")?
+        };
+        Ok((kp, kd))
+    };
     Ok(Some(match kind.as_str() {
         "constant" => Ctl::Constant(jv(1, "the constant torque")?),
-        "pd" => Ctl::Pd(jv(1, "the PD target")?, jv(2, "kp")?, jv(3, "kd")?),
+        "pd" => {
+            let target = jv(1, "the PD target")?;
+            let (kp, kd) = gains(2, &|| {
+                PdGravity::default_gains(m, &target).map_err(call_err)
+            })?;
+            Ctl::Pd(target, kp, kd)
+        }
         "computed_torque" => {
             let t = spec.get_item(1)?;
             let t = t.cast::<PyTrajectory>().map_err(|_| {
@@ -369,7 +397,8 @@ fn controller(pm: &PyModel, c: &Bound<'_, PyAny>) -> PyResult<Option<Ctl>> {
                     "computed-torque control needs a screwdyn.Trajectory as reference",
                 )
             })?;
-            Ctl::Computed(t.get().traj.clone(), jv(2, "kp")?, jv(3, "kd")?)
+            let (kp, kd) = gains(2, &|| Ok(ComputedTorque::default_gains(m.nq())))?;
+            Ctl::Computed(t.get().traj.clone(), kp, kd)
         }
         "series" => {
             use numpy::PyUntypedArrayMethods;
@@ -521,6 +550,18 @@ pub fn torque_profile<'py>(
     let d = PyDict::new(py);
     d.set_item("samples", recording(py, &p.samples)?)?;
     d.set_item("peak", vector(py, &p.peak)?)?;
+    d.set_item("peak_time", vector(py, &p.peak_time)?)?;
+    let summary = PyDict::new(py);
+    for (j, v) in p.violation_summary.iter().enumerate() {
+        if let Some(v) = v {
+            let e = PyDict::new(py);
+            e.set_item("count", v.count)?;
+            e.set_item("first_time", v.first_time)?;
+            e.set_item("worst", v.worst)?;
+            summary.set_item(model.joint_names()[j], e)?;
+        }
+    }
+    d.set_item("violation_summary", summary)?;
     d.set_item("rms", vector(py, &p.rms)?)?;
     d.set_item("effort_limit", vector(py, &p.effort_limit)?)?;
     let names = model.joint_names();

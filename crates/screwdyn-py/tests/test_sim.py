@@ -63,6 +63,14 @@ def test_builtin_controllers(arm):
     pd = screwdyn.PD([0.5, -0.3], [100, 100], [40, 40])
     run = arm.simulate([0, 0], duration=5.0, dt=1e-3, controller=pd, record_every=100)
     np.testing.assert_allclose(run.q[-1], [0.5, -0.3], atol=1e-3)
+    # the library's default gains (Kp = ω² M_ii(q*), Kd = 2ω M_ii(q*)) also settle at the target
+    run = arm.simulate([0, 0], duration=5.0, dt=1e-3, controller=screwdyn.PD([0.5, -0.3]),
+                       record_every=100, effects=False)
+    np.testing.assert_allclose(run.q[-1], [0.5, -0.3], atol=1e-3)
+    # computed torque with default gains tracks a quintic it starts on
+    ref0 = screwdyn.Quintic([0, 0], [0.4, 0.2], 1.0)
+    run = arm.simulate([0, 0], duration=1.0, controller=screwdyn.ComputedTorque(ref0), effects=False)
+    np.testing.assert_allclose(run.q, ref0.sample(run.t)[0], atol=1e-8)
     # computed torque tracks a quintic exactly (no model error): q(t) = q_d(t)
     ref = screwdyn.Quintic([0, 0], [1.0, -0.5], 1.0)
     run = arm.simulate([0, 0], duration=1.0, controller=screwdyn.ComputedTorque(ref, [100, 100], [20, 20]),
@@ -126,6 +134,18 @@ def test_trapezoid_and_torque_profile():
     over = np.abs(s.tau) > ur5.effort_limits
     assert len(prof.violations) == int(over.sum())
     assert "| joint | peak |" in prof._repr_markdown_()
+    for j, name in enumerate(ur5.joint_names):
+        k = int(np.argmax(np.abs(s.tau[:, j])))
+        assert prof.peak_time[j] == pytest.approx(s.t[k])
+        if over[:, j].any():
+            summary = prof.violation_summary[name]
+            assert summary["count"] == int(over[:, j].sum())
+            assert summary["first_time"] == pytest.approx(s.t[np.argmax(over[:, j])])
+            assert summary["worst"] == pytest.approx(prof.peak[j])
+        else:
+            assert name not in prof.violation_summary
+    # at 50 rad/s² the UR5 motion of the README goes over the 150 N·m limit
+    assert prof.violation_summary
 
 
 def test_dataframe_and_plot(arm):

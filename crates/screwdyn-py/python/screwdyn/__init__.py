@@ -91,37 +91,48 @@ class ConstantTorque:
         return f"ConstantTorque({self.tau.tolist()})"
 
 
-class PD:
-    """PD control with gravity compensation, ``τ = Kp (q* − q) − Kd q̇ + g(q)``."""
+def _gains(x):
+    return None if x is None else np.asarray(x, dtype=float)
 
-    def __init__(self, target, kp, kd):
+
+def _list(x):
+    return None if x is None else x.tolist()
+
+
+class PD:
+    """PD control with gravity compensation, ``τ = Kp (q* − q) − Kd q̇ + g(q)``. Gains left
+    ``None`` take the library's defaults, ``Kp = ω² M_ii(q*)``, ``Kd = 2ω M_ii(q*)`` (ω = 10
+    rad/s: each joint critically damped)."""
+
+    def __init__(self, target, kp=None, kd=None):
         self.target = np.asarray(target, dtype=float)
-        self.kp = np.asarray(kp, dtype=float)
-        self.kd = np.asarray(kd, dtype=float)
+        self.kp = _gains(kp)
+        self.kd = _gains(kd)
 
     def _spec(self):
         return ("pd", self.target, self.kp, self.kd)
 
     def __repr__(self):
-        return f"PD(target={self.target.tolist()}, kp={self.kp.tolist()}, kd={self.kd.tolist()})"
+        return f"PD(target={self.target.tolist()}, kp={_list(self.kp)}, kd={_list(self.kd)})"
 
 
 class ComputedTorque:
     """Computed-torque control tracking ``reference`` (a :class:`Trajectory`):
-    ``τ = RNEA(q, q̇, q̈_d + Kd (q̇_d − q̇) + Kp (q_d − q))``."""
+    ``τ = RNEA(q, q̇, q̈_d + Kd (q̇_d − q̇) + Kp (q_d − q))``. Gains left ``None`` take the
+    library's defaults ``Kp = ω²``, ``Kd = 2ω`` (ω = 10 rad/s)."""
 
-    def __init__(self, reference: Trajectory, kp, kd):
+    def __init__(self, reference: Trajectory, kp=None, kd=None):
         if not isinstance(reference, Trajectory):
             raise TypeError("ComputedTorque needs a screwdyn.Trajectory as reference")
         self.reference = reference
-        self.kp = np.asarray(kp, dtype=float)
-        self.kd = np.asarray(kd, dtype=float)
+        self.kp = _gains(kp)
+        self.kd = _gains(kd)
 
     def _spec(self):
         return ("computed_torque", self.reference, self.kp, self.kd)
 
     def __repr__(self):
-        return f"ComputedTorque({self.reference!r}, kp={self.kp.tolist()}, kd={self.kd.tolist()})"
+        return f"ComputedTorque({self.reference!r}, kp={_list(self.kp)}, kd={_list(self.kd)})"
 
 
 class TorqueSeries:

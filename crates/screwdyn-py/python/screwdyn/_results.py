@@ -290,13 +290,17 @@ class SimResult:
 
 
 class TorqueProfile:
-    """Inverse dynamics along a trajectory: ``samples`` (a :class:`SimResult`), ``peak`` and
-    ``rms`` torque per joint, ``effort_limit`` and ``violations`` (dicts ``joint``, ``t``,
-    ``tau``, ``limit``)."""
+    """Inverse dynamics along a trajectory: ``samples`` (a :class:`SimResult`), ``peak`` torque
+    per joint and when (``peak_time``), ``rms``, ``effort_limit``, ``violations`` (every sample
+    over a limit: dicts ``joint``, ``t``, ``tau``, ``limit``) and ``violation_summary`` (joint →
+    ``count``, ``first_time``, ``worst``; the library's statistics)."""
 
     def __init__(self, data: Dict[str, Any]):
         self.samples = SimResult(data["samples"])
         self.peak: np.ndarray = data["peak"]
+        self.peak_time: np.ndarray = data["peak_time"]
+        #: joint name → ``{"count", "first_time", "worst"}`` for joints over their limit
+        self.violation_summary: Dict[str, Dict[str, float]] = dict(data["violation_summary"])
         self.rms: np.ndarray = data["rms"]
         self.effort_limit: np.ndarray = data["effort_limit"]
         self.violations: List[Dict[str, Any]] = list(data["violations"])
