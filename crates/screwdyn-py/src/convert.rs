@@ -193,6 +193,15 @@ pub fn matrix<'py>(py: Python<'py>, m: &nalgebra::DMatrix<f64>) -> PyResult<Boun
     )
 }
 
+/// A read-only array: model properties are copies, so writing into one would silently change
+/// nothing; NumPy refuses the write instead ("assignment destination is read-only").
+pub fn frozen<'py>(a: Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    let kw = pyo3::types::PyDict::new(a.py());
+    kw.set_item("write", false)?;
+    a.call_method("setflags", (), Some(&kw))?;
+    Ok(a)
+}
+
 /// A vector as a 1-D array.
 pub fn vector<'py>(py: Python<'py>, v: &[f64]) -> PyResult<Bound<'py, PyAny>> {
     array(py, v.to_vec(), &[v.len()])

@@ -401,14 +401,14 @@ impl PyModel {
     #[getter]
     fn lower_limits<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let v: Vec<f64> = self.model.joints().iter().map(|j| j.limits.lower).collect();
-        convert::vector(py, &v)
+        convert::frozen(convert::vector(py, &v)?)
     }
 
     /// Upper position limits (rad or m; `inf` when unlimited).
     #[getter]
     fn upper_limits<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let v: Vec<f64> = self.model.joints().iter().map(|j| j.limits.upper).collect();
-        convert::vector(py, &v)
+        convert::frozen(convert::vector(py, &v)?)
     }
 
     /// Velocity limits (rad/s or m/s; `inf` when unlimited).
@@ -420,7 +420,7 @@ impl PyModel {
             .iter()
             .map(|j| j.limits.velocity)
             .collect();
-        convert::vector(py, &v)
+        convert::frozen(convert::vector(py, &v)?)
     }
 
     /// Effort limits (N·m or N; `inf` when unlimited).
@@ -432,21 +432,21 @@ impl PyModel {
             .iter()
             .map(|j| j.limits.effort)
             .collect();
-        convert::vector(py, &v)
+        convert::frozen(convert::vector(py, &v)?)
     }
 
     /// Viscous damping coefficients (N·m·s/rad).
     #[getter]
     fn damping<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let v: Vec<f64> = self.model.joints().iter().map(|j| j.damping).collect();
-        convert::vector(py, &v)
+        convert::frozen(convert::vector(py, &v)?)
     }
 
     /// Coulomb friction torques (N·m).
     #[getter]
     fn friction<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let v: Vec<f64> = self.model.joints().iter().map(|j| j.friction).collect();
-        convert::vector(py, &v)
+        convert::frozen(convert::vector(py, &v)?)
     }
 
     /// Joint screw axes `S_i^{i,λ(i)}` in the link frames, angular first, shape `(nq, 6)`.
@@ -458,7 +458,7 @@ impl PyModel {
             .iter()
             .map(|j| j.screw.as_slice().to_vec())
             .collect();
-        convert::rows_array(py, &rows, 6)
+        convert::frozen(convert::rows_array(py, &rows, 6)?)
     }
 
     /// Spatial inertias `𝔍^{i,i}` of the links in their own frames, angular first, `(nq, 6, 6)`.
@@ -469,14 +469,14 @@ impl PyModel {
         for (b, o) in self.model.bodies().iter().zip(out.chunks_mut(36)) {
             convert::write_rows(&b.inertia.matrix(), o);
         }
-        convert::array(py, out, &[n, 6, 6])
+        convert::frozen(convert::array(py, out, &[n, 6, 6])?)
     }
 
     /// Gravity in the base frame (m/s²), default `(0, 0, -9.81)`. Settable: the model is
     /// replaced by the library's `with_gravity` copy (pickles keep the new value).
     #[getter]
     fn get_gravity<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        convert::vector(py, self.model.gravity().as_slice())
+        convert::frozen(convert::vector(py, self.model.gravity().as_slice())?)
     }
 
     #[setter]

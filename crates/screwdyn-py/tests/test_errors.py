@@ -48,6 +48,15 @@ def test_bad_shapes_and_values(arm):
         arm.rnea("not numbers")
 
 
+def test_model_properties_are_read_only(arm):
+    # properties are copies: writing into one would change nothing, so NumPy refuses it
+    with pytest.raises(ValueError, match="read-only"):
+        arm.gravity[1] = 0.0
+    with pytest.raises(ValueError, match="read-only"):
+        arm.effort_limits[0] = 1.0
+    np.testing.assert_array_equal(arm.gravity, [0, -9.81, 0])
+
+
 def test_singular_mass_matrix_names_the_joint():
     text = """
 format = "dh"
