@@ -642,16 +642,43 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
             a.dt
         )));
     }
-    let (traj, what): (Box<dyn Trajectory>, String) = match a.trajectory {
+    let (traj, what) = trajectory(a, &m, &q0, &qf)?;
+    let p = sim::torque_profile(&m, traj.as_ref(), a.dt)?;
+    let rec = &p.samples;
+    if let (Some(path), Some(kind)) = (&a.output, output_kind) {
+        let file = std::fs::File::create(path)
+            .map_err(|e| CliError::input(format!("cannot write {} ({e})", path.display())))?;
+        let mut w = RunWriter::new(kind, Box::new(std::io::BufWriter::new(file)));
+        w.sink().begin(&rec.joints, &rec.frames)?;
+        for k in 0..rec.len() {
+            w.sink().push(&rec.sample(k)?)?;
+        }
+        w.finish()?;
+    }
+    let r = profile_report(a, &m, &p, traj.duration(), &what);
+    if let Some(path) = &a.plot {
+        plot_profile(a, &m, &p, traj.duration(), path)?;
+    }
+    crate::output::print(&[r], resolve(a.model.format), false)
+}
+
+/// The trajectory of `--trajectory` and a phrase describing it.
+fn trajectory(
+    a: &TorqueProfileArgs,
+    m: &Model,
+    q0: &[f64],
+    qf: &[f64],
+) -> Result<(Box<dyn Trajectory>, String), CliError> {
+    Ok(match a.trajectory {
         TrajectoryArg::Trapezoid => {
-            let vmax = parse_per_joint(&a.vmax, "vmax", &m)?;
-            let amax = parse_per_joint(&a.amax, "amax", &m)?;
+            let vmax = parse_per_joint(&a.vmax, "vmax", m)?;
+            let amax = parse_per_joint(&a.amax, "amax", m)?;
             if let Some(x) = vmax.iter().chain(&amax).find(|x| **x <= 0.0) {
                 return Err(CliError::input(format!(
                     "--vmax and --amax must be positive (got {x})"
                 )));
             }
-            let t = Trapezoid::new(&q0, &qf, &vmax, &amax, !a.unsynchronised)?;
+            let t = Trapezoid::new(q0, qf, &vmax, &amax, !a.unsynchronised)?;
             let cruise: Vec<String> = t
                 .cruise_speeds()
                 .iter()
@@ -671,24 +698,23 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
                 )));
             }
             (
-                Box::new(Quintic::rest_to_rest(&q0, &qf, a.duration)?),
+                Box::new(Quintic::rest_to_rest(q0, qf, a.duration)?),
                 "quintic rest-to-rest".to_string(),
             )
         }
-    };
-    let p = sim::torque_profile(&m, traj.as_ref(), a.dt)?;
+    })
+}
+
+/// Peak, RMS, limits and violations per joint (JSON keys and the table).
+fn profile_report(
+    a: &TorqueProfileArgs,
+    m: &Model,
+    p: &sim::TorqueProfile,
+    duration: f64,
+    what: &str,
+) -> Report {
     let rec = &p.samples;
-    if let (Some(path), Some(kind)) = (&a.output, output_kind) {
-        let file = std::fs::File::create(path)
-            .map_err(|e| CliError::input(format!("cannot write {} ({e})", path.display())))?;
-        let mut w = RunWriter::new(kind, Box::new(std::io::BufWriter::new(file)));
-        w.sink().begin(&rec.joints, &rec.frames)?;
-        for k in 0..rec.len() {
-            w.sink().push(&rec.sample(k)?)?;
-        }
-        w.finish()?;
-    }
-    let j = names(&m);
+    let j = names(m);
     let viol: Vec<(String, Value)> = j
         .iter()
         .zip(&p.violation_summary)
@@ -708,7 +734,7 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
         .collect();
     let mut r = Report::new();
     r.add("joints", Value::Names(j.clone()))
-        .add("duration", Value::Scalar(traj.duration()))
+        .add("duration", Value::Scalar(duration))
         .add("peak", Value::joints(&j, &p.peak))
         .add("peak_time", Value::joints(&j, &p.peak_time))
         .add("rms", Value::joints(&j, &p.rms))
@@ -758,64 +784,73 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
             TrajectoryArg::Quintic => "torque profile (quintic)",
         },
         m.name(),
-        fmt(traj.duration()),
+        fmt(duration),
         rec.len(),
         a.dt
     ));
-    if let Some(path) = &a.plot {
-        let mut lines = Vec::new();
-        let mut limits: Vec<(f64, Vec<String>)> = Vec::new();
-        for (i, l) in p.effort_limit.iter().enumerate() {
-            if !l.is_finite() {
-                continue;
-            }
-            match limits.iter_mut().find(|(x, _)| x == l) {
-                Some((_, js)) => js.push((i + 1).to_string()),
-                None => limits.push((*l, vec![(i + 1).to_string()])),
-            }
+    r
+}
+
+/// Required torques against the effort limits, velocities and positions.
+fn plot_profile(
+    a: &TorqueProfileArgs,
+    m: &Model,
+    p: &sim::TorqueProfile,
+    duration: f64,
+    path: &Path,
+) -> Result<(), CliError> {
+    let rec = &p.samples;
+    let mut lines = Vec::new();
+    let mut limits: Vec<(f64, Vec<String>)> = Vec::new();
+    for (i, l) in p.effort_limit.iter().enumerate() {
+        if !l.is_finite() {
+            continue;
         }
-        for (l, js) in &limits {
-            let which = if js.len() == 1 { "joint" } else { "joints" };
-            let label = format!(
-                "effort limit ±{} N·m ({which} {})",
-                fmt_short(*l),
-                js.join(", ")
-            );
-            lines.push((label.clone(), *l));
-            lines.push((label, -*l));
+        match limits.iter_mut().find(|(x, _)| x == l) {
+            Some((_, js)) => js.push((i + 1).to_string()),
+            None => limits.push((*l, vec![(i + 1).to_string()])),
         }
-        let panels = vec![
-            Panel {
-                title: "Required joint torques (inverse dynamics)".into(),
-                y_label: "τ (N·m)".into(),
-                series: joint_series(rec, &rec.tau),
-                lines,
-            },
-            Panel {
-                title: "Joint velocities".into(),
-                y_label: "dq/dt (rad/s)".into(),
-                series: joint_series(rec, &rec.v),
-                lines: vec![],
-            },
-            Panel {
-                title: "Joint positions".into(),
-                y_label: "q (rad)".into(),
-                series: joint_series(rec, &rec.q),
-                lines: vec![],
-            },
-        ];
-        let kind = match a.trajectory {
-            TrajectoryArg::Trapezoid => "trapezoid",
-            TrajectoryArg::Quintic => "quintic",
-        };
-        let title = format!(
-            "{}: torques for a {kind} motion of {} s",
-            m.name(),
-            fmt_short(traj.duration())
-        );
-        plot_panels(path, &title, "t (s)", &panels)?;
     }
-    crate::output::print(&[r], resolve(a.model.format), false)
+    for (l, js) in &limits {
+        let which = if js.len() == 1 { "joint" } else { "joints" };
+        let label = format!(
+            "effort limit ±{} N·m ({which} {})",
+            fmt_short(*l),
+            js.join(", ")
+        );
+        lines.push((label.clone(), *l));
+        lines.push((label, -*l));
+    }
+    let panels = vec![
+        Panel {
+            title: "Required joint torques (inverse dynamics)".into(),
+            y_label: "τ (N·m)".into(),
+            series: joint_series(rec, &rec.tau),
+            lines,
+        },
+        Panel {
+            title: "Joint velocities".into(),
+            y_label: "dq/dt (rad/s)".into(),
+            series: joint_series(rec, &rec.v),
+            lines: vec![],
+        },
+        Panel {
+            title: "Joint positions".into(),
+            y_label: "q (rad)".into(),
+            series: joint_series(rec, &rec.q),
+            lines: vec![],
+        },
+    ];
+    let kind = match a.trajectory {
+        TrajectoryArg::Trapezoid => "trapezoid",
+        TrajectoryArg::Quintic => "quintic",
+    };
+    let title = format!(
+        "{}: torques for a {kind} motion of {} s",
+        m.name(),
+        fmt_short(duration)
+    );
+    plot_panels(path, &title, "t (s)", &panels).map(|_| ())
 }
 
 fn fmt_short(x: f64) -> String {
