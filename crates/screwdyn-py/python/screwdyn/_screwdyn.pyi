@@ -1,0 +1,149 @@
+"""Type stubs of the native module screwdyn._screwdyn (re-exported by ``screwdyn``).
+
+Conventions: float64 NumPy arrays in model joint order; one state ``(nq,)`` or ``N`` stacked
+states ``(N, nq)`` (a single argument is broadcast against stacked ones); twists and wrenches
+angular first ``(ω, v)`` / ``(m, f)``; SI units and radians. ``threads=None`` uses all cores,
+``threads=1`` the calling thread only.
+"""
+
+import os
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from ._results import ClosedForm, LagrangeCoefficients, RneaTrace, SimResult, TorqueProfile
+
+ArrayLike = npt.ArrayLike
+FloatArray = npt.NDArray[np.float64]
+FrameRef = Union[str, int]
+Wrenches = Mapping[Union[str, int], ArrayLike]
+
+__version__: str
+
+class ModelError(ValueError):
+    """A robot description that cannot be loaded; the message names the file and line."""
+
+def load(path_or_builtin: Union[str, os.PathLike[str]], *, strict: bool = False) -> Model:
+    """Loads a .urdf / .toml (dh, modified-dh, poe, screwdyn) file or ``builtin:<name>``."""
+
+def load_string(text: str, format: Optional[str] = None, *, name: str = "<string>",
+                strict: bool = False) -> Model:
+    """Loads a description from text; ``format`` is ``"urdf"`` or ``"toml"`` (guessed if None)."""
+
+def builtin_names() -> List[str]: ...
+
+class Model:
+    """A robot model (immutable except for ``gravity``); pickles."""
+
+    name: str
+    nq: int
+    nv: int
+    nbodies: int
+    joint_names: List[str]
+    joint_types: List[str]
+    link_names: List[str]
+    frame_names: List[str]
+    parents: List[Optional[int]]
+    lower_limits: FloatArray
+    upper_limits: FloatArray
+    velocity_limits: FloatArray
+    effort_limits: FloatArray
+    damping: FloatArray
+    friction: FloatArray
+    screw_axes: FloatArray
+    """``S_i^{i,λ(i)}``, (nq, 6)."""
+    spatial_inertias: FloatArray
+    """``𝔍^{i,i}``, (nq, 6, 6)."""
+    gravity: FloatArray
+    """(3,) m/s² in the base frame; settable."""
+    total_mass: float
+    physical_problems: List[str]
+    """Physical-consistency findings of the description (empty for a consistent model)."""
+
+    def with_joint_friction(self, damping: ArrayLike, friction: ArrayLike) -> Model: ...
+    def to_urdf(self) -> str: ...
+
+    # kinematics
+    def frame_pose(self, q: ArrayLike, frame: FrameRef, *, threads: Optional[int] = None) -> FloatArray:
+        """(4, 4) or (N, 4, 4)."""
+    def frame_poses(self, q: ArrayLike, *, threads: Optional[int] = None) -> Dict[str, FloatArray]: ...
+    def frame_jacobian(self, q: ArrayLike, frame: FrameRef, reference: str = "world", *,
+                       threads: Optional[int] = None) -> FloatArray:
+        """(6, nq) or (N, 6, nq), angular rows first; reference world | local | world-aligned."""
+    def link_jacobian(self, q: ArrayLike, link: FrameRef, *, threads: Optional[int] = None) -> FloatArray: ...
+    def frame_twist(self, q: ArrayLike, v: ArrayLike, frame: FrameRef, reference: str = "world", *,
+                    threads: Optional[int] = None) -> FloatArray: ...
+    def frame_acceleration(self, q: ArrayLike, v: ArrayLike, a: ArrayLike, frame: FrameRef,
+                           reference: str = "world", *, threads: Optional[int] = None) -> FloatArray: ...
+    def frame_jdot_qdot(self, q: ArrayLike, v: ArrayLike, frame: FrameRef, reference: str = "world", *,
+                        threads: Optional[int] = None) -> FloatArray: ...
+
+    # dynamics
+    def rnea(self, q: ArrayLike, v: Optional[ArrayLike] = None, a: Optional[ArrayLike] = None, *,
+             fext: Optional[Wrenches] = None, fext_world: Optional[Wrenches] = None,
+             tip_wrenches: Optional[Wrenches] = None, threads: Optional[int] = None) -> FloatArray:
+        """τ (N·m / N), (nq,) or (N, nq)."""
+    def inverse_dynamics(self, q: ArrayLike, v: Optional[ArrayLike] = None, a: Optional[ArrayLike] = None, *,
+                         fext: Optional[Wrenches] = None, fext_world: Optional[Wrenches] = None,
+                         tip_wrenches: Optional[Wrenches] = None, threads: Optional[int] = None) -> FloatArray: ...
+    def crba(self, q: ArrayLike, *, threads: Optional[int] = None) -> FloatArray:
+        """M(q), (nq, nq) or (N, nq, nq)."""
+    def mass_matrix(self, q: ArrayLike, *, threads: Optional[int] = None) -> FloatArray: ...
+    def mass_matrix_inverse(self, q: ArrayLike, *, threads: Optional[int] = None) -> FloatArray: ...
+    def coriolis_matrix(self, q: ArrayLike, v: ArrayLike, *, threads: Optional[int] = None) -> FloatArray: ...
+    def gravity_torque(self, q: ArrayLike, *, threads: Optional[int] = None) -> FloatArray: ...
+    def nonlinear_effects(self, q: ArrayLike, v: ArrayLike, *, threads: Optional[int] = None) -> FloatArray: ...
+    def forward_dynamics(self, q: ArrayLike, v: ArrayLike, tau: ArrayLike, *, method: str = "aba",
+                         fext: Optional[Wrenches] = None, fext_world: Optional[Wrenches] = None,
+                         tip_wrenches: Optional[Wrenches] = None, threads: Optional[int] = None) -> FloatArray:
+        """q̈ (rad/s²), method aba | crba | walker-orin."""
+    def aba(self, q: ArrayLike, v: ArrayLike, tau: ArrayLike, *, fext: Optional[Wrenches] = None,
+            fext_world: Optional[Wrenches] = None, tip_wrenches: Optional[Wrenches] = None,
+            threads: Optional[int] = None) -> FloatArray: ...
+    def kinetic_energy(self, q: ArrayLike, v: ArrayLike, *, threads: Optional[int] = None) -> Union[float, FloatArray]: ...
+    def potential_energy(self, q: ArrayLike, *, threads: Optional[int] = None) -> Union[float, FloatArray]: ...
+    def total_energy(self, q: ArrayLike, v: ArrayLike, *, threads: Optional[int] = None) -> Union[float, FloatArray]: ...
+    def power(self, tau: ArrayLike, v: ArrayLike, *, threads: Optional[int] = None) -> Union[float, FloatArray]: ...
+    def center_of_mass(self, q: ArrayLike, *, threads: Optional[int] = None) -> FloatArray: ...
+
+    # the seeds' quantities (one state)
+    def closed_form(self, q: ArrayLike, v: Optional[ArrayLike] = None) -> ClosedForm: ...
+    def lagrange_coefficients(self, q: ArrayLike) -> LagrangeCoefficients: ...
+    def mass_matrix_derivatives(self, q: ArrayLike) -> FloatArray:
+        """[k, i, j] = ∂M_ij/∂q_k."""
+    def effective_inertia(self, q: ArrayLike, joint: FrameRef,
+                          free: Union[None, str, Sequence[FrameRef]] = None) -> float: ...
+    def rnea_trace(self, q: ArrayLike, v: Optional[ArrayLike] = None, a: Optional[ArrayLike] = None, *,
+                   fext: Optional[Wrenches] = None, fext_world: Optional[Wrenches] = None,
+                   tip_wrenches: Optional[Wrenches] = None) -> RneaTrace: ...
+
+    # simulation
+    def simulate(self, q0: ArrayLike, v0: Optional[ArrayLike] = None, *, duration: float = 1.0,
+                 dt: float = 1e-3, controller: Any = None, integrator: str = "rk4",
+                 rtol: float = 1e-8, atol: float = 1e-10, method: str = "aba",
+                 effects: Union[None, bool, Dict[str, Any]] = None, disturbances: Sequence[Any] = (),
+                 record_every: int = 1, frames: Sequence[FrameRef] = (),
+                 progress: Optional[Callable[[float], None]] = None) -> SimResult: ...
+    def torque_profile(self, trajectory: Trajectory, dt: float = 0.01) -> TorqueProfile: ...
+
+    def __eq__(self, other: object) -> bool: ...
+    def __reduce__(self) -> Tuple[Any, ...]: ...
+
+class Trajectory:
+    """A joint-space trajectory."""
+
+    duration: float
+    nq: int
+
+    @staticmethod
+    def trapezoid(q0: ArrayLike, qf: ArrayLike, vmax: ArrayLike, amax: ArrayLike,
+                  synchronised: bool = True) -> Trajectory: ...
+    @staticmethod
+    def quintic(q0: ArrayLike, qf: ArrayLike, duration: float, v0: Optional[ArrayLike] = None,
+                vf: Optional[ArrayLike] = None, a0: Optional[ArrayLike] = None,
+                af: Optional[ArrayLike] = None) -> Trajectory: ...
+    @staticmethod
+    def waypoints(times: ArrayLike, points: ArrayLike) -> Trajectory: ...
+    def sample(self, t: ArrayLike) -> Tuple[FloatArray, FloatArray, FloatArray]: ...
+    def cruise_speeds(self) -> FloatArray: ...

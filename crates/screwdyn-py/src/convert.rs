@@ -1,0 +1,226 @@
+//! NumPy in, NumPy out: shape checks with clear messages, stacked states, output arrays.
+
+use numpy::{AllowTypeChange, PyArrayLikeDyn, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use screwdyn::Model;
+use std::borrow::Cow;
+
+/// Anything NumPy can turn into a float64 array (arrays, lists, tuples, scalars).
+pub type ArrayIn<'py> = PyArrayLikeDyn<'py, f64, AllowTypeChange>;
+
+fn shape_text(shape: &[usize]) -> String {
+    match shape {
+        [n] => format!("({n},)"),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(|d| d.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}
+
+/// One joint-space (or fixed-width) argument: a single vector or `N` stacked rows.
+pub struct States<'a> {
+    pub name: &'static str,
+    pub data: Cow<'a, [f64]>,
+    /// `Some(N)` for an `(N, width)` array.
+    pub n: Option<usize>,
+    pub width: usize,
+}
+
+impl States<'_> {
+    /// Row `k` (the single vector when not stacked).
+    #[inline]
+    pub fn row(&self, k: usize) -> &[f64] {
+        match self.n {
+            Some(_) => &self.data[k * self.width..(k + 1) * self.width],
+            None => &self.data,
+        }
+    }
+
+    /// The single vector; a stacked argument is refused with a sentence naming `func`.
+    pub fn single(&self, func: &str) -> PyResult<&[f64]> {
+        match self.n {
+            None => Ok(&self.data),
+            Some(n) => Err(PyValueError::new_err(format!(
+                "{func} takes one state: {} has shape ({n}, {}), expected ({},)",
+                self.name, self.width, self.width
+            ))),
+        }
+    }
+}
+
+/// The values in row-major (C) order: borrowed when the array is C-contiguous, else copied in
+/// logical order (`as_slice` alone would accept a Fortran-ordered array in memory order).
+fn contiguous<'a>(arr: &'a ArrayIn<'_>) -> Cow<'a, [f64]> {
+    match arr.as_slice() {
+        Ok(s) if arr.is_c_contiguous() => Cow::Borrowed(s),
+        _ => Cow::Owned(arr.as_array().iter().copied().collect()),
+    }
+}
+
+/// A joint-space argument of `model`: shape `(nq,)` or `(N, nq)`. A wrong length is reported
+/// with the library's sentence (`q has 3 values, the model has 6 joints: …`).
+pub fn joint_states<'a>(
+    model: &Model,
+    arr: &'a ArrayIn<'_>,
+    name: &'static str,
+) -> PyResult<States<'a>> {
+    let shape = arr.shape().to_vec();
+    let data = contiguous(arr);
+    let nq = model.nq();
+    match shape.len() {
+        1 => {
+            model
+                .check_vector(&data, name)
+                .map_err(crate::errors::call_err)?;
+            Ok(States {
+                name,
+                data,
+                n: None,
+                width: nq,
+            })
+        }
+        2 => {
+            if shape[1] != nq {
+                let e = model
+                    .check_vector(&data[..shape[1].min(data.len())], name)
+                    .err()
+                    .map(|e| e.to_string())
+                    .unwrap_or_default();
+                return Err(PyValueError::new_err(format!(
+                    "{name} has shape {}, expected (N, {nq}) with one row per state: {e}",
+                    shape_text(&shape)
+                )));
+            }
+            Ok(States {
+                name,
+                data,
+                n: Some(shape[0]),
+                width: nq,
+            })
+        }
+        _ => Err(PyValueError::new_err(format!(
+            "{name} has shape {}, expected ({nq},) for one state or (N, {nq}) for N stacked states",
+            shape_text(&shape)
+        ))),
+    }
+}
+
+/// A fixed-width argument (a wrench `(6,)`, a point `(3,)`), single or stacked `(N, width)`.
+pub fn fixed_states<'a>(
+    arr: &'a ArrayIn<'_>,
+    name: &'static str,
+    width: usize,
+    stackable: bool,
+) -> PyResult<States<'a>> {
+    let shape = arr.shape().to_vec();
+    let data = contiguous(arr);
+    match shape.as_slice() {
+        [w] if *w == width => Ok(States {
+            name,
+            data,
+            n: None,
+            width,
+        }),
+        [n, w] if *w == width && stackable => Ok(States {
+            name,
+            data,
+            n: Some(*n),
+            width,
+        }),
+        _ => Err(PyValueError::new_err(format!(
+            "{name} has shape {}, expected ({width},){}",
+            shape_text(&shape),
+            if stackable {
+                format!(" or (N, {width})")
+            } else {
+                String::new()
+            }
+        ))),
+    }
+}
+
+/// The common number of states of stacked arguments (`None` when all are single).
+pub fn batch_len(args: &[&States<'_>]) -> PyResult<Option<usize>> {
+    let mut n: Option<(usize, &str)> = None;
+    for a in args {
+        if let Some(k) = a.n {
+            match n {
+                None => n = Some((k, a.name)),
+                Some((m, other)) if m != k => {
+                    return Err(PyValueError::new_err(format!(
+                        "{} has {k} states but {other} has {m}: stacked arguments need the same number of rows",
+                        a.name
+                    )))
+                }
+                _ => {}
+            }
+        }
+    }
+    Ok(n.map(|(k, _)| k))
+}
+
+/// A float64 NumPy array of `shape` that takes ownership of `data` (no copy).
+pub fn array<'py>(py: Python<'py>, data: Vec<f64>, shape: &[usize]) -> PyResult<Bound<'py, PyAny>> {
+    let flat = numpy::PyArray1::from_vec(py, data);
+    Ok(flat.reshape(shape.to_vec())?.into_any())
+}
+
+/// `rows` as an `(len, width)` array.
+pub fn rows_array<'py>(
+    py: Python<'py>,
+    rows: &[Vec<f64>],
+    width: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let mut flat = Vec::with_capacity(rows.len() * width);
+    for r in rows {
+        flat.extend_from_slice(r);
+    }
+    array(py, flat, &[rows.len(), width])
+}
+
+/// A dense matrix as a row-major array.
+pub fn matrix<'py>(py: Python<'py>, m: &nalgebra::DMatrix<f64>) -> PyResult<Bound<'py, PyAny>> {
+    array(
+        py,
+        m.transpose().as_slice().to_vec(),
+        &[m.nrows(), m.ncols()],
+    )
+}
+
+/// A read-only array: model properties are copies, so writing into one would silently change
+/// nothing; NumPy refuses the write instead ("assignment destination is read-only").
+pub fn frozen<'py>(a: Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    let kw = pyo3::types::PyDict::new(a.py());
+    kw.set_item("write", false)?;
+    a.call_method("setflags", (), Some(&kw))?;
+    Ok(a)
+}
+
+/// A vector as a 1-D array.
+pub fn vector<'py>(py: Python<'py>, v: &[f64]) -> PyResult<Bound<'py, PyAny>> {
+    array(py, v.to_vec(), &[v.len()])
+}
+
+/// Writes `m` row-major into `out`.
+#[inline]
+pub fn write_rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f64, R, C>>(
+    m: &nalgebra::Matrix<f64, R, C, S>,
+    out: &mut [f64],
+) {
+    let c = m.ncols();
+    for (k, o) in out.iter_mut().enumerate() {
+        *o = m[(k / c, k % c)];
+    }
+}
+
+/// A `(4, 4)` homogeneous matrix of a pose, row-major.
+#[inline]
+pub fn write_pose(h: &screwdyn::spatial::Se3, out: &mut [f64]) {
+    write_rows(&h.to_matrix(), out);
+}

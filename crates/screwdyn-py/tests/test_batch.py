@@ -1,0 +1,87 @@
+"""Batches equal per-state calls exactly, whatever the thread count; shapes and broadcasting."""
+
+import numpy as np
+import pytest
+
+import screwdyn
+
+rng = np.random.default_rng(7)
+
+
+@pytest.fixture(scope="module")
+def ur5():
+    return screwdyn.load("builtin:ur5")
+
+
+def states(n, nq=6):
+    return rng.uniform(-2, 2, (n, nq)), rng.normal(size=(n, nq)), rng.normal(size=(n, nq))
+
+
+CALLS = {
+    "rnea": lambda m, q, v, a, **k: m.rnea(q, v, a, **k),
+    "crba": lambda m, q, v, a, **k: m.crba(q, **k),
+    "mass_matrix_inverse": lambda m, q, v, a, **k: m.mass_matrix_inverse(q, **k),
+    "coriolis_matrix": lambda m, q, v, a, **k: m.coriolis_matrix(q, v, **k),
+    "gravity_torque": lambda m, q, v, a, **k: m.gravity_torque(q, **k),
+    "nonlinear_effects": lambda m, q, v, a, **k: m.nonlinear_effects(q, v, **k),
+    "aba": lambda m, q, v, a, **k: m.aba(q, v, a, **k),
+    "walker-orin": lambda m, q, v, a, **k: m.forward_dynamics(q, v, a, method="walker-orin", **k),
+    "kinetic_energy": lambda m, q, v, a, **k: m.kinetic_energy(q, v, **k),
+    "potential_energy": lambda m, q, v, a, **k: m.potential_energy(q, **k),
+    "total_energy": lambda m, q, v, a, **k: m.total_energy(q, v, **k),
+    "power": lambda m, q, v, a, **k: m.power(a, v, **k),
+    "center_of_mass": lambda m, q, v, a, **k: m.center_of_mass(q, **k),
+    "frame_pose": lambda m, q, v, a, **k: m.frame_pose(q, "tool0", **k),
+    "frame_jacobian": lambda m, q, v, a, **k: m.frame_jacobian(q, "tool0", "local", **k),
+    "link_jacobian": lambda m, q, v, a, **k: m.link_jacobian(q, 3, **k),
+    "frame_twist": lambda m, q, v, a, **k: m.frame_twist(q, v, "tool0", "world-aligned", **k),
+    "frame_acceleration": lambda m, q, v, a, **k: m.frame_acceleration(q, v, a, "tool0", **k),
+    "frame_jdot_qdot": lambda m, q, v, a, **k: m.frame_jdot_qdot(q, v, "tool0", **k),
+    "rnea_fext": lambda m, q, v, a, **k: m.rnea(q, v, a, fext={"wrist_3_link": [1, 2, 3, 4, 5, 6]}, **k),
+}
+
+
+@pytest.mark.parametrize("name", list(CALLS))
+def test_batch_equals_per_state_calls(ur5, name):
+    f = CALLS[name]
+    n = 1500  # more than one rayon chunk, so the batch really runs in parallel
+    q, v, a = states(n)
+    batch = f(ur5, q, v, a)
+    single = np.array([f(ur5, q[k], v[k], a[k]) for k in range(n)])
+    assert batch.shape == single.shape
+    assert batch.dtype == np.float64
+    np.testing.assert_array_equal(batch, single)
+    np.testing.assert_array_equal(f(ur5, q, v, a, threads=1), batch)
+    np.testing.assert_array_equal(f(ur5, q, v, a, threads=2), batch)
+
+
+def test_shapes_lists_and_broadcasting(ur5):
+    q, v, a = states(4)
+    assert ur5.rnea(q[0], v[0], a[0]).shape == (6,)
+    assert ur5.rnea(q, v, a).shape == (4, 6)
+    assert ur5.crba(q).shape == (4, 6, 6)
+    assert ur5.frame_jacobian(q, "tool0").shape == (4, 6, 6)
+    assert ur5.frame_pose(q, "tool0").shape == (4, 4, 4)
+    assert isinstance(ur5.kinetic_energy(q[0], v[0]), float)
+    assert ur5.kinetic_energy(q, v).shape == (4,)
+    # lists, tuples and integer arrays are accepted
+    np.testing.assert_array_equal(ur5.rnea(q[0].tolist(), tuple(v[0]), a[0]), ur5.rnea(q[0], v[0], a[0]))
+    np.testing.assert_array_equal(ur5.gravity_torque(np.zeros(6, dtype=int)), ur5.gravity_torque(np.zeros(6)))
+    # a single v is broadcast against stacked q
+    np.testing.assert_array_equal(ur5.rnea(q, v[0], a[0]), np.array([ur5.rnea(qk, v[0], a[0]) for qk in q]))
+    # non-contiguous input (a column slice) is read correctly
+    big = np.hstack([q, q])
+    np.testing.assert_array_equal(ur5.crba(big[:, :6]), ur5.crba(q))
+    # Fortran-ordered and transposed inputs are read in logical (row) order
+    np.testing.assert_array_equal(ur5.rnea(np.asfortranarray(q), v, a), ur5.rnea(q, v, a))
+    np.testing.assert_array_equal(ur5.crba(np.ascontiguousarray(q.T).T), ur5.crba(q))
+    # zero states
+    assert ur5.rnea(np.zeros((0, 6)), np.zeros((0, 6)), np.zeros((0, 6))).shape == (0, 6)
+    # frame_poses batches every frame
+    poses = ur5.frame_poses(q)
+    np.testing.assert_array_equal(poses["tool0"], ur5.frame_pose(q, "tool0"))
+
+
+def test_rnea_defaults_to_zero_velocity_and_acceleration(ur5):
+    q = states(1)[0][0]
+    np.testing.assert_array_equal(ur5.rnea(q), ur5.gravity_torque(q))
