@@ -5,6 +5,7 @@ mod args;
 mod commands;
 mod output;
 mod plot;
+mod write;
 
 use clap::Parser;
 use std::process::ExitCode;
@@ -27,6 +28,15 @@ impl CliError {
 }
 
 impl CliError {
+    /// Not a failure: the reader of stdout went away (`| head`); the command stops quietly
+    /// with status 0.
+    pub fn stop() -> Self {
+        CliError {
+            code: 0,
+            message: String::new(),
+        }
+    }
+
     /// An internal failure (exit status 1).
     pub fn internal(message: impl Into<String>) -> Self {
         CliError {
@@ -90,6 +100,7 @@ fn main() -> ExitCode {
     };
     match std::panic::catch_unwind(|| commands::run(cli)) {
         Ok(Ok(())) => ExitCode::SUCCESS,
+        Ok(Err(e)) if e.code == 0 => ExitCode::SUCCESS,
         Ok(Err(e)) => {
             eprintln!("screwdyn: {}", e.message);
             ExitCode::from(e.code)

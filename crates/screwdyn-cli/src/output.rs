@@ -1,4 +1,4 @@
-//! Formatting of results: human tables, JSON (DESIGN §5 keys) and CSV.
+//! Formatting of results: human tables, JSON and CSV (keys and columns as in docs/cli.md).
 //!
 //! Every command produces a [`Report`]: an ordered list of `(key, value)` where a value is a
 //! scalar, a labelled vector, a labelled matrix, a map of further values, or text. The same
@@ -87,29 +87,106 @@ impl Value {
         }
     }
 
-    fn flatten(&self, key: &str, out: &mut Vec<(String, String)>) {
+    /// The CSV column names of this value under `key`.
+    fn columns(&self, key: &str, out: &mut Vec<String>) {
         match self {
-            Value::Scalar(x) => out.push((key.into(), format!("{x:?}"))),
-            Value::Count(n) => out.push((key.into(), n.to_string())),
-            Value::Vector(l, x) => {
-                for (l, x) in l.iter().zip(x) {
-                    out.push((format!("{key}.{l}"), format!("{x:?}")));
-                }
-            }
-            Value::Matrix(rl, cl, m) => {
-                for (r, rn) in rl.iter().enumerate() {
-                    for (c, cn) in cl.iter().enumerate() {
-                        out.push((format!("{key}.{rn}.{cn}"), format!("{:?}", m[(r, c)])));
-                    }
+            Value::Scalar(_) | Value::Count(_) | Value::Text(_) => out.push(key.into()),
+            Value::Vector(l, _) => out.extend(l.iter().map(|l| format!("{key}.{l}"))),
+            Value::Matrix(rl, cl, _) => {
+                for rn in rl {
+                    out.extend(cl.iter().map(|cn| format!("{key}.{rn}.{cn}")));
                 }
             }
             Value::Map(items) => {
                 for (k, v) in items {
-                    v.flatten(&format!("{key}.{k}"), out);
+                    v.columns(&format!("{key}.{k}"), out);
                 }
             }
-            Value::Text(s) => out.push((key.into(), s.clone())),
             Value::Names(_) => {}
+        }
+    }
+
+    /// Writes the CSV cells of this value (in [`Value::flatten`]'s order); counts them.
+    fn write_csv<W: Write>(
+        &self,
+        w: &mut csv::Writer<W>,
+        num: &mut ryu::Buffer,
+        cells: &mut usize,
+    ) -> csv::Result<()> {
+        match self {
+            Value::Scalar(x) => {
+                *cells += 1;
+                w.write_field(num_text(num, *x))
+            }
+            Value::Count(n) => {
+                *cells += 1;
+                w.write_field(n.to_string())
+            }
+            Value::Vector(_, x) => {
+                *cells += x.len();
+                x.iter().try_for_each(|x| w.write_field(num_text(num, *x)))
+            }
+            Value::Matrix(rl, cl, m) => {
+                *cells += rl.len() * cl.len();
+                for r in 0..m.nrows() {
+                    for c in 0..m.ncols() {
+                        w.write_field(num_text(num, m[(r, c)]))?;
+                    }
+                }
+                Ok(())
+            }
+            Value::Map(items) => items
+                .iter()
+                .try_for_each(|(_, v)| v.write_csv(w, num, cells)),
+            Value::Text(s) => {
+                *cells += 1;
+                w.write_field(s)
+            }
+            Value::Names(_) => Ok(()),
+        }
+    }
+
+    /// Writes this value as compact JSON (the same document as [`Value::to_json`]).
+    fn write_json(&self, w: &mut impl Write, num: &mut ryu::Buffer) -> std::io::Result<()> {
+        match self {
+            Value::Scalar(x) => json_num(w, num, *x),
+            Value::Count(n) => write!(w, "{n}"),
+            Value::Vector(_, x) => {
+                w.write_all(b"[")?;
+                for (k, x) in x.iter().enumerate() {
+                    if k > 0 {
+                        w.write_all(b",")?;
+                    }
+                    json_num(w, num, *x)?;
+                }
+                w.write_all(b"]")
+            }
+            Value::Matrix(_, _, m) => {
+                w.write_all(b"[")?;
+                for r in 0..m.nrows() {
+                    w.write_all(if r > 0 { b",[" } else { b"[" })?;
+                    for c in 0..m.ncols() {
+                        if c > 0 {
+                            w.write_all(b",")?;
+                        }
+                        json_num(w, num, m[(r, c)])?;
+                    }
+                    w.write_all(b"]")?;
+                }
+                w.write_all(b"]")
+            }
+            Value::Map(items) => write_json_object(w, num, items),
+            Value::Text(s) => json_str(w, s),
+            Value::Names(n) => {
+                w.write_all(b"[")?;
+                for (k, s) in n.iter().enumerate() {
+                    if k > 0 {
+                        w.write_all(b",")?;
+                    }
+                    json_str(w, s)?;
+                }
+                w.write_all(b"]")
+            }
         }
     }
 
@@ -139,6 +216,23 @@ impl Value {
             }
         }
     }
+}
+
+fn write_json_object(
+    w: &mut impl Write,
+    num: &mut ryu::Buffer,
+    items: &[(String, Value)],
+) -> std::io::Result<()> {
+    w.write_all(b"{")?;
+    for (k, (key, v)) in items.iter().enumerate() {
+        if k > 0 {
+            w.write_all(b",")?;
+        }
+        json_str(w, key)?;
+        w.write_all(b":")?;
+        v.write_json(w, num)?;
+    }
+    w.write_all(b"}")
 }
 
 fn num_json(x: f64) -> Json {
@@ -218,11 +312,17 @@ impl Report {
         )
     }
 
-    /// `(column, cell)` pairs of the CSV row.
-    pub fn to_csv_cells(&self) -> Vec<(String, String)> {
+    /// Writes the report as one compact JSON object (the document of [`Report::to_json`]).
+    pub fn write_json(&self, w: &mut impl Write, num: &mut ryu::Buffer) -> std::io::Result<()> {
+        write_json_object(w, num, &self.items)
+    }
+
+    /// The CSV column names: `<key>.<label>` for vectors, `<key>.<row>.<col>` for matrices,
+    /// `<key>.<sub key>...` for maps; the names list is left out.
+    pub fn csv_columns(&self) -> Vec<String> {
         let mut out = Vec::new();
         for (k, v) in &self.items {
-            v.flatten(k, &mut out);
+            v.columns(k, &mut out);
         }
         out
     }
@@ -243,48 +343,169 @@ impl Report {
 /// Prints `reports` (one per input state) in `format`; `batch` says whether the states came
 /// from `--input` (JSON array) or from flags (a single JSON object).
 pub fn print(reports: &[Report], format: Format, batch: bool) -> Result<(), CliError> {
-    let mut text = String::new();
-    match format {
-        Format::Json => {
-            let v = if batch {
-                Json::Array(reports.iter().map(Report::to_json).collect())
-            } else {
-                reports.first().map(Report::to_json).unwrap_or(Json::Null)
-            };
-            text = serde_json::to_string_pretty(&v).expect("JSON of numbers and strings");
-            text.push('\n');
+    let stdout = std::io::stdout();
+    let mut out = ReportWriter::new(std::io::BufWriter::new(stdout.lock()), format, batch);
+    for r in reports {
+        out.write(r)?;
+    }
+    out.finish()
+}
+
+/// Writes reports one at a time (one per state of a batch) as they are computed: a JSON array
+/// is opened at the first report and closed by [`ReportWriter::finish`], a CSV file gets its
+/// header from the first report and one row per report, a table one block per state. Nothing
+/// is kept between reports but the number formatter, so memory does not grow with the batch.
+pub struct ReportWriter<W: Write> {
+    format: Format,
+    batch: bool,
+    count: usize,
+    /// CSV: the number of columns of the header (every row must match it).
+    columns: usize,
+    out: Sink<W>,
+    num: ryu::Buffer,
+}
+
+enum Sink<W: Write> {
+    Csv(csv::Writer<W>),
+    Text(W),
+}
+
+impl<W: Write> ReportWriter<W> {
+    /// A writer of `format` onto `w`; `batch` as for [`print`].
+    pub fn new(w: W, format: Format, batch: bool) -> Self {
+        let out = match format {
+            Format::Csv => Sink::Csv(
+                csv::WriterBuilder::new()
+                    .has_headers(false)
+                    .terminator(csv::Terminator::Any(b'\n'))
+                    .from_writer(w),
+            ),
+            _ => Sink::Text(w),
+        };
+        ReportWriter {
+            format,
+            batch,
+            count: 0,
+            columns: 0,
+            out,
+            num: ryu::Buffer::new(),
         }
-        Format::Csv => {
-            let mut header: Option<Vec<String>> = None;
-            for r in reports {
-                let cells = r.to_csv_cells();
-                let names: Vec<String> = cells.iter().map(|(n, _)| n.clone()).collect();
-                match &header {
-                    None => {
-                        text.push_str(&csv_line(&names));
-                        header = Some(names);
-                    }
-                    Some(h) if *h != names => {
-                        return Err(CliError::internal(
-                            "the rows of a batch produced different CSV columns",
-                        ))
-                    }
-                    _ => {}
+    }
+
+    /// Writes one report.
+    ///
+    /// # Errors
+    /// A write error (a closed pipe becomes [`CliError::stop`]), or an internal error when a
+    /// CSV row has other columns than the first one.
+    pub fn write(&mut self, r: &Report) -> Result<(), CliError> {
+        let first = self.count == 0;
+        self.count += 1;
+        match &mut self.out {
+            Sink::Csv(w) => {
+                if first {
+                    let names = r.csv_columns();
+                    self.columns = names.len();
+                    w.write_record(&names).map_err(csv_error)?;
                 }
-                let values: Vec<String> = cells.into_iter().map(|(_, c)| c).collect();
-                text.push_str(&csv_line(&values));
+                let mut cells = 0;
+                for (_, v) in &r.items {
+                    v.write_csv(w, &mut self.num, &mut cells)
+                        .map_err(csv_error)?;
+                }
+                if cells != self.columns {
+                    return Err(CliError::internal(
+                        "the rows of a batch produced different CSV columns",
+                    ));
+                }
+                w.write_record(None::<&[u8]>).map_err(csv_error)?;
             }
-        }
-        Format::Table => {
-            for (k, r) in reports.iter().enumerate() {
-                if batch {
-                    text.push_str(&format!("── state {} ──\n", k + 1));
+            Sink::Text(w) => match self.format {
+                Format::Json if self.batch => {
+                    w.write_all(if first { b"[\n" } else { b",\n" })
+                        .map_err(io_error)?;
+                    r.write_json(w, &mut self.num).map_err(io_error)?;
                 }
-                text.push_str(&r.to_table());
+                Format::Json => {
+                    serde_json::to_writer_pretty(&mut *w, &r.to_json())
+                        .map_err(|e| io_error(e.into()))?;
+                    w.write_all(b"\n").map_err(io_error)?;
+                }
+                _ => {
+                    if self.batch {
+                        write!(w, "── state {} ──\n", self.count).map_err(io_error)?;
+                    }
+                    w.write_all(r.to_table().as_bytes()).map_err(io_error)?;
+                }
+            },
+        }
+        Ok(())
+    }
+
+    /// The number of reports written.
+    pub fn count(&self) -> usize {
+        self.count
+    }
+
+    /// Closes the JSON array of a batch and flushes.
+    ///
+    /// # Errors
+    /// A write error (a closed pipe becomes [`CliError::stop`]).
+    pub fn finish(self) -> Result<(), CliError> {
+        match self.out {
+            Sink::Csv(w) => {
+                let mut w = w.into_inner().map_err(|e| io_error(e.into_error()))?;
+                w.flush().map_err(io_error)
+            }
+            Sink::Text(mut w) => {
+                if self.batch && self.format == Format::Json {
+                    let end: &[u8] = if self.count == 0 { b"[]\n" } else { b"\n]\n" };
+                    w.write_all(end).map_err(io_error)?;
+                }
+                w.flush().map_err(io_error)
             }
         }
     }
-    write_stdout(&text)
+}
+
+/// A write error: a closed pipe (`| head`) ends the command quietly with status 0.
+fn io_error(e: std::io::Error) -> CliError {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        CliError::stop()
+    } else {
+        CliError::internal(format!("cannot write the output ({e})"))
+    }
+}
+
+fn csv_error(e: csv::Error) -> CliError {
+    match e.into_kind() {
+        csv::ErrorKind::Io(e) => io_error(e),
+        k => CliError::internal(format!("cannot write the CSV output ({k:?})")),
+    }
+}
+
+/// A number as the shortest text that reads back to the same `f64` (`ryu`); `NaN`, `inf`.
+fn num_text(num: &mut ryu::Buffer, x: f64) -> &str {
+    if x.is_finite() {
+        num.format_finite(x)
+    } else if x.is_nan() {
+        "NaN"
+    } else if x > 0.0 {
+        "inf"
+    } else {
+        "-inf"
+    }
+}
+
+fn json_num(w: &mut impl Write, num: &mut ryu::Buffer, x: f64) -> std::io::Result<()> {
+    if x.is_finite() {
+        w.write_all(num.format_finite(x).as_bytes())
+    } else {
+        w.write_all(b"null")
+    }
+}
+
+fn json_str(w: &mut impl Write, s: &str) -> std::io::Result<()> {
+    serde_json::to_writer(w, s).map_err(std::io::Error::from)
 }
 
 /// Writes to stdout; a closed pipe (`| head`) is not an error.
@@ -295,20 +516,6 @@ pub fn write_stdout(text: &str) -> Result<(), CliError> {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
         Err(e) => Err(CliError::internal(format!("cannot write to stdout ({e})"))),
     }
-}
-
-fn csv_line(cells: &[String]) -> String {
-    let quoted: Vec<String> = cells
-        .iter()
-        .map(|c| {
-            if c.contains([',', '"', '\n']) {
-                format!("\"{}\"", c.replace('"', "\"\""))
-            } else {
-                c.clone()
-            }
-        })
-        .collect();
-    format!("{}\n", quoted.join(","))
 }
 
 #[cfg(test)]
@@ -326,7 +533,7 @@ mod tests {
                 Value::joint_matrix(&j, &DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 3.0, 4.0])),
             )
             .add("kinetic_energy", Value::Scalar(0.5));
-        let names: Vec<String> = r.to_csv_cells().into_iter().map(|(n, _)| n).collect();
+        let names = r.csv_columns();
         assert_eq!(
             names,
             [

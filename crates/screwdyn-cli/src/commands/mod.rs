@@ -124,43 +124,30 @@ pub struct State {
     pub tau: Vec<f64>,
 }
 
-/// The states to evaluate: one from the flags, or one per row of `--input`.
-pub struct States {
-    pub rows: Vec<State>,
-    /// Where each state came from, for messages ("states.csv row 3").
-    pub origin: Vec<String>,
-    pub batch: bool,
+impl State {
+    /// All zeros for a model with `n` coordinates.
+    pub fn zeros(n: usize) -> Self {
+        State {
+            q: vec![0.0; n],
+            v: vec![0.0; n],
+            a: vec![0.0; n],
+            tau: vec![0.0; n],
+        }
+    }
+
+    fn slot(&mut self, k: usize) -> &mut [f64] {
+        match k {
+            0 => &mut self.q,
+            1 => &mut self.v,
+            2 => &mut self.a,
+            _ => &mut self.tau,
+        }
+    }
 }
 
-/// Collects the states of a numeric command: `flags` are `(name, value)` of its vector flags.
-pub fn states(
-    m: &Model,
-    common: &Common,
-    flags: &[(&str, Option<&str>)],
-) -> Result<States, CliError> {
-    if let Some(path) = &common.input {
-        if let Some((name, _)) = flags.iter().find(|(_, v)| v.is_some()) {
-            return Err(CliError::input(format!(
-                "--{name} cannot be combined with --input (give {name}.<joint> columns in {})",
-                path.display()
-            )));
-        }
-        let rows = read_states(m, path)?;
-        let origin = (0..rows.len())
-            .map(|k| format!("{} row {}", path.display(), k + 1))
-            .collect();
-        return Ok(States {
-            rows,
-            origin,
-            batch: true,
-        });
-    }
-    let mut s = State {
-        q: vec![0.0; m.nq()],
-        v: vec![0.0; m.nq()],
-        a: vec![0.0; m.nq()],
-        tau: vec![0.0; m.nq()],
-    };
+/// The one state given by the vector flags (`(name, value)`; an absent vector is zero).
+fn flag_state(m: &Model, flags: &[(&str, Option<&str>)]) -> Result<State, CliError> {
+    let mut s = State::zeros(m.nq());
     for (name, text) in flags {
         let x = parse_vector(*text, name, m)?;
         match *name {
@@ -171,73 +158,194 @@ pub fn states(
             _ => unreachable!("vector flags are q, v, a, tau"),
         }
     }
-    Ok(States {
-        rows: vec![s],
-        origin: vec!["the command line".into()],
-        batch: false,
-    })
+    Ok(s)
 }
 
-/// Reads `q.<joint>`, `v.<joint>`, `a.<joint>`, `tau.<joint>` columns; a missing column is zero.
-fn read_states(m: &Model, path: &Path) -> Result<Vec<State>, CliError> {
-    let file = path.display().to_string();
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .from_path(path)
-        .map_err(|e| CliError::input(format!("{file}: cannot be read ({})", io_reason(&e))))?;
-    let names = m.joint_names();
-    let headers = reader
-        .headers()
-        .map_err(|e| CliError::input(format!("{file}: {}", io_reason(&e))))?
-        .clone();
-    // (slot 0..4 = q, v, a, tau; joint index) per column.
-    let mut slots = Vec::new();
-    let mut seen = std::collections::HashSet::new();
-    for h in headers.iter() {
-        let slot = h.split_once('.').and_then(|(key, joint)| {
-            let k = ["q", "v", "a", "tau"].iter().position(|x| *x == key)?;
-            let j = names.iter().position(|n| *n == joint)?;
-            Some((k, j))
-        });
-        let Some(slot) = slot else {
-            return Err(CliError::input(format!(
-                "{file}: unknown column '{h}' (expected q.<joint>, v.<joint>, a.<joint> or tau.<joint>, joints: {})",
-                names.join(", ")
-            )));
-        };
-        if !seen.insert(slot) {
-            return Err(CliError::input(format!(
-                "{file}: column '{h}' appears twice"
-            )));
+/// The longest line accepted in a CSV file of states (8 MiB, a state of ~80,000 joints): a
+/// binary file or `/dev/zero` given as input is an error, not an unbounded read.
+pub const MAX_LINE_BYTES: usize = 8 << 20;
+
+/// A reader that refuses what cannot be a text CSV file before it reaches the CSV parser: a NUL
+/// byte, or a line longer than [`MAX_LINE_BYTES`]. It counts lines for the message.
+struct TextOnly<R> {
+    inner: R,
+    /// The number of the line being read (1-based).
+    line: u64,
+    /// Bytes since the last newline.
+    run: usize,
+}
+
+impl<R: std::io::Read> std::io::Read for TextOnly<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        let chunk = &buf[..n];
+        if let Some(nul) = chunk.iter().position(|&b| b == 0) {
+            let line = self.line + chunk[..nul].iter().filter(|&&b| b == b'\n').count() as u64;
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!("line {line} contains a NUL byte: this is binary data, not a CSV file of states"),
+            ));
         }
-        slots.push(slot);
+        match chunk.iter().rposition(|&b| b == b'\n') {
+            Some(last) => {
+                let lines = chunk.iter().filter(|&&b| b == b'\n').count();
+                let first = chunk.iter().position(|&b| b == b'\n').unwrap_or(last);
+                if self.run + first > MAX_LINE_BYTES {
+                    return Err(self.too_long());
+                }
+                self.line += lines as u64;
+                self.run = n - last - 1;
+            }
+            None => self.run += n,
+        }
+        if self.run > MAX_LINE_BYTES {
+            return Err(self.too_long());
+        }
+        Ok(n)
     }
-    let n = m.nq();
-    let mut rows = Vec::new();
-    for record in reader.records() {
-        let record = record.map_err(|e| CliError::input(format!("{file}: {}", io_reason(&e))))?;
-        let line = record.position().map(|p| p.line()).unwrap_or(0);
-        let mut x = [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]];
-        for ((k, j), (cell, h)) in slots.iter().zip(record.iter().zip(headers.iter())) {
-            let v: f64 = cell.parse().map_err(|_| {
-                CliError::input(format!(
-                    "{file}:{line}: column '{h}': '{cell}' is not a number"
-                ))
-            })?;
-            if !v.is_finite() {
+}
+
+impl<R> TextOnly<R> {
+    fn too_long(&self) -> std::io::Error {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "line {} is longer than {} MiB: this is not a CSV file of states",
+                self.line,
+                MAX_LINE_BYTES >> 20
+            ),
+        )
+    }
+}
+
+/// Reads the states of `--input` one row at a time into a reused [`State`]: columns
+/// `q.<joint>`, `v.<joint>`, `a.<joint>`, `tau.<joint>`; a missing column is zero.
+struct StateReader {
+    file: String,
+    reader: csv::Reader<TextOnly<std::fs::File>>,
+    record: csv::ByteRecord,
+    headers: Vec<String>,
+    /// (vector 0..4 = q, v, a, tau; joint index) per column.
+    slots: Vec<(usize, usize)>,
+    rows: usize,
+}
+
+impl StateReader {
+    fn open(m: &Model, path: &Path) -> Result<Self, CliError> {
+        let file = path.display().to_string();
+        let f = std::fs::File::open(path)
+            .map_err(|e| CliError::input(format!("{file}: cannot be read ({e})")))?;
+        let mut reader = csv::ReaderBuilder::new()
+            .trim(csv::Trim::All)
+            .from_reader(TextOnly {
+                inner: f,
+                line: 1,
+                run: 0,
+            });
+        let raw = reader
+            .byte_headers()
+            .map_err(|e| CliError::input(format!("{file}: {}", io_reason(&e))))?
+            .clone();
+        let names = m.joint_names();
+        let mut headers = Vec::new();
+        let mut slots = Vec::new();
+        let mut seen = std::collections::HashSet::new();
+        for h in raw.iter() {
+            let Ok(h) = std::str::from_utf8(h) else {
                 return Err(CliError::input(format!(
-                    "{file}:{line}: column '{h}' is not finite ({v})"
+                    "{file}: line 1 is not UTF-8 text: this is not a CSV file of states"
+                )));
+            };
+            let slot = h.split_once('.').and_then(|(key, joint)| {
+                let k = ["q", "v", "a", "tau"].iter().position(|x| *x == key)?;
+                let j = names.iter().position(|n| *n == joint)?;
+                Some((k, j))
+            });
+            let Some(slot) = slot else {
+                return Err(CliError::input(format!(
+                    "{file}: unknown column '{}' (expected q.<joint>, v.<joint>, a.<joint> or tau.<joint>, joints: {})",
+                    shorten(h),
+                    names.join(", ")
+                )));
+            };
+            if !seen.insert(slot) {
+                return Err(CliError::input(format!(
+                    "{file}: column '{h}' appears twice"
                 )));
             }
-            x[*k][*j] = v;
+            slots.push(slot);
+            headers.push(h.to_string());
         }
-        let [q, v, a, tau] = x;
-        rows.push(State { q, v, a, tau });
+        Ok(StateReader {
+            file,
+            reader,
+            record: csv::ByteRecord::new(),
+            headers,
+            slots,
+            rows: 0,
+        })
     }
-    if rows.is_empty() {
-        return Err(CliError::input(format!("{file}: has no rows of states")));
+
+    /// Reads the next row into `s` (its columns only: the others stay as they are, zero);
+    /// `false` at the end of the file.
+    fn next(&mut self, s: &mut State) -> Result<bool, CliError> {
+        let file = &self.file;
+        let more = self
+            .reader
+            .read_byte_record(&mut self.record)
+            .map_err(|e| CliError::input(format!("{file}: {}", io_reason(&e))))?;
+        if !more {
+            return Ok(false);
+        }
+        self.rows += 1;
+        for (k, ((slot, j), cell)) in self.slots.iter().zip(self.record.iter()).enumerate() {
+            let text = std::str::from_utf8(cell).unwrap_or("");
+            let x: f64 = text.parse().map_err(|_| {
+                CliError::input(format!(
+                    "{file}:{}: column '{}': '{}' is not a number",
+                    self.line(),
+                    self.headers[k],
+                    shorten(&String::from_utf8_lossy(cell))
+                ))
+            })?;
+            if !x.is_finite() {
+                return Err(CliError::input(format!(
+                    "{file}:{}: column '{}' is not finite ({x})",
+                    self.line(),
+                    self.headers[k]
+                )));
+            }
+            s.slot(*slot)[*j] = x;
+        }
+        Ok(true)
     }
-    Ok(rows)
+
+    /// The line of the last row read.
+    fn line(&self) -> u64 {
+        self.record.position().map(|p| p.line()).unwrap_or(0)
+    }
+
+    /// `e` placed at the last row read: "FILE:LINE (row K): ...".
+    fn locate(&self, e: CliError) -> CliError {
+        CliError {
+            code: e.code,
+            message: format!(
+                "{}:{} (row {}): {}",
+                self.file,
+                self.line(),
+                self.rows,
+                e.message
+            ),
+        }
+    }
+}
+
+/// At most 60 characters of a cell or column name, for messages.
+fn shorten(s: &str) -> String {
+    match s.char_indices().nth(60) {
+        Some((i, _)) => format!("{}…", &s[..i]),
+        None => s.to_string(),
+    }
 }
 
 fn io_reason(e: &csv::Error) -> String {
@@ -255,30 +363,44 @@ fn io_reason(e: &csv::Error) -> String {
     }
 }
 
-/// Evaluates `f` on every state and prints the reports in the chosen format.
+/// Evaluates `f` on the state of the flags, or on every row of `--input` as it is read, and
+/// writes each report as soon as it is computed (stdout, in the chosen format): memory does
+/// not grow with the number of rows.
 pub fn run_states(
     m: &Model,
     common: &Common,
     flags: &[(&str, Option<&str>)],
     mut f: impl FnMut(&State) -> Result<Report, CliError>,
 ) -> Result<(), CliError> {
-    let states = states(m, common, flags)?;
     let format = output::resolve(common.model.format);
-    let mut reports = Vec::with_capacity(states.rows.len());
-    for (s, origin) in states.rows.iter().zip(&states.origin) {
-        let r = f(s).map_err(|e| {
-            if states.batch {
-                CliError {
-                    code: e.code,
-                    message: format!("{origin}: {}", e.message),
-                }
-            } else {
-                e
-            }
-        })?;
-        reports.push(r);
+    let stdout = std::io::stdout();
+    let sink = std::io::BufWriter::with_capacity(1 << 16, stdout.lock());
+    let Some(path) = &common.input else {
+        let s = flag_state(m, flags)?;
+        let mut out = output::ReportWriter::new(sink, format, false);
+        out.write(&f(&s)?)?;
+        return out.finish();
+    };
+    if let Some((name, _)) = flags.iter().find(|(_, v)| v.is_some()) {
+        return Err(CliError::input(format!(
+            "--{name} cannot be combined with --input (give {name}.<joint> columns in {})",
+            path.display()
+        )));
     }
-    output::print(&reports, format, states.batch)
+    let mut rows = StateReader::open(m, path)?;
+    let mut s = State::zeros(m.nq());
+    let mut out = output::ReportWriter::new(sink, format, true);
+    while rows.next(&mut s)? {
+        let r = f(&s).map_err(|e| rows.locate(e))?;
+        out.write(&r)?;
+    }
+    if out.count() == 0 {
+        return Err(CliError::input(format!(
+            "{}: has no rows of states",
+            path.display()
+        )));
+    }
+    out.finish()
 }
 
 /// Parses `NAME:mx,my,mz,fx,fy,fz[@world]` into (name, wrench, in world).

@@ -4,6 +4,7 @@ use super::{load, names, parse_numbers, parse_per_joint, parse_vector, parse_wre
 use crate::args::{ControllerArg, Format, SimulateArgs, TorqueProfileArgs, TrajectoryArg};
 use crate::output::{fmt, resolve, table, write_stdout, Report, Value};
 use crate::plot::{plot_panels, Panel, Series};
+use crate::write;
 use crate::CliError;
 use screwdyn::dynamics::{crba, ForwardMethod};
 use screwdyn::sim::{
@@ -46,19 +47,82 @@ fn plot_kind(path: &Path) -> Result<(), CliError> {
     }
 }
 
-/// Writes a recording as DESIGN §5 CSV or JSON.
+/// Writes a recording as CSV or JSON (the run file's columns) to `path`, atomically.
 fn write_recording(rec: &Recording, path: &Path, kind: Format) -> Result<(), CliError> {
     let fail =
         |e: std::io::Error| CliError::input(format!("cannot write {} ({e})", path.display()));
-    let mut file = std::io::BufWriter::new(std::fs::File::create(path).map_err(fail)?);
-    match kind {
-        Format::Json => {
-            serde_json::to_writer(&mut file, &rec.to_json())
-                .map_err(|e| CliError::input(format!("cannot write {} ({e})", path.display())))?;
+    write::atomic(path, |file| match kind {
+        Format::Json => serde_json::to_writer(file, &rec.to_json())
+            .map_err(|e| CliError::input(format!("cannot write {} ({e})", path.display()))),
+        _ => write_run_csv(rec, file).map_err(fail),
+    })
+}
+
+/// One CSV row per sample under [`Recording::columns`]; names quoted as CSV needs (a joint
+/// named `j"2,x`), numbers in their shortest round-trip form.
+fn write_run_csv(rec: &Recording, w: &mut impl std::io::Write) -> std::io::Result<()> {
+    let mut csv = csv::WriterBuilder::new()
+        .terminator(csv::Terminator::Any(b'\n'))
+        .from_writer(w);
+    let io = |e: csv::Error| match e.into_kind() {
+        csv::ErrorKind::Io(e) => e,
+        k => std::io::Error::other(format!("{k:?}")),
+    };
+    csv.write_record(rec.columns()).map_err(io)?;
+    let mut num = ryu::Buffer::new();
+    let mut cell = |csv: &mut csv::Writer<_>, x: f64| {
+        let text = if x.is_finite() {
+            num.format_finite(x)
+        } else if x.is_nan() {
+            "NaN"
+        } else if x > 0.0 {
+            "inf"
+        } else {
+            "-inf"
+        };
+        csv.write_field(text)
+    };
+    for k in 0..rec.len() {
+        cell(&mut csv, rec.t[k]).map_err(io)?;
+        for x in [&rec.q, &rec.v, &rec.a, &rec.tau] {
+            for v in &x[k] {
+                cell(&mut csv, *v).map_err(io)?;
+            }
         }
-        _ => rec.write_csv(&mut file).map_err(fail)?,
+        for e in [
+            rec.kinetic_energy[k],
+            rec.potential_energy[k],
+            rec.total_energy[k],
+        ] {
+            cell(&mut csv, e).map_err(io)?;
+        }
+        if let Some(p) = rec.poses.get(k) {
+            for h in p {
+                for x in h.translation.iter() {
+                    cell(&mut csv, *x).map_err(io)?;
+                }
+            }
+        }
+        csv.write_record(None::<&[u8]>).map_err(io)?;
     }
-    std::io::Write::flush(&mut file).map_err(fail)
+    csv.flush()
+}
+
+/// Refuses `--output` / `--plot` onto an input of the command (the model file, `extra`).
+fn refuse_onto_inputs(
+    model: &str,
+    extra: Option<&Path>,
+    output: Option<&Path>,
+    plot: Option<&Path>,
+) -> Result<(), CliError> {
+    let mut inputs = vec![Path::new(model)];
+    inputs.extend(extra);
+    for (flag, path) in [("--output", output), ("--plot", plot)] {
+        if let Some(p) = path {
+            write::refuse_inputs(flag, p, &inputs)?;
+        }
+    }
+    Ok(())
 }
 
 fn joint_series(rec: &Recording, x: &[Vec<f64>]) -> Vec<Series> {
@@ -192,6 +256,12 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
     if let Some(p) = &a.plot {
         plot_kind(p)?;
     }
+    refuse_onto_inputs(
+        &a.model.model,
+        a.torque_csv.as_deref(),
+        a.output.as_deref(),
+        a.plot.as_deref(),
+    )?;
     let mut m = load(&a.model, a.gravity.as_deref())?;
     if let Some(d) = &a.damping {
         let b = parse_per_joint(d, "damping", &m)?;
@@ -389,7 +459,7 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
     if a.output.is_none() && format != Format::Table {
         let mut text = Vec::new();
         if format == Format::Csv {
-            rec.write_csv(&mut text)
+            write_run_csv(&rec, &mut text)
                 .map_err(|e| CliError::internal(format!("cannot format the run ({e})")))?;
         } else {
             text = serde_json::to_vec(&rec.to_json()).expect("JSON of numbers");
@@ -461,6 +531,7 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
     if let Some(p) = &a.plot {
         plot_kind(p)?;
     }
+    refuse_onto_inputs(&a.model.model, None, a.output.as_deref(), a.plot.as_deref())?;
     let m = load(&a.model, a.gravity.as_deref())?;
     let q0 = parse_vector(a.q0.as_deref(), "q0", &m)?;
     let qf = parse_vector(Some(&a.qf), "qf", &m)?;
