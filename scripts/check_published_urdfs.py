@@ -111,6 +111,7 @@ def main():
         pj, perr = pinocchio_joints(pin, path)
         sj, serr = screwdyn_joints(exe, path)
         serr = serr and serr.replace(path, name)
+        perr = perr and perr.replace(path, name)
         if pj is None:
             result = "not loaded by Pinocchio: " + shorten(perr)
             rows.append((name, "-", sj[1] if sj else "-", "-", result))
