@@ -1,4 +1,4 @@
-//! `screwdyn`: the command-line program (DESIGN §5). A thin shell over the library: parse
+//! `screwdyn`: the command-line program (docs/cli.md). A thin shell over the library: parse
 //! arguments, load the model, call the library, format the result.
 
 mod args;
