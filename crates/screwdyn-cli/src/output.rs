@@ -11,7 +11,9 @@ use crate::CliError;
 use comfy_table::{presets, Table};
 use nalgebra::DMatrix;
 use serde_json::{Map, Value as Json};
+use std::borrow::Cow;
 use std::io::{IsTerminal, Write};
+use std::rc::Rc;
 
 /// The format asked for, or `table` on a terminal and `json` otherwise.
 pub fn resolve(format: Option<Format>) -> Format {
@@ -24,6 +26,15 @@ pub fn resolve(format: Option<Format>) -> Format {
     })
 }
 
+/// Labels of a vector's entries or a matrix's rows/columns, shared between the values of a
+/// batch (one allocation per command, not per row).
+pub type Labels = Rc<[String]>;
+
+/// Labels from names.
+pub fn labels<S: AsRef<str>>(names: &[S]) -> Labels {
+    names.iter().map(|s| s.as_ref().to_string()).collect()
+}
+
 /// One value of a result.
 #[derive(Clone, Debug)]
 pub enum Value {
@@ -32,32 +43,41 @@ pub enum Value {
     /// A count (written as an integer: `10001`, not `10001.0`).
     Count(usize),
     /// A vector whose entries carry labels (joint names, `wx`…`vz`, ...).
-    Vector(Vec<String>, Vec<f64>),
+    Vector(Labels, Vec<f64>),
     /// A matrix with row and column labels.
-    Matrix(Vec<String>, Vec<String>, DMatrix<f64>),
+    Matrix(Labels, Labels, DMatrix<f64>),
     /// Nested values (a frame → pose map, per-body quantities, ...).
     Map(Vec<(String, Value)>),
     /// A word (a frame name, a method).
     Text(String),
     /// A list of names (the joint names); omitted from CSV, whose columns carry them.
-    Names(Vec<String>),
+    Names(Labels),
 }
 
 impl Value {
     /// A joint-space vector.
-    pub fn joints(names: &[String], x: &[f64]) -> Value {
-        Value::Vector(names.to_vec(), x.to_vec())
+    pub fn joints(names: &Labels, x: &[f64]) -> Value {
+        Value::Vector(names.clone(), x.to_vec())
     }
 
     /// A joint × joint matrix.
-    pub fn joint_matrix(names: &[String], m: &DMatrix<f64>) -> Value {
-        Value::Matrix(names.to_vec(), names.to_vec(), m.clone())
+    pub fn joint_matrix(names: &Labels, m: &DMatrix<f64>) -> Value {
+        Value::Matrix(names.clone(), names.clone(), m.clone())
     }
 
     /// A matrix labelled `1, 2, ...` on both sides (a 4×4 pose).
     pub fn numbered(m: &DMatrix<f64>) -> Value {
-        let r = (1..=m.nrows()).map(|k| k.to_string()).collect();
-        let c = (1..=m.ncols()).map(|k| k.to_string()).collect();
+        thread_local! {
+            static ONE_TO_FOUR: Labels = (1..=4).map(|k| k.to_string()).collect();
+        }
+        let numbers = |k: usize| -> Labels {
+            if k == 4 {
+                ONE_TO_FOUR.with(Rc::clone)
+            } else {
+                (1..=k).map(|i| i.to_string()).collect()
+            }
+        };
+        let (r, c) = (numbers(m.nrows()), numbers(m.ncols()));
         Value::Matrix(r, c, m.clone())
     }
 
@@ -93,7 +113,7 @@ impl Value {
             Value::Scalar(_) | Value::Count(_) | Value::Text(_) => out.push(key.into()),
             Value::Vector(l, _) => out.extend(l.iter().map(|l| format!("{key}.{l}"))),
             Value::Matrix(rl, cl, _) => {
-                for rn in rl {
+                for rn in rl.iter() {
                     out.extend(cl.iter().map(|cn| format!("{key}.{rn}.{cn}")));
                 }
             }
@@ -218,17 +238,17 @@ impl Value {
     }
 }
 
-fn write_json_object(
+fn write_json_object<K: AsRef<str>>(
     w: &mut impl Write,
     num: &mut ryu::Buffer,
-    items: &[(String, Value)],
+    items: &[(K, Value)],
 ) -> std::io::Result<()> {
     w.write_all(b"{")?;
     for (k, (key, v)) in items.iter().enumerate() {
         if k > 0 {
             w.write_all(b",")?;
         }
-        json_str(w, key)?;
+        json_str(w, key.as_ref())?;
         w.write_all(b":")?;
         v.write_json(w, num)?;
     }
@@ -285,7 +305,7 @@ pub fn matrix_table(rows: &[String], cols: &[String], m: &DMatrix<f64>) -> Strin
 #[derive(Clone, Debug, Default)]
 pub struct Report {
     /// `(key, value)` in output order.
-    pub items: Vec<(String, Value)>,
+    pub items: Vec<(Cow<'static, str>, Value)>,
     /// A hand-written table replacing the generic one (e.g. `explain`'s narrative).
     pub table: Option<String>,
 }
@@ -297,7 +317,7 @@ impl Report {
     }
 
     /// Appends `key = value`.
-    pub fn add(&mut self, key: &str, value: Value) -> &mut Self {
+    pub fn add(&mut self, key: impl Into<Cow<'static, str>>, value: Value) -> &mut Self {
         self.items.push((key.into(), value));
         self
     }
@@ -307,7 +327,7 @@ impl Report {
         Json::Object(
             self.items
                 .iter()
-                .map(|(k, v)| (k.clone(), v.to_json()))
+                .map(|(k, v)| (k.to_string(), v.to_json()))
                 .collect(),
         )
     }
@@ -524,7 +544,7 @@ mod tests {
 
     #[test]
     fn csv_columns_follow_design() {
-        let j = vec!["a".to_string(), "b".to_string()];
+        let j = labels(&["a", "b"]);
         let mut r = Report::new();
         r.add("joints", Value::Names(j.clone()))
             .add("tau", Value::joints(&j, &[1.0, 2.0]))

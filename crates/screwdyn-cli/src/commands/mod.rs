@@ -454,7 +454,7 @@ pub fn external_wrenches(
     Ok(Some(ext))
 }
 
-/// The joint names as owned strings.
-pub fn names(m: &Model) -> Vec<String> {
-    m.joint_names().into_iter().map(String::from).collect()
+/// The joint names, as labels shared by every report of the command.
+pub fn names(m: &Model) -> output::Labels {
+    output::labels(&m.joint_names())
 }
