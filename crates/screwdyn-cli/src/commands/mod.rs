@@ -179,21 +179,23 @@ impl<R: std::io::Read> std::io::Read for TextOnly<R> {
     fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
         let n = self.inner.read(buf)?;
         let chunk = &buf[..n];
-        if let Some(nul) = chunk.iter().position(|&b| b == 0) {
-            let line = self.line + chunk[..nul].iter().filter(|&&b| b == b'\n').count() as u64;
+        let lines_in = |c: &[u8]| memchr::memchr_iter(b'\n', c).count() as u64;
+        if let Some(nul) = memchr::memchr(0, chunk) {
+            let line = self.line + lines_in(&chunk[..nul]);
             return Err(std::io::Error::new(
                 std::io::ErrorKind::InvalidData,
                 format!("line {line} contains a NUL byte: this is binary data, not a CSV file of states"),
             ));
         }
-        match chunk.iter().rposition(|&b| b == b'\n') {
+        // A chunk is at most the CSV reader's buffer (kilobytes), so only the line running
+        // across chunk boundaries can exceed the limit.
+        match memchr::memrchr(b'\n', chunk) {
             Some(last) => {
-                let lines = chunk.iter().filter(|&&b| b == b'\n').count();
-                let first = chunk.iter().position(|&b| b == b'\n').unwrap_or(last);
+                let first = memchr::memchr(b'\n', chunk).unwrap_or(last);
                 if self.run + first > MAX_LINE_BYTES {
                     return Err(self.too_long());
                 }
-                self.line += lines as u64;
+                self.line += lines_in(chunk);
                 self.run = n - last - 1;
             }
             None => self.run += n,
@@ -236,7 +238,7 @@ impl StateReader {
         let f = std::fs::File::open(path)
             .map_err(|e| CliError::input(format!("{file}: cannot be read ({e})")))?;
         let mut reader = csv::ReaderBuilder::new()
-            .trim(csv::Trim::All)
+            .trim(csv::Trim::Headers)
             .from_reader(TextOnly {
                 inner: f,
                 line: 1,
@@ -298,14 +300,23 @@ impl StateReader {
             return Ok(false);
         }
         self.rows += 1;
-        for (k, ((slot, j), cell)) in self.slots.iter().zip(self.record.iter()).enumerate() {
-            let text = std::str::from_utf8(cell).unwrap_or("");
+        // One UTF-8 check for the whole row (a cell of another row is never looked at).
+        let whole = std::str::from_utf8(self.record.as_slice()).unwrap_or("");
+        for (k, (slot, j)) in self.slots.iter().enumerate() {
+            let text = self
+                .record
+                .range(k)
+                .and_then(|r| whole.get(r))
+                .unwrap_or("")
+                .trim_ascii();
             let x: f64 = text.parse().map_err(|_| {
                 CliError::input(format!(
                     "{file}:{}: column '{}': '{}' is not a number",
                     self.line(),
                     self.headers[k],
-                    shorten(&String::from_utf8_lossy(cell))
+                    shorten(&String::from_utf8_lossy(
+                        self.record.get(k).unwrap_or_default().trim_ascii()
+                    ))
                 ))
             })?;
             if !x.is_finite() {
