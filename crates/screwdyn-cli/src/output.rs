@@ -386,7 +386,7 @@ pub struct ReportWriter<W: Write> {
 }
 
 enum Sink<W: Write> {
-    Csv(csv::Writer<W>),
+    Csv(Box<csv::Writer<W>>),
     Text(W),
 }
 
@@ -394,12 +394,12 @@ impl<W: Write> ReportWriter<W> {
     /// A writer of `format` onto `w`; `batch` as for [`print`].
     pub fn new(w: W, format: Format, batch: bool) -> Self {
         let out = match format {
-            Format::Csv => Sink::Csv(
+            Format::Csv => Sink::Csv(Box::new(
                 csv::WriterBuilder::new()
                     .has_headers(false)
                     .terminator(csv::Terminator::Any(b'\n'))
                     .from_writer(w),
-            ),
+            )),
             _ => Sink::Text(w),
         };
         ReportWriter {
@@ -452,7 +452,7 @@ impl<W: Write> ReportWriter<W> {
                 }
                 _ => {
                     if self.batch {
-                        write!(w, "── state {} ──\n", self.count).map_err(io_error)?;
+                        writeln!(w, "── state {} ──", self.count).map_err(io_error)?;
                     }
                     w.write_all(r.to_table().as_bytes()).map_err(io_error)?;
                 }
