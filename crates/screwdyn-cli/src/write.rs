@@ -44,6 +44,48 @@ where
     finish(tmp, path)
 }
 
+/// A file being written in a stream (a simulation run): a temporary file beside the target,
+/// renamed over it by [`AtomicFile::commit`]; dropped without a commit, it is removed and the
+/// target is untouched.
+pub struct AtomicFile {
+    tmp: NamedTempFile,
+    path: PathBuf,
+}
+
+impl AtomicFile {
+    /// Creates the temporary file for `path`.
+    ///
+    /// # Errors
+    /// One sentence naming `path` when the directory does not exist or is not writable.
+    pub fn create(path: &Path) -> Result<Self, CliError> {
+        Ok(AtomicFile {
+            tmp: temp_file(path)?,
+            path: path.to_path_buf(),
+        })
+    }
+
+    /// A buffered writer onto the temporary file (flush it before [`AtomicFile::commit`]).
+    ///
+    /// # Errors
+    /// When the file handle cannot be duplicated.
+    pub fn writer(&self) -> Result<BufWriter<File>, CliError> {
+        let f = self
+            .tmp
+            .as_file()
+            .try_clone()
+            .map_err(|e| cannot_write(&self.path, &e))?;
+        Ok(BufWriter::new(f))
+    }
+
+    /// Renames the complete file over the target.
+    ///
+    /// # Errors
+    /// When it cannot be synced or renamed (the temporary file is then removed).
+    pub fn commit(self) -> Result<(), CliError> {
+        finish(self.tmp, &self.path)
+    }
+}
+
 /// Refuses an output `path` (given as `flag`) that names one of the command's `inputs` (files
 /// only: a `builtin:` model is not a path), comparing canonical paths so that `./m.urdf`,
 /// `dir/../m.urdf` and a symbolic link to the model are all recognised.
