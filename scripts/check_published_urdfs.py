@@ -145,9 +145,13 @@ def main():
         "`scripts/check_published_urdfs.py` (see `scripts/README.md`); the files themselves are "
         "not part of this repository.",
         "",
-        f"Of {len(files)} files, Pinocchio loads {pin_loaded}; screwdyn loads "
-        f"{pin_loaded - len(failures)} of those with the same moving joints"
-        + (f" and fails on {len(failures)}." if failures else ", all of them."),
+        f"Of {len(files)} files, Pinocchio loads {pin_loaded}; "
+        + (
+            f"screwdyn loads {pin_loaded - len(failures)} of those with the same moving joints "
+            f"and fails on {len(failures)}."
+            if failures
+            else f"screwdyn loads all {pin_loaded} of those, with the same moving joints."
+        ),
         "",
         "Columns: Pinocchio's `nq / nv` (a continuous joint has two position coordinates in "
         "Pinocchio, one in screwdyn), screwdyn's `nq` (one per moving joint, equal to "
