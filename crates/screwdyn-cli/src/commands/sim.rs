@@ -1,4 +1,4 @@
-//! `simulate` and `torque-profile`: runs over time, written as DESIGN §5 CSV/JSON and plotted.
+//! `simulate` and `torque-profile`: runs over time, written as CSV/JSON (docs/cli.md) and plotted.
 
 use super::{load, names, parse_numbers, parse_per_joint, parse_vector, parse_wrench};
 use crate::args::{ControllerArg, Format, SimulateArgs, TorqueProfileArgs, TrajectoryArg};

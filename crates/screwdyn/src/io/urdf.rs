@@ -1,6 +1,6 @@
 //! URDF: loading ([`parse_urdf`]) and export of any [`Model`] ([`to_urdf_string`]).
 //!
-//! Mapping (DESIGN §3–4): a joint's frame is its child link's frame, so `<origin>` is
+//! Mapping (docs/formats.md): a joint's frame is its child link's frame, so `<origin>` is
 //! `H_c^p(0)` and `<axis>` (any direction, normalised; a zero axis is an error) is written in
 //! the child frame: `S_c^{c,p} = (axis, 0)` for revolute/continuous joints, `(0, axis)` for
 //! prismatic ones. `<inertial>` gives the CoM (`origin xyz`) and the inertia about it in axes
