@@ -127,30 +127,22 @@ impl Value {
     }
 
     /// Writes the CSV cells of this value (in [`Value::flatten`]'s order); counts them.
-    fn write_csv<W: Write>(
+    fn write_csv(
         &self,
-        w: &mut csv::Writer<W>,
+        w: &mut impl Write,
         num: &mut ryu::Buffer,
         cells: &mut usize,
-    ) -> csv::Result<()> {
+    ) -> std::io::Result<()> {
         match self {
-            Value::Scalar(x) => {
-                *cells += 1;
-                w.write_field(num_text(num, *x))
-            }
-            Value::Count(n) => {
-                *cells += 1;
-                w.write_field(n.to_string())
-            }
-            Value::Vector(_, x) => {
-                *cells += x.len();
-                x.iter().try_for_each(|x| w.write_field(num_text(num, *x)))
-            }
-            Value::Matrix(rl, cl, m) => {
-                *cells += rl.len() * cl.len();
+            Value::Scalar(x) => csv_cell(w, cells, num_text(num, *x)),
+            Value::Count(n) => csv_cell(w, cells, &n.to_string()),
+            Value::Vector(_, x) => x
+                .iter()
+                .try_for_each(|x| csv_cell(w, cells, num_text(num, *x))),
+            Value::Matrix(_, _, m) => {
                 for r in 0..m.nrows() {
                     for c in 0..m.ncols() {
-                        w.write_field(num_text(num, m[(r, c)]))?;
+                        csv_cell(w, cells, num_text(num, m[(r, c)]))?;
                     }
                 }
                 Ok(())
@@ -158,10 +150,7 @@ impl Value {
             Value::Map(items) => items
                 .iter()
                 .try_for_each(|(_, v)| v.write_csv(w, num, cells)),
-            Value::Text(s) => {
-                *cells += 1;
-                w.write_field(s)
-            }
+            Value::Text(s) => csv_cell(w, cells, &csv_quoted(s)),
             Value::Names(_) => Ok(()),
         }
     }
@@ -386,7 +375,7 @@ pub struct ReportWriter<W: Write> {
 }
 
 enum Sink<W: Write> {
-    Csv(Box<csv::Writer<W>>),
+    Csv(W),
     Text(W),
 }
 
@@ -394,12 +383,7 @@ impl<W: Write> ReportWriter<W> {
     /// A writer of `format` onto `w`; `batch` as for [`print`].
     pub fn new(w: W, format: Format, batch: bool) -> Self {
         let out = match format {
-            Format::Csv => Sink::Csv(Box::new(
-                csv::WriterBuilder::new()
-                    .has_headers(false)
-                    .terminator(csv::Terminator::Any(b'\n'))
-                    .from_writer(w),
-            )),
+            Format::Csv => Sink::Csv(w),
             _ => Sink::Text(w),
         };
         ReportWriter {
@@ -423,21 +407,30 @@ impl<W: Write> ReportWriter<W> {
         match &mut self.out {
             Sink::Csv(w) => {
                 if first {
+                    // The header through the csv crate's writer (names quoted as needed).
                     let names = r.csv_columns();
                     self.columns = names.len();
-                    w.write_record(&names).map_err(csv_error)?;
+                    let mut h = csv::WriterBuilder::new()
+                        .terminator(csv::Terminator::Any(b'\n'))
+                        .from_writer(Vec::new());
+                    h.write_record(&names)
+                        .map_err(|e| CliError::internal(format!("CSV header ({e})")))?;
+                    let bytes = h
+                        .into_inner()
+                        .map_err(|e| CliError::internal(format!("CSV header ({e})")))?;
+                    w.write_all(&bytes).map_err(io_error)?;
                 }
                 let mut cells = 0;
                 for (_, v) in &r.items {
                     v.write_csv(w, &mut self.num, &mut cells)
-                        .map_err(csv_error)?;
+                        .map_err(io_error)?;
                 }
                 if cells != self.columns {
                     return Err(CliError::internal(
                         "the rows of a batch produced different CSV columns",
                     ));
                 }
-                w.write_record(None::<&[u8]>).map_err(csv_error)?;
+                w.write_all(b"\n").map_err(io_error)?;
             }
             Sink::Text(w) => match self.format {
                 Format::Json if self.batch => {
@@ -472,10 +465,7 @@ impl<W: Write> ReportWriter<W> {
     /// A write error (a closed pipe becomes [`CliError::stop`]).
     pub fn finish(self) -> Result<(), CliError> {
         match self.out {
-            Sink::Csv(w) => {
-                let mut w = w.into_inner().map_err(|e| io_error(e.into_error()))?;
-                w.flush().map_err(io_error)
-            }
+            Sink::Csv(mut w) => w.flush().map_err(io_error),
             Sink::Text(mut w) => {
                 if self.batch && self.format == Format::Json {
                     let end: &[u8] = if self.count == 0 { b"[]\n" } else { b"\n]\n" };
@@ -496,10 +486,24 @@ fn io_error(e: std::io::Error) -> CliError {
     }
 }
 
-fn csv_error(e: csv::Error) -> CliError {
-    match e.into_kind() {
-        csv::ErrorKind::Io(e) => io_error(e),
-        k => CliError::internal(format!("cannot write the CSV output ({k:?})")),
+/// Writes one CSV cell (already quoted if needed), preceded by a comma unless it is the first
+/// of its row. Numbers never need quotes, so rows are written without the CSV writer's
+/// per-byte scan; names (the header, words) go through [`csv_quoted`].
+fn csv_cell(w: &mut impl Write, cells: &mut usize, text: &str) -> std::io::Result<()> {
+    if *cells > 0 {
+        w.write_all(b",")?;
+    }
+    *cells += 1;
+    w.write_all(text.as_bytes())
+}
+
+/// `s` as a CSV field: quoted, with `"` doubled, when it holds a comma, a quote or a line
+/// break (RFC 4180), as is otherwise.
+fn csv_quoted(s: &str) -> Cow<'_, str> {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\"")).into()
+    } else {
+        s.into()
     }
 }
 
