@@ -223,10 +223,18 @@ impl<R> TextOnly<R> {
 
 /// Reads the states of `--input` one row at a time into a reused [`State`]: columns
 /// `q.<joint>`, `v.<joint>`, `a.<joint>`, `tau.<joint>`; a missing column is zero.
+///
+/// A row of numbers is one line split at its commas (the common case, without the general CSV
+/// parser's per-byte state machine); a line with a quote goes through the `csv` crate, so
+/// quoted cells (`"0.5"`, a quoted joint name in the header) read as CSV says. Empty lines are
+/// skipped, `\r\n` line ends accepted, spaces around cells ignored.
 struct StateReader {
     file: String,
-    reader: csv::Reader<TextOnly<std::fs::File>>,
-    record: csv::ByteRecord,
+    input: std::io::BufReader<TextOnly<std::fs::File>>,
+    /// The current line, without its line end.
+    line: Vec<u8>,
+    /// Its number in the file (1-based).
+    line_no: u64,
     headers: Vec<String>,
     /// (vector 0..4 = q, v, a, tau; joint index) per column.
     slots: Vec<(usize, usize)>,
@@ -238,27 +246,39 @@ impl StateReader {
         let file = path.display().to_string();
         let f = std::fs::File::open(path)
             .map_err(|e| CliError::input(format!("{file}: cannot be read ({e})")))?;
-        let mut reader = csv::ReaderBuilder::new()
-            .trim(csv::Trim::Headers)
-            .from_reader(TextOnly {
+        let input = std::io::BufReader::with_capacity(
+            1 << 16,
+            TextOnly {
                 inner: f,
                 line: 1,
                 run: 0,
-            });
-        let raw = reader
-            .byte_headers()
-            .map_err(|e| CliError::input(format!("{file}: {}", io_reason(&e))))?
-            .clone();
+            },
+        );
+        let mut r = StateReader {
+            file,
+            input,
+            line: Vec::new(),
+            line_no: 0,
+            headers: Vec::new(),
+            slots: Vec::new(),
+            rows: 0,
+        };
+        if !r.next_line()? {
+            return Err(CliError::input(format!(
+                "{}: has no rows of states",
+                r.file
+            )));
+        }
+        let Ok(text) = std::str::from_utf8(&r.line) else {
+            return Err(CliError::input(format!(
+                "{}: line {} is not UTF-8 text: this is not a CSV file of states",
+                r.file, r.line_no
+            )));
+        };
+        let raw = split_cells(text, r.line_no, &r.file)?;
         let names = m.joint_names();
-        let mut headers = Vec::new();
-        let mut slots = Vec::new();
         let mut seen = std::collections::HashSet::new();
-        for h in raw.iter() {
-            let Ok(h) = std::str::from_utf8(h) else {
-                return Err(CliError::input(format!(
-                    "{file}: line 1 is not UTF-8 text: this is not a CSV file of states"
-                )));
-            };
+        for h in raw.iter().map(|h| h.trim()) {
             let slot = h.split_once('.').and_then(|(key, joint)| {
                 let k = ["q", "v", "a", "tau"].iter().position(|x| *x == key)?;
                 let j = names.iter().position(|n| *n == joint)?;
@@ -266,75 +286,104 @@ impl StateReader {
             });
             let Some(slot) = slot else {
                 return Err(CliError::input(format!(
-                    "{file}: unknown column '{}' (expected q.<joint>, v.<joint>, a.<joint> or tau.<joint>, joints: {})",
+                    "{}: unknown column '{}' (expected q.<joint>, v.<joint>, a.<joint> or tau.<joint>, joints: {})",
+                    r.file,
                     shorten(h),
                     names.join(", ")
                 )));
             };
             if !seen.insert(slot) {
                 return Err(CliError::input(format!(
-                    "{file}: column '{h}' appears twice"
+                    "{}: column '{h}' appears twice",
+                    r.file
                 )));
             }
-            slots.push(slot);
-            headers.push(h.to_string());
+            r.slots.push(slot);
+            r.headers.push(h.to_string());
         }
-        Ok(StateReader {
-            file,
-            reader,
-            record: csv::ByteRecord::new(),
-            headers,
-            slots,
-            rows: 0,
-        })
+        Ok(r)
+    }
+
+    /// Reads the next non-empty line into `self.line` (line end removed); `false` at the end.
+    fn next_line(&mut self) -> Result<bool, CliError> {
+        use std::io::BufRead;
+        loop {
+            self.line.clear();
+            let n = self
+                .input
+                .read_until(b'\n', &mut self.line)
+                .map_err(|e| match e.kind() {
+                    std::io::ErrorKind::InvalidData => {
+                        CliError::input(format!("{}: {e}", self.file))
+                    }
+                    _ => CliError::input(format!("{}: cannot be read ({e})", self.file)),
+                })?;
+            if n == 0 {
+                return Ok(false);
+            }
+            self.line_no += 1;
+            while matches!(self.line.last(), Some(b'\n' | b'\r')) {
+                self.line.pop();
+            }
+            if !self.line.iter().all(u8::is_ascii_whitespace) {
+                return Ok(true);
+            }
+        }
     }
 
     /// Reads the next row into `s` (its columns only: the others stay as they are, zero);
     /// `false` at the end of the file.
     fn next(&mut self, s: &mut State) -> Result<bool, CliError> {
-        let file = &self.file;
-        let more = self
-            .reader
-            .read_byte_record(&mut self.record)
-            .map_err(|e| CliError::input(format!("{file}: {}", io_reason(&e))))?;
-        if !more {
+        if !self.next_line()? {
             return Ok(false);
         }
         self.rows += 1;
-        // One UTF-8 check for the whole row (a cell of another row is never looked at).
-        let whole = std::str::from_utf8(self.record.as_slice()).unwrap_or("");
-        for (k, (slot, j)) in self.slots.iter().enumerate() {
-            let text = self
-                .record
-                .range(k)
-                .and_then(|r| whole.get(r))
-                .unwrap_or("")
-                .trim_ascii();
-            let x: f64 = text.parse().map_err(|_| {
-                CliError::input(format!(
-                    "{file}:{}: column '{}': '{}' is not a number",
-                    self.line(),
-                    self.headers[k],
-                    shorten(&String::from_utf8_lossy(
-                        self.record.get(k).unwrap_or_default().trim_ascii()
-                    ))
-                ))
-            })?;
-            if !x.is_finite() {
-                return Err(CliError::input(format!(
-                    "{file}:{}: column '{}' is not finite ({x})",
-                    self.line(),
-                    self.headers[k]
-                )));
+        let (file, line) = (&self.file, self.line_no);
+        let Ok(text) = std::str::from_utf8(&self.line) else {
+            return Err(CliError::input(format!(
+                "{file}:{line}: the row is not UTF-8 text"
+            )));
+        };
+        if memchr::memchr(b'"', &self.line).is_some() {
+            let cells = split_cells(text, line, file)?;
+            if cells.len() != self.slots.len() {
+                return Err(ragged(file, line, cells.len(), self.slots.len()));
             }
-            s.slot(*slot)[*j] = x;
+            for (k, cell) in cells.iter().enumerate() {
+                self.store(k, cell, s)?;
+            }
+        } else {
+            let fields = memchr::memchr_iter(b',', &self.line).count() + 1;
+            if fields != self.slots.len() {
+                return Err(ragged(file, line, fields, self.slots.len()));
+            }
+            for (k, cell) in text.split(',').enumerate() {
+                self.store(k, cell, s)?;
+            }
         }
         Ok(true)
     }
 
-    /// The line of the last row read.
-    fn line(&self) -> u64 {
-        self.record.position().map(|p| p.line()).unwrap_or(0)
+    /// Parses `cell` of column `k` into its place in `s`.
+    fn store(&self, k: usize, cell: &str, s: &mut State) -> Result<(), CliError> {
+        let (file, line) = (&self.file, self.line_no);
+        let cell = cell.trim();
+        let x: f64 = cell.parse().map_err(|_| {
+            CliError::input(format!(
+                "{file}:{line}: column '{}': '{}' is not a number",
+                self.headers[k],
+                shorten(cell)
+            ))
+        })?;
+        if !x.is_finite() {
+            return Err(CliError::input(format!(
+                "{file}:{line}: column '{}' is not finite ({x})",
+                self.headers[k]
+            )));
+        }
+        let (slot, j) = self.slots[k];
+        s.slot(slot)[j] = x;
+        Ok(())
     }
 
     /// `e` placed at the last row read: "FILE:LINE (row K): ...".
@@ -343,13 +392,34 @@ impl StateReader {
             code: e.code,
             message: format!(
                 "{}:{} (row {}): {}",
-                self.file,
-                self.line(),
-                self.rows,
-                e.message
+                self.file, self.line_no, self.rows, e.message
             ),
         }
     }
+}
+
+/// The cells of one line that holds quotes, by the `csv` crate's rules.
+fn split_cells(text: &str, line: u64, file: &str) -> Result<Vec<String>, CliError> {
+    if !text.contains('"') {
+        return Ok(text.split(',').map(String::from).collect());
+    }
+    let mut r = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .from_reader(text.as_bytes());
+    let mut record = csv::StringRecord::new();
+    match r.read_record(&mut record) {
+        Ok(_) => Ok(record.iter().map(String::from).collect()),
+        Err(e) => Err(CliError::input(format!(
+            "{file}:{line}: {}",
+            e.to_string().replace('\n', " ")
+        ))),
+    }
+}
+
+fn ragged(file: &str, line: u64, fields: usize, expected: usize) -> CliError {
+    CliError::input(format!(
+        "{file}: line {line} has {fields} fields, the header has {expected}"
+    ))
 }
 
 /// At most 60 characters of a cell or column name, for messages.
@@ -357,21 +427,6 @@ fn shorten(s: &str) -> String {
     match s.char_indices().nth(60) {
         Some((i, _)) => format!("{}…", &s[..i]),
         None => s.to_string(),
-    }
-}
-
-fn io_reason(e: &csv::Error) -> String {
-    match e.kind() {
-        csv::ErrorKind::Io(io) => io.to_string(),
-        csv::ErrorKind::UnequalLengths {
-            pos,
-            expected_len,
-            len,
-        } => format!(
-            "line {} has {len} fields, the header has {expected_len}",
-            pos.as_ref().map(|p| p.line()).unwrap_or(0)
-        ),
-        _ => e.to_string().replace('\n', " "),
     }
 }
 
