@@ -353,12 +353,20 @@ impl StateReader {
                 self.store(k, cell, s)?;
             }
         } else {
-            let fields = memchr::memchr_iter(b',', &self.line).count() + 1;
-            if fields != self.slots.len() {
-                return Err(ragged(file, line, fields, self.slots.len()));
+            let fields = || memchr::memchr_iter(b',', &self.line).count() + 1;
+            let ends = memchr::memchr_iter(b',', &self.line).chain(std::iter::once(text.len()));
+            let (mut start, mut count) = (0, 0);
+            for (k, end) in ends.enumerate() {
+                if k >= self.slots.len() {
+                    return Err(ragged(file, line, fields(), self.slots.len()));
+                }
+                // Commas are ASCII, so these are character boundaries.
+                self.store(k, &text[start..end], s)?;
+                start = end + 1;
+                count = k + 1;
             }
-            for (k, cell) in text.split(',').enumerate() {
-                self.store(k, cell, s)?;
+            if count != self.slots.len() {
+                return Err(ragged(file, line, count, self.slots.len()));
             }
         }
         Ok(true)
@@ -367,7 +375,7 @@ impl StateReader {
     /// Parses `cell` of column `k` into its place in `s`.
     fn store(&self, k: usize, cell: &str, s: &mut State) -> Result<(), CliError> {
         let (file, line) = (&self.file, self.line_no);
-        let cell = cell.trim();
+        let cell = cell.trim_ascii();
         let x: f64 = cell.parse().map_err(|_| {
             CliError::input(format!(
                 "{file}:{line}: column '{}': '{}' is not a number",
