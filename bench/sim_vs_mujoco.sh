@@ -1,23 +1,55 @@
 #!/usr/bin/env bash
-# Simulation speed, side by side with MuJoCo (issue 5's benchmark): 10 s at 1 kHz, RK4,
-# passive UR5 and Panda released from rest, contacts and limits disabled on the MuJoCo side.
-# Installs mujoco from PyPI into a throwaway venv, builds screwdyn's example in release mode,
-# runs the two one after the other and prints median seconds and the ratio screwdyn/MuJoCo.
+# Simulation speed, side by side with MuJoCo: 10 s at 1 kHz, RK4, passive UR5 and Panda released
+# from rest, no joint effects on our side, contacts and limits disabled on MuJoCo's.
+# Installs mujoco from PyPI into a throwaway venv; builds screwdyn's example and CLI in release
+# mode and MuJoCo's own C loop (bench/mj_step_loop.c, against the libmujoco and headers of the
+# wheel); runs them one after the other and prints median seconds of
+#   lib      screwdyn's library loop (examples/sim_bench.rs, recording only the end state),
+#   cli      the whole `screwdyn simulate ... --record-every 1000 --output run.csv` process,
+#   mj C     MuJoCo's C `mj_step` loop,
+#   rollout  MuJoCo through Python's `mujoco.rollout`,
+# and the ratios lib/mj C, cli/mj C and lib/rollout (lower is faster for screwdyn).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 venv=.venv-mujoco
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
 "$venv/bin/pip" install -q mujoco numpy
+mj=$("$venv/bin/python" -c 'import mujoco, os; print(os.path.dirname(mujoco.__file__))')
+lib=$(ls "$mj"/libmujoco.so.* | head -n 1)
 cargo build -q --release -p screwdyn --example sim_bench
+cargo build -q --release -p screwdyn-cli
 tmp=$(mktemp -d)
-printf '%-8s %14s %14s %8s %s\n' model "screwdyn (s)" "MuJoCo (s)" ratio "max |Δq| at 0.2 s"
+trap 'rm -rf "$tmp"' EXIT
+cc -O2 -o "$tmp/mj_step_loop" bench/mj_step_loop.c -I"$mj/include" "$lib" -Wl,-rpath,"$mj" -lm
+repeat=7
+printf '%-6s %8s %8s %8s %8s %10s %10s %12s %s\n' model "lib (s)" "cli (s)" "mj C (s)" \
+  "rollout" "lib/mj C" "cli/mj C" "lib/rollout" "max |Δq| at 0.2 s"
 for robot in ur5 panda; do
   ./target/release/examples/sim_bench "builtin:$robot" --repeat 1 --duration 0.2 > "$tmp/$robot-short.json"
-  ./target/release/examples/sim_bench "builtin:$robot" --repeat 7 --urdf "$tmp/$robot.urdf" > "$tmp/$robot.json"
+  ./target/release/examples/sim_bench "builtin:$robot" --repeat $repeat --urdf "$tmp/$robot.urdf" > "$tmp/$robot.json"
+  q0=$("$venv/bin/python" -c 'import json,sys; print(",".join(repr(x) for x in json.load(open(sys.argv[1]))["q0"]))' "$tmp/$robot.json")
+  "$tmp/mj_step_loop" "$tmp/$robot.urdf" 10000 $repeat "$q0" > "$tmp/$robot-c.json"
+  "$tmp/mj_step_loop" "$tmp/$robot.urdf" 200 1 "$q0" > "$tmp/$robot-c-short.json"
   "$venv/bin/python" bench/sim_vs_mujoco.py "$tmp/$robot.urdf" "$tmp/$robot.json" "$tmp/$robot-short.json" > "$tmp/$robot-cmp.json"
-  "$venv/bin/python" - "$tmp/$robot-cmp.json" <<'PY'
-import json, sys
-r = json.load(open(sys.argv[1]))
-print(f"{r['model']:<8} {r['screwdyn_median_s']:14.4f} {r['mujoco_median_s']:14.4f} {r['ratio']:8.3f} {r['max_abs_q_difference_at_0.2s']:.2e}  (MuJoCo {r['mujoco_version']})")
+  "$venv/bin/python" - "$tmp" "$robot" "$q0" $repeat <<'PY'
+import json, os, statistics, subprocess, sys, time
+tmp, robot, q0, repeat = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
+r = json.load(open(f"{tmp}/{robot}-cmp.json"))
+c = json.load(open(f"{tmp}/{robot}-c.json"))
+short = json.load(open(f"{tmp}/{robot}-short.json"))
+c_short = json.load(open(f"{tmp}/{robot}-c-short.json"))
+# The whole CLI process: start, load, simulate 10 s, write every 1000th step, exit.
+cmd = ["./target/release/screwdyn", "simulate", f"builtin:{robot}", "--duration", "10",
+       "--dt", "0.001", "--integrator", "rk4", "--no-effects", "--q0", q0,
+       "--record-every", "1000", "--output", f"{tmp}/{robot}-run.csv", "--format", "json"]
+cli = []
+for _ in range(repeat):
+    start = time.perf_counter()
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    cli.append(time.perf_counter() - start)
+lib, cli_s, mjc, roll = r["screwdyn_median_s"], statistics.median(cli), c["median_s"], r["mujoco_median_s"]
+dq = max(abs(a - b) for a, b in zip(short["final_q"], c_short["final_q"]))
+print(f"{robot:<6} {lib:8.4f} {cli_s:8.4f} {mjc:8.4f} {roll:8.4f} {lib / mjc:10.3f} {cli_s / mjc:10.3f} "
+      f"{lib / roll:12.3f} {dq:.2e}  (MuJoCo {c['mujoco_version']})")
 PY
 done

@@ -427,7 +427,7 @@ pub enum ReferenceArg {
     WorldAligned,
 }
 
-/// `screwdyn bench MODEL`: per-call medians over batches of random states (DESIGN §5).
+/// `screwdyn bench MODEL`: per-call medians over batches of random states.
 #[derive(Args, Debug)]
 pub struct BenchArgs {
     /// A .urdf or .toml file, or builtin:<name>.

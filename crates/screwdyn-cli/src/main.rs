@@ -1,10 +1,11 @@
-//! `screwdyn`: the command-line program (DESIGN §5). A thin shell over the library: parse
+//! `screwdyn`: the command-line program (docs/cli.md). A thin shell over the library: parse
 //! arguments, load the model, call the library, format the result.
 
 mod args;
 mod commands;
 mod output;
 mod plot;
+mod write;
 
 use clap::Parser;
 use std::process::ExitCode;
@@ -27,6 +28,15 @@ impl CliError {
 }
 
 impl CliError {
+    /// Not a failure: the reader of stdout went away (`| head`); the command stops quietly
+    /// with status 0.
+    pub fn stop() -> Self {
+        CliError {
+            code: 0,
+            message: String::new(),
+        }
+    }
+
     /// The same error with `suffix` appended to its message.
     pub fn with_suffix(mut self, suffix: &str) -> Self {
         self.message.push_str(suffix);
@@ -96,6 +106,7 @@ fn main() -> ExitCode {
     };
     match std::panic::catch_unwind(|| commands::run(cli)) {
         Ok(Ok(())) => ExitCode::SUCCESS,
+        Ok(Err(e)) if e.code == 0 => ExitCode::SUCCESS,
         Ok(Err(e)) => {
             eprintln!("screwdyn: {}", e.message);
             ExitCode::from(e.code)

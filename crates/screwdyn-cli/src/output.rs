@@ -1,4 +1,4 @@
-//! Formatting of results: human tables, JSON (DESIGN §5 keys) and CSV.
+//! Formatting of results: human tables, JSON and CSV (keys and columns as in docs/cli.md).
 //!
 //! Every command produces a [`Report`]: an ordered list of `(key, value)` where a value is a
 //! scalar, a labelled vector, a labelled matrix, a map of further values, or text. The same
@@ -11,7 +11,9 @@ use crate::CliError;
 use comfy_table::{presets, Table};
 use nalgebra::DMatrix;
 use serde_json::{Map, Value as Json};
+use std::borrow::Cow;
 use std::io::{IsTerminal, Write};
+use std::rc::Rc;
 
 /// The format asked for, or `table` on a terminal and `json` otherwise.
 pub fn resolve(format: Option<Format>) -> Format {
@@ -24,6 +26,15 @@ pub fn resolve(format: Option<Format>) -> Format {
     })
 }
 
+/// Labels of a vector's entries or a matrix's rows/columns, shared between the values of a
+/// batch (one allocation per command, not per row).
+pub type Labels = Rc<[String]>;
+
+/// Labels from names.
+pub fn labels<S: AsRef<str>>(names: &[S]) -> Labels {
+    names.iter().map(|s| s.as_ref().to_string()).collect()
+}
+
 /// One value of a result.
 #[derive(Clone, Debug)]
 pub enum Value {
@@ -32,32 +43,41 @@ pub enum Value {
     /// A count (written as an integer: `10001`, not `10001.0`).
     Count(usize),
     /// A vector whose entries carry labels (joint names, `wx`…`vz`, ...).
-    Vector(Vec<String>, Vec<f64>),
+    Vector(Labels, Vec<f64>),
     /// A matrix with row and column labels.
-    Matrix(Vec<String>, Vec<String>, DMatrix<f64>),
+    Matrix(Labels, Labels, DMatrix<f64>),
     /// Nested values (a frame → pose map, per-body quantities, ...).
     Map(Vec<(String, Value)>),
     /// A word (a frame name, a method).
     Text(String),
     /// A list of names (the joint names); omitted from CSV, whose columns carry them.
-    Names(Vec<String>),
+    Names(Labels),
 }
 
 impl Value {
     /// A joint-space vector.
-    pub fn joints(names: &[String], x: &[f64]) -> Value {
-        Value::Vector(names.to_vec(), x.to_vec())
+    pub fn joints(names: &Labels, x: &[f64]) -> Value {
+        Value::Vector(names.clone(), x.to_vec())
     }
 
     /// A joint × joint matrix.
-    pub fn joint_matrix(names: &[String], m: &DMatrix<f64>) -> Value {
-        Value::Matrix(names.to_vec(), names.to_vec(), m.clone())
+    pub fn joint_matrix(names: &Labels, m: &DMatrix<f64>) -> Value {
+        Value::Matrix(names.clone(), names.clone(), m.clone())
     }
 
     /// A matrix labelled `1, 2, ...` on both sides (a 4×4 pose).
     pub fn numbered(m: &DMatrix<f64>) -> Value {
-        let r = (1..=m.nrows()).map(|k| k.to_string()).collect();
-        let c = (1..=m.ncols()).map(|k| k.to_string()).collect();
+        thread_local! {
+            static ONE_TO_FOUR: Labels = (1..=4).map(|k| k.to_string()).collect();
+        }
+        let numbers = |k: usize| -> Labels {
+            if k == 4 {
+                ONE_TO_FOUR.with(Rc::clone)
+            } else {
+                (1..=k).map(|i| i.to_string()).collect()
+            }
+        };
+        let (r, c) = (numbers(m.nrows()), numbers(m.ncols()));
         Value::Matrix(r, c, m.clone())
     }
 
@@ -87,29 +107,95 @@ impl Value {
         }
     }
 
-    fn flatten(&self, key: &str, out: &mut Vec<(String, String)>) {
+    /// The CSV column names of this value under `key`.
+    fn columns(&self, key: &str, out: &mut Vec<String>) {
         match self {
-            Value::Scalar(x) => out.push((key.into(), format!("{x:?}"))),
-            Value::Count(n) => out.push((key.into(), n.to_string())),
-            Value::Vector(l, x) => {
-                for (l, x) in l.iter().zip(x) {
-                    out.push((format!("{key}.{l}"), format!("{x:?}")));
-                }
-            }
-            Value::Matrix(rl, cl, m) => {
-                for (r, rn) in rl.iter().enumerate() {
-                    for (c, cn) in cl.iter().enumerate() {
-                        out.push((format!("{key}.{rn}.{cn}"), format!("{:?}", m[(r, c)])));
-                    }
+            Value::Scalar(_) | Value::Count(_) | Value::Text(_) => out.push(key.into()),
+            Value::Vector(l, _) => out.extend(l.iter().map(|l| format!("{key}.{l}"))),
+            Value::Matrix(rl, cl, _) => {
+                for rn in rl.iter() {
+                    out.extend(cl.iter().map(|cn| format!("{key}.{rn}.{cn}")));
                 }
             }
             Value::Map(items) => {
                 for (k, v) in items {
-                    v.flatten(&format!("{key}.{k}"), out);
+                    v.columns(&format!("{key}.{k}"), out);
                 }
             }
-            Value::Text(s) => out.push((key.into(), s.clone())),
             Value::Names(_) => {}
+        }
+    }
+
+    /// Writes the CSV cells of this value (in [`Value::flatten`]'s order); counts them.
+    fn write_csv(
+        &self,
+        w: &mut impl Write,
+        num: &mut ryu::Buffer,
+        cells: &mut usize,
+    ) -> std::io::Result<()> {
+        match self {
+            Value::Scalar(x) => csv_cell(w, cells, num_text(num, *x)),
+            Value::Count(n) => csv_cell(w, cells, &n.to_string()),
+            Value::Vector(_, x) => x
+                .iter()
+                .try_for_each(|x| csv_cell(w, cells, num_text(num, *x))),
+            Value::Matrix(_, _, m) => {
+                for r in 0..m.nrows() {
+                    for c in 0..m.ncols() {
+                        csv_cell(w, cells, num_text(num, m[(r, c)]))?;
+                    }
+                }
+                Ok(())
+            }
+            Value::Map(items) => items
+                .iter()
+                .try_for_each(|(_, v)| v.write_csv(w, num, cells)),
+            Value::Text(s) => csv_cell(w, cells, &csv_quoted(s)),
+            Value::Names(_) => Ok(()),
+        }
+    }
+
+    /// Writes this value as compact JSON (the same document as [`Value::to_json`]).
+    fn write_json(&self, w: &mut impl Write, num: &mut ryu::Buffer) -> std::io::Result<()> {
+        match self {
+            Value::Scalar(x) => json_num(w, num, *x),
+            Value::Count(n) => write!(w, "{n}"),
+            Value::Vector(_, x) => {
+                w.write_all(b"[")?;
+                for (k, x) in x.iter().enumerate() {
+                    if k > 0 {
+                        w.write_all(b",")?;
+                    }
+                    json_num(w, num, *x)?;
+                }
+                w.write_all(b"]")
+            }
+            Value::Matrix(_, _, m) => {
+                w.write_all(b"[")?;
+                for r in 0..m.nrows() {
+                    w.write_all(if r > 0 { b",[" } else { b"[" })?;
+                    for c in 0..m.ncols() {
+                        if c > 0 {
+                            w.write_all(b",")?;
+                        }
+                        json_num(w, num, m[(r, c)])?;
+                    }
+                    w.write_all(b"]")?;
+                }
+                w.write_all(b"]")
+            }
+            Value::Map(items) => write_json_object(w, num, items),
+            Value::Text(s) => json_str(w, s),
+            Value::Names(n) => {
+                w.write_all(b"[")?;
+                for (k, s) in n.iter().enumerate() {
+                    if k > 0 {
+                        w.write_all(b",")?;
+                    }
+                    json_str(w, s)?;
+                }
+                w.write_all(b"]")
+            }
         }
     }
 
@@ -139,6 +225,23 @@ impl Value {
             }
         }
     }
+}
+
+fn write_json_object<K: AsRef<str>>(
+    w: &mut impl Write,
+    num: &mut ryu::Buffer,
+    items: &[(K, Value)],
+) -> std::io::Result<()> {
+    w.write_all(b"{")?;
+    for (k, (key, v)) in items.iter().enumerate() {
+        if k > 0 {
+            w.write_all(b",")?;
+        }
+        json_str(w, key.as_ref())?;
+        w.write_all(b":")?;
+        v.write_json(w, num)?;
+    }
+    w.write_all(b"}")
 }
 
 fn num_json(x: f64) -> Json {
@@ -191,7 +294,7 @@ pub fn matrix_table(rows: &[String], cols: &[String], m: &DMatrix<f64>) -> Strin
 #[derive(Clone, Debug, Default)]
 pub struct Report {
     /// `(key, value)` in output order.
-    pub items: Vec<(String, Value)>,
+    pub items: Vec<(Cow<'static, str>, Value)>,
     /// A hand-written table replacing the generic one (e.g. `explain`'s narrative).
     pub table: Option<String>,
 }
@@ -203,7 +306,7 @@ impl Report {
     }
 
     /// Appends `key = value`.
-    pub fn add(&mut self, key: &str, value: Value) -> &mut Self {
+    pub fn add(&mut self, key: impl Into<Cow<'static, str>>, value: Value) -> &mut Self {
         self.items.push((key.into(), value));
         self
     }
@@ -213,16 +316,22 @@ impl Report {
         Json::Object(
             self.items
                 .iter()
-                .map(|(k, v)| (k.clone(), v.to_json()))
+                .map(|(k, v)| (k.to_string(), v.to_json()))
                 .collect(),
         )
     }
 
-    /// `(column, cell)` pairs of the CSV row.
-    pub fn to_csv_cells(&self) -> Vec<(String, String)> {
+    /// Writes the report as one compact JSON object (the document of [`Report::to_json`]).
+    pub fn write_json(&self, w: &mut impl Write, num: &mut ryu::Buffer) -> std::io::Result<()> {
+        write_json_object(w, num, &self.items)
+    }
+
+    /// The CSV column names: `<key>.<label>` for vectors, `<key>.<row>.<col>` for matrices,
+    /// `<key>.<sub key>...` for maps; the names list is left out.
+    pub fn csv_columns(&self) -> Vec<String> {
         let mut out = Vec::new();
         for (k, v) in &self.items {
-            v.flatten(k, &mut out);
+            v.columns(k, &mut out);
         }
         out
     }
@@ -243,48 +352,184 @@ impl Report {
 /// Prints `reports` (one per input state) in `format`; `batch` says whether the states came
 /// from `--input` (JSON array) or from flags (a single JSON object).
 pub fn print(reports: &[Report], format: Format, batch: bool) -> Result<(), CliError> {
-    let mut text = String::new();
-    match format {
-        Format::Json => {
-            let v = if batch {
-                Json::Array(reports.iter().map(Report::to_json).collect())
-            } else {
-                reports.first().map(Report::to_json).unwrap_or(Json::Null)
-            };
-            text = serde_json::to_string_pretty(&v).expect("JSON of numbers and strings");
-            text.push('\n');
+    let stdout = std::io::stdout();
+    let mut out = ReportWriter::new(std::io::BufWriter::new(stdout.lock()), format, batch);
+    for r in reports {
+        out.write(r)?;
+    }
+    out.finish()
+}
+
+/// Writes reports one at a time (one per state of a batch) as they are computed: a JSON array
+/// is opened at the first report and closed by [`ReportWriter::finish`], a CSV file gets its
+/// header from the first report and one row per report, a table one block per state. Nothing
+/// is kept between reports but the number formatter, so memory does not grow with the batch.
+pub struct ReportWriter<W: Write> {
+    format: Format,
+    batch: bool,
+    count: usize,
+    /// CSV: the number of columns of the header (every row must match it).
+    columns: usize,
+    out: Sink<W>,
+    num: ryu::Buffer,
+}
+
+enum Sink<W: Write> {
+    Csv(W),
+    Text(W),
+}
+
+impl<W: Write> ReportWriter<W> {
+    /// A writer of `format` onto `w`; `batch` as for [`print`].
+    pub fn new(w: W, format: Format, batch: bool) -> Self {
+        let out = match format {
+            Format::Csv => Sink::Csv(w),
+            _ => Sink::Text(w),
+        };
+        ReportWriter {
+            format,
+            batch,
+            count: 0,
+            columns: 0,
+            out,
+            num: ryu::Buffer::new(),
         }
-        Format::Csv => {
-            let mut header: Option<Vec<String>> = None;
-            for r in reports {
-                let cells = r.to_csv_cells();
-                let names: Vec<String> = cells.iter().map(|(n, _)| n.clone()).collect();
-                match &header {
-                    None => {
-                        text.push_str(&csv_line(&names));
-                        header = Some(names);
-                    }
-                    Some(h) if *h != names => {
-                        return Err(CliError::internal(
-                            "the rows of a batch produced different CSV columns",
-                        ))
-                    }
-                    _ => {}
+    }
+
+    /// Writes one report.
+    ///
+    /// # Errors
+    /// A write error (a closed pipe becomes [`CliError::stop`]), or an internal error when a
+    /// CSV row has other columns than the first one.
+    pub fn write(&mut self, r: &Report) -> Result<(), CliError> {
+        let first = self.count == 0;
+        self.count += 1;
+        match &mut self.out {
+            Sink::Csv(w) => {
+                if first {
+                    // The header through the csv crate's writer (names quoted as needed).
+                    let names = r.csv_columns();
+                    self.columns = names.len();
+                    let mut h = csv::WriterBuilder::new()
+                        .terminator(csv::Terminator::Any(b'\n'))
+                        .from_writer(Vec::new());
+                    h.write_record(&names)
+                        .map_err(|e| CliError::internal(format!("CSV header ({e})")))?;
+                    let bytes = h
+                        .into_inner()
+                        .map_err(|e| CliError::internal(format!("CSV header ({e})")))?;
+                    w.write_all(&bytes).map_err(io_error)?;
                 }
-                let values: Vec<String> = cells.into_iter().map(|(_, c)| c).collect();
-                text.push_str(&csv_line(&values));
+                let mut cells = 0;
+                for (_, v) in &r.items {
+                    v.write_csv(w, &mut self.num, &mut cells)
+                        .map_err(io_error)?;
+                }
+                if cells != self.columns {
+                    return Err(CliError::internal(
+                        "the rows of a batch produced different CSV columns",
+                    ));
+                }
+                w.write_all(b"\n").map_err(io_error)?;
             }
-        }
-        Format::Table => {
-            for (k, r) in reports.iter().enumerate() {
-                if batch {
-                    text.push_str(&format!("── state {} ──\n", k + 1));
+            Sink::Text(w) => match self.format {
+                Format::Json if self.batch => {
+                    w.write_all(if first { b"[\n" } else { b",\n" })
+                        .map_err(io_error)?;
+                    r.write_json(w, &mut self.num).map_err(io_error)?;
                 }
-                text.push_str(&r.to_table());
+                Format::Json => {
+                    serde_json::to_writer_pretty(&mut *w, &r.to_json())
+                        .map_err(|e| io_error(e.into()))?;
+                    w.write_all(b"\n").map_err(io_error)?;
+                }
+                _ => {
+                    if self.batch {
+                        writeln!(w, "── state {} ──", self.count).map_err(io_error)?;
+                    }
+                    w.write_all(r.to_table().as_bytes()).map_err(io_error)?;
+                }
+            },
+        }
+        Ok(())
+    }
+
+    /// The number of reports written.
+    pub fn count(&self) -> usize {
+        self.count
+    }
+
+    /// Closes the JSON array of a batch and flushes.
+    ///
+    /// # Errors
+    /// A write error (a closed pipe becomes [`CliError::stop`]).
+    pub fn finish(self) -> Result<(), CliError> {
+        match self.out {
+            Sink::Csv(mut w) => w.flush().map_err(io_error),
+            Sink::Text(mut w) => {
+                if self.batch && self.format == Format::Json {
+                    let end: &[u8] = if self.count == 0 { b"[]\n" } else { b"\n]\n" };
+                    w.write_all(end).map_err(io_error)?;
+                }
+                w.flush().map_err(io_error)
             }
         }
     }
-    write_stdout(&text)
+}
+
+/// A write error: a closed pipe (`| head`) ends the command quietly with status 0.
+fn io_error(e: std::io::Error) -> CliError {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        CliError::stop()
+    } else {
+        CliError::internal(format!("cannot write the output ({e})"))
+    }
+}
+
+/// Writes one CSV cell (already quoted if needed), preceded by a comma unless it is the first
+/// of its row. Numbers never need quotes, so rows are written without the CSV writer's
+/// per-byte scan; names (the header, words) go through [`csv_quoted`].
+fn csv_cell(w: &mut impl Write, cells: &mut usize, text: &str) -> std::io::Result<()> {
+    if *cells > 0 {
+        w.write_all(b",")?;
+    }
+    *cells += 1;
+    w.write_all(text.as_bytes())
+}
+
+/// `s` as a CSV field: quoted, with `"` doubled, when it holds a comma, a quote or a line
+/// break (RFC 4180), as is otherwise.
+fn csv_quoted(s: &str) -> Cow<'_, str> {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\"")).into()
+    } else {
+        s.into()
+    }
+}
+
+/// A number as the shortest text that reads back to the same `f64` (`ryu`); `NaN`, `inf`.
+fn num_text(num: &mut ryu::Buffer, x: f64) -> &str {
+    if x.is_finite() {
+        num.format_finite(x)
+    } else if x.is_nan() {
+        "NaN"
+    } else if x > 0.0 {
+        "inf"
+    } else {
+        "-inf"
+    }
+}
+
+fn json_num(w: &mut impl Write, num: &mut ryu::Buffer, x: f64) -> std::io::Result<()> {
+    if x.is_finite() {
+        w.write_all(num.format_finite(x).as_bytes())
+    } else {
+        w.write_all(b"null")
+    }
+}
+
+fn json_str(w: &mut impl Write, s: &str) -> std::io::Result<()> {
+    serde_json::to_writer(w, s).map_err(std::io::Error::from)
 }
 
 /// Writes to stdout; a closed pipe (`| head`) is not an error.
@@ -297,27 +542,13 @@ pub fn write_stdout(text: &str) -> Result<(), CliError> {
     }
 }
 
-fn csv_line(cells: &[String]) -> String {
-    let quoted: Vec<String> = cells
-        .iter()
-        .map(|c| {
-            if c.contains([',', '"', '\n']) {
-                format!("\"{}\"", c.replace('"', "\"\""))
-            } else {
-                c.clone()
-            }
-        })
-        .collect();
-    format!("{}\n", quoted.join(","))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn csv_columns_follow_design() {
-        let j = vec!["a".to_string(), "b".to_string()];
+        let j = labels(&["a", "b"]);
         let mut r = Report::new();
         r.add("joints", Value::Names(j.clone()))
             .add("tau", Value::joints(&j, &[1.0, 2.0]))
@@ -326,7 +557,7 @@ mod tests {
                 Value::joint_matrix(&j, &DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 3.0, 4.0])),
             )
             .add("kinetic_energy", Value::Scalar(0.5));
-        let names: Vec<String> = r.to_csv_cells().into_iter().map(|(n, _)| n).collect();
+        let names = r.csv_columns();
         assert_eq!(
             names,
             [

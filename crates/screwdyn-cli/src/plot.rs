@@ -85,27 +85,32 @@ pub fn plot_panels(
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
-    let result = match ext.as_str() {
-        "png" => draw(
-            BitMapBackend::new(path, size).into_drawing_area(),
-            title,
-            x_label,
-            panels,
-        ),
-        "svg" => draw(
-            SVGBackend::new(path, size).into_drawing_area(),
-            title,
-            x_label,
-            panels,
-        ),
-        _ => {
-            return Err(CliError::input(format!(
-                "--plot {}: the file name must end in .png or .svg",
-                path.display()
-            )))
-        }
-    };
-    result.map_err(|e| CliError::input(format!("cannot write plot {}: {e}", path.display())))?;
+    if ext != "png" && ext != "svg" {
+        return Err(CliError::input(format!(
+            "--plot {}: the file name must end in .png or .svg",
+            path.display()
+        )));
+    }
+    // Drawn into a temporary file beside the target (same extension, which selects the
+    // encoder), renamed over it when complete.
+    crate::write::atomic_path(path, |tmp| {
+        let result = if ext == "png" {
+            draw(
+                BitMapBackend::new(tmp, size).into_drawing_area(),
+                title,
+                x_label,
+                panels,
+            )
+        } else {
+            draw(
+                SVGBackend::new(tmp, size).into_drawing_area(),
+                title,
+                x_label,
+                panels,
+            )
+        };
+        result.map_err(|e| CliError::input(format!("cannot write plot {}: {e}", path.display())))
+    })?;
     Ok(size)
 }
 

@@ -1,6 +1,6 @@
 //! The numeric commands against the seeds' two-link closed forms (seeds 003/004: m = L = 1,
 //! gravity 9.81 along −y) and against the library's algorithms on the UR5 and a URDF robot;
-//! DESIGN §5 JSON keys and CSV columns; batch input of 1000 states.
+//! The JSON keys and CSV columns of docs/cli.md; batch input of 1000 states.
 
 mod common;
 use common::*;

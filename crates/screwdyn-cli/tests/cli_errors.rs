@@ -305,6 +305,6 @@ fn batch_errors_name_the_row() {
             "--input",
             p.to_str().unwrap(),
         ],
-        "singular_rows.csv row 1: ",
+        "singular_rows.csv:2 (row 1): ",
     );
 }

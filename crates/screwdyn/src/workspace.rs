@@ -12,7 +12,7 @@ use nalgebra::{DMatrix, DVector, Matrix6};
 /// quantity it holds after the algorithm that writes it (results such as `tau` or
 /// `mass_matrix`, and the intermediate quantities of ABA, CRBA and the Coriolis matrix).
 ///
-/// Field names follow DESIGN §3: `pose_in_parent[i] = H_i^{λ(i)}(q)`,
+/// Field names follow the seeds' notation: `pose_in_parent[i] = H_i^{λ(i)}(q)`,
 /// `pose_in_world[i] = H_i^0(q)`, `twist[i] = V_i^{i,0}`, `twist_dot[i] = V̇_i^{i,0}`,
 /// `wrench[i] = W_{λ(i)}^{i,i}`.
 ///

@@ -151,7 +151,7 @@ const OUT_OF_ORDER: &str = r#"<robot name="tree">
 #[test]
 fn joint_order_is_depth_first_from_the_root_children_in_file_order() {
     let m = screwdyn::io::load_str(OUT_OF_ORDER, "tree.urdf", &LoadOptions::default()).unwrap();
-    // DESIGN §4 by hand: root's children in file order are b (j_b) then a (j_a); b's child b1;
+    // Depth-first joint order by hand: root's children in file order are b (j_b) then a (j_a); b's child b1;
     // a's children in file order a2 (j_a2) then a1 (j_a1).
     assert_eq!(m.joint_names(), vec!["j_b", "j_b1", "j_a", "j_a2", "j_a1"]);
     assert_eq!(m.parents(), &[None, Some(0), None, Some(2), Some(2)]);

@@ -1,4 +1,4 @@
-//! Per-call algorithms allocate nothing once the workspace exists (DESIGN §2), checked with a
+//! Per-call algorithms allocate nothing once the workspace exists, checked with a
 //! counting global allocator that counts allocations made on the test's own thread.
 
 mod common;

@@ -1,4 +1,4 @@
-//! `screwdyn bench MODEL`: per-call time of the core algorithms (DESIGN §5, issue 7).
+//! `screwdyn bench MODEL`: per-call time of the core algorithms (JSON keys in docs/cli.md).
 //!
 //! Protocol (the same as `bench/pinocchio_bench.cpp`, so the two can be compared row by row):
 //! 1000 random states are drawn once — `q` uniform within the position limits (an infinite

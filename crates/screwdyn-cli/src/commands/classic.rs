@@ -54,12 +54,7 @@ pub fn explain_classic(a: &ExplainArgs) -> Result<(), CliError> {
     ];
     run_states(&m, &a.common, &flags, |s| {
         let t = classic_newton_euler(&m, &s.q, &s.v, &s.a)?;
-        let xyz = || {
-            ["x", "y", "z"]
-                .iter()
-                .map(|s| s.to_string())
-                .collect::<Vec<_>>()
-        };
+        let xyz = || crate::output::labels(&["x", "y", "z"]);
         let v3 = |x: &Vector3<f64>| Value::Vector(xyz(), x.iter().copied().collect());
         let mut text = format!("{title}\n");
         let mut links = Vec::new();

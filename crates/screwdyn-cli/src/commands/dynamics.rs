@@ -5,15 +5,15 @@ use super::{external_wrenches, load, names, run_states};
 use crate::args::{
     ClosedFormArgs, ForwardDynamicsArgs, InverseDynamicsArgs, LagrangeArgs, QArgs, QvArgs,
 };
-use crate::output::{Report, Value};
+use crate::output::{Labels, Report, Value};
 use crate::CliError;
 use nalgebra::DMatrix;
 use screwdyn::dynamics::{self, ForwardMethod};
 use screwdyn::{Model, Workspace};
 
-fn base(m: &Model) -> Report {
+fn base(j: &Labels) -> Report {
     let mut r = Report::new();
-    r.add("joints", Value::Names(names(m)));
+    r.add("joints", Value::Names(j.clone()));
     r
 }
 
@@ -30,7 +30,7 @@ pub fn inverse_dynamics(a: &InverseDynamicsArgs) -> Result<(), CliError> {
     ];
     run_states(&m, &a.common, &flags, |s| {
         let tau = dynamics::inverse_dynamics(&m, &mut ws, &s.q, &s.v, &s.a, ext.as_ref())?;
-        let mut r = base(&m);
+        let mut r = base(&j);
         r.add("tau", Value::joints(&j, tau.as_slice()));
         Ok(r)
     })
@@ -43,7 +43,7 @@ pub fn mass_matrix(a: &QArgs) -> Result<(), CliError> {
     let j = names(&m);
     run_states(&m, &a.common, &[("q", a.q.as_deref())], |s| {
         let mm = dynamics::crba(&m, &mut ws, &s.q)?;
-        let mut r = base(&m);
+        let mut r = base(&j);
         r.add("mass_matrix", Value::joint_matrix(&j, mm));
         Ok(r)
     })
@@ -57,7 +57,7 @@ pub fn coriolis(a: &QvArgs) -> Result<(), CliError> {
     let flags = [("q", a.q.as_deref()), ("v", a.v.as_deref())];
     run_states(&m, &a.common, &flags, |s| {
         let c = dynamics::coriolis_matrix(&m, &mut ws, &s.q, &s.v)?;
-        let mut r = base(&m);
+        let mut r = base(&j);
         r.add("coriolis_matrix", Value::joint_matrix(&j, c));
         Ok(r)
     })
@@ -70,7 +70,7 @@ pub fn gravity(a: &QArgs) -> Result<(), CliError> {
     let j = names(&m);
     run_states(&m, &a.common, &[("q", a.q.as_deref())], |s| {
         let g = dynamics::gravity_torque(&m, &mut ws, &s.q)?;
-        let mut r = base(&m);
+        let mut r = base(&j);
         r.add("gravity_torque", Value::joints(&j, g.as_slice()));
         Ok(r)
     })
@@ -84,7 +84,7 @@ pub fn nonlinear_effects(a: &QvArgs) -> Result<(), CliError> {
     let flags = [("q", a.q.as_deref()), ("v", a.v.as_deref())];
     run_states(&m, &a.common, &flags, |s| {
         let h = dynamics::nonlinear_effects(&m, &mut ws, &s.q, &s.v)?;
-        let mut r = base(&m);
+        let mut r = base(&j);
         r.add("nonlinear_effects", Value::joints(&j, h.as_slice()));
         Ok(r)
     })
@@ -94,6 +94,8 @@ pub fn nonlinear_effects(a: &QvArgs) -> Result<(), CliError> {
 pub fn energy(a: &QvArgs) -> Result<(), CliError> {
     let m = load(&a.common.model, a.common.gravity.as_deref())?;
     let mut ws = Workspace::new(&m);
+    let j = names(&m);
+    let xyz = crate::output::labels(&["x", "y", "z"]);
     let flags = [("q", a.q.as_deref()), ("v", a.v.as_deref())];
     run_states(&m, &a.common, &flags, |s| {
         let k = dynamics::kinetic_energy(&m, &mut ws, &s.q, &s.v)?;
@@ -101,14 +103,11 @@ pub fn energy(a: &QvArgs) -> Result<(), CliError> {
         let c = dynamics::center_of_mass(&m, &mut ws, &s.q)
             .map(|c| vec![c.x, c.y, c.z])
             .unwrap_or_else(|_| vec![f64::NAN; 3]);
-        let mut r = base(&m);
+        let mut r = base(&j);
         r.add("kinetic_energy", Value::Scalar(k))
             .add("potential_energy", Value::Scalar(p))
             .add("total_energy", Value::Scalar(k + p))
-            .add(
-                "center_of_mass",
-                Value::Vector(vec!["x".into(), "y".into(), "z".into()], c),
-            );
+            .add("center_of_mass", Value::Vector(xyz.clone(), c));
         Ok(r)
     })
 }
@@ -131,14 +130,14 @@ pub fn forward_dynamics(a: &ForwardDynamicsArgs) -> Result<(), CliError> {
     run_states(&m, &a.common, &flags, |s| {
         let qdd =
             dynamics::forward_dynamics(&m, &mut ws, &s.q, &s.v, &s.tau, ext.as_ref(), method)?;
-        let mut r = base(&m);
+        let mut r = base(&j);
         r.add("qdd", Value::joints(&j, qdd.as_slice()));
         Ok(r)
     })
 }
 
 /// Labels `<body>.wx … <body>.vz` of stacked 6n twists / wrenches.
-fn stacked_labels(m: &Model) -> Vec<String> {
+fn stacked_labels(m: &Model) -> Labels {
     m.bodies()
         .iter()
         .flat_map(|b| {
@@ -167,7 +166,7 @@ pub fn closed_form(args: &ClosedFormArgs) -> Result<(), CliError> {
             |x: &nalgebra::DVector<f64>| Value::Vector(six.clone(), x.iter().copied().collect());
         let sq = |x: &DMatrix<f64>| Value::Matrix(six.clone(), six.clone(), x.clone());
         let tall = |x: &DMatrix<f64>| Value::Matrix(six.clone(), j.clone(), x.clone());
-        let mut r = base(&m);
+        let mut r = base(&j);
         r.add("A", sq(&cf.a))
             .add("L", sq(&cf.l))
             .add("S", tall(&cf.s))
@@ -247,7 +246,7 @@ pub fn lagrange(args: &LagrangeArgs) -> Result<(), CliError> {
             locked.push(dynamics::effective_inertia_locked(&m, &mut ws, &s.q, i)?);
             free.push(dynamics::effective_inertia_free(&m, &mut ws, &s.q, i)?);
         }
-        let mut r = base(&m);
+        let mut r = base(&j);
         r.add("D_ij", Value::joint_matrix(&j, &c.d_ij))
             .add(
                 "D_ijk",

@@ -30,7 +30,7 @@ pub fn inertia(a: &InertiaArgs) -> Result<(), CliError> {
     };
     let i = shape.inertia_about(a.mass, &about, &rot)?;
     let com = rot.transpose() * (-about);
-    let xyz: Vec<String> = ["x", "y", "z"].iter().map(|s| s.to_string()).collect();
+    let xyz = crate::output::labels(&["x", "y", "z"]);
     let mut r = Report::new();
     r.add("mass", Value::Scalar(a.mass))
         .add(

@@ -53,7 +53,7 @@ pub fn jacobian(a: &JacobianArgs) -> Result<(), CliError> {
     };
     let joints = names(&m);
     let name = m.frames()[f].name.clone();
-    let rows: Vec<String> = TWIST_ROWS.iter().map(|s| s.to_string()).collect();
+    let rows = crate::output::labels(&TWIST_ROWS);
     let mut ws = Workspace::new(&m);
     run_states(&m, &a.common, &[("q", a.q.as_deref())], |s| {
         compute_joint_jacobians(&m, &mut ws, &s.q)?;

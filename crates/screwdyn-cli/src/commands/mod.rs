@@ -130,43 +130,30 @@ pub struct State {
     pub tau: Vec<f64>,
 }
 
-/// The states to evaluate: one from the flags, or one per row of `--input`.
-pub struct States {
-    pub rows: Vec<State>,
-    /// Where each state came from, for messages ("states.csv row 3").
-    pub origin: Vec<String>,
-    pub batch: bool,
+impl State {
+    /// All zeros for a model with `n` coordinates.
+    pub fn zeros(n: usize) -> Self {
+        State {
+            q: vec![0.0; n],
+            v: vec![0.0; n],
+            a: vec![0.0; n],
+            tau: vec![0.0; n],
+        }
+    }
+
+    fn slot(&mut self, k: usize) -> &mut [f64] {
+        match k {
+            0 => &mut self.q,
+            1 => &mut self.v,
+            2 => &mut self.a,
+            _ => &mut self.tau,
+        }
+    }
 }
 
-/// Collects the states of a numeric command: `flags` are `(name, value)` of its vector flags.
-pub fn states(
-    m: &Model,
-    common: &Common,
-    flags: &[(&str, Option<&str>)],
-) -> Result<States, CliError> {
-    if let Some(path) = &common.input {
-        if let Some((name, _)) = flags.iter().find(|(_, v)| v.is_some()) {
-            return Err(CliError::input(format!(
-                "--{name} cannot be combined with --input (give {name}.<joint> columns in {})",
-                path.display()
-            )));
-        }
-        let rows = read_states(m, path)?;
-        let origin = (0..rows.len())
-            .map(|k| format!("{} row {}", path.display(), k + 1))
-            .collect();
-        return Ok(States {
-            rows,
-            origin,
-            batch: true,
-        });
-    }
-    let mut s = State {
-        q: vec![0.0; m.nq()],
-        v: vec![0.0; m.nq()],
-        a: vec![0.0; m.nq()],
-        tau: vec![0.0; m.nq()],
-    };
+/// The one state given by the vector flags (`(name, value)`; an absent vector is zero).
+fn flag_state(m: &Model, flags: &[(&str, Option<&str>)]) -> Result<State, CliError> {
+    let mut s = State::zeros(m.nq());
     for (name, text) in flags {
         let x = parse_vector(*text, name, m)?;
         match *name {
@@ -177,114 +164,323 @@ pub fn states(
             _ => unreachable!("vector flags are q, v, a, tau"),
         }
     }
-    Ok(States {
-        rows: vec![s],
-        origin: vec!["the command line".into()],
-        batch: false,
-    })
+    Ok(s)
 }
 
-/// Reads `q.<joint>`, `v.<joint>`, `a.<joint>`, `tau.<joint>` columns; a missing column is zero.
-fn read_states(m: &Model, path: &Path) -> Result<Vec<State>, CliError> {
-    let file = path.display().to_string();
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .from_path(path)
-        .map_err(|e| CliError::input(format!("{file}: cannot be read ({})", io_reason(&e))))?;
-    let names = m.joint_names();
-    let headers = reader
-        .headers()
-        .map_err(|e| CliError::input(format!("{file}: {}", io_reason(&e))))?
-        .clone();
-    // (slot 0..4 = q, v, a, tau; joint index) per column.
-    let mut slots = Vec::new();
-    let mut seen = std::collections::HashSet::new();
-    for h in headers.iter() {
-        let slot = h.split_once('.').and_then(|(key, joint)| {
-            let k = ["q", "v", "a", "tau"].iter().position(|x| *x == key)?;
-            let j = names.iter().position(|n| *n == joint)?;
-            Some((k, j))
-        });
-        let Some(slot) = slot else {
+/// The longest line accepted in a CSV file of states (8 MiB, a state of ~80,000 joints): a
+/// binary file or `/dev/zero` given as input is an error, not an unbounded read.
+pub const MAX_LINE_BYTES: usize = 8 << 20;
+
+/// A reader that refuses what cannot be a text CSV file before it reaches the CSV parser: a NUL
+/// byte, or a line longer than [`MAX_LINE_BYTES`]. It counts lines for the message.
+struct TextOnly<R> {
+    inner: R,
+    /// The number of the line being read (1-based).
+    line: u64,
+    /// Bytes since the last newline.
+    run: usize,
+}
+
+impl<R: std::io::Read> std::io::Read for TextOnly<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        let chunk = &buf[..n];
+        let lines_in = |c: &[u8]| memchr::memchr_iter(b'\n', c).count() as u64;
+        if let Some(nul) = memchr::memchr(0, chunk) {
+            let line = self.line + lines_in(&chunk[..nul]);
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!("line {line} contains a NUL byte: this is binary data, not a CSV file of states"),
+            ));
+        }
+        // A chunk is at most the CSV reader's buffer (kilobytes), so only the line running
+        // across chunk boundaries can exceed the limit.
+        match memchr::memrchr(b'\n', chunk) {
+            Some(last) => {
+                let first = memchr::memchr(b'\n', chunk).unwrap_or(last);
+                if self.run + first > MAX_LINE_BYTES {
+                    return Err(self.too_long());
+                }
+                self.line += lines_in(chunk);
+                self.run = n - last - 1;
+            }
+            None => self.run += n,
+        }
+        if self.run > MAX_LINE_BYTES {
+            return Err(self.too_long());
+        }
+        Ok(n)
+    }
+}
+
+impl<R> TextOnly<R> {
+    fn too_long(&self) -> std::io::Error {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "line {} is longer than {} MiB: this is not a CSV file of states",
+                self.line,
+                MAX_LINE_BYTES >> 20
+            ),
+        )
+    }
+}
+
+/// Reads the states of `--input` one row at a time into a reused [`State`]: columns
+/// `q.<joint>`, `v.<joint>`, `a.<joint>`, `tau.<joint>`; a missing column is zero.
+///
+/// A row of numbers is one line split at its commas (the common case, without the general CSV
+/// parser's per-byte state machine); a line with a quote goes through the `csv` crate, so
+/// quoted cells (`"0.5"`, a quoted joint name in the header) read as CSV says. Empty lines are
+/// skipped, `\r\n` line ends accepted, spaces around cells ignored.
+struct StateReader {
+    file: String,
+    input: std::io::BufReader<TextOnly<std::fs::File>>,
+    /// The current line, without its line end.
+    line: Vec<u8>,
+    /// Its number in the file (1-based).
+    line_no: u64,
+    headers: Vec<String>,
+    /// (vector 0..4 = q, v, a, tau; joint index) per column.
+    slots: Vec<(usize, usize)>,
+    rows: usize,
+}
+
+impl StateReader {
+    fn open(m: &Model, path: &Path) -> Result<Self, CliError> {
+        let file = path.display().to_string();
+        let f = std::fs::File::open(path)
+            .map_err(|e| CliError::input(format!("{file}: cannot be read ({e})")))?;
+        let input = std::io::BufReader::with_capacity(
+            1 << 16,
+            TextOnly {
+                inner: f,
+                line: 1,
+                run: 0,
+            },
+        );
+        let mut r = StateReader {
+            file,
+            input,
+            line: Vec::new(),
+            line_no: 0,
+            headers: Vec::new(),
+            slots: Vec::new(),
+            rows: 0,
+        };
+        if !r.next_line()? {
             return Err(CliError::input(format!(
-                "{file}: unknown column '{h}' (expected q.<joint>, v.<joint>, a.<joint> or tau.<joint>, joints: {})",
-                names.join(", ")
+                "{}: has no rows of states",
+                r.file
+            )));
+        }
+        let Ok(text) = std::str::from_utf8(&r.line) else {
+            return Err(CliError::input(format!(
+                "{}: line {} is not UTF-8 text: this is not a CSV file of states",
+                r.file, r.line_no
             )));
         };
-        if !seen.insert(slot) {
-            return Err(CliError::input(format!(
-                "{file}: column '{h}' appears twice"
-            )));
-        }
-        slots.push(slot);
-    }
-    let n = m.nq();
-    let mut rows = Vec::new();
-    for record in reader.records() {
-        let record = record.map_err(|e| CliError::input(format!("{file}: {}", io_reason(&e))))?;
-        let line = record.position().map(|p| p.line()).unwrap_or(0);
-        let mut x = [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]];
-        for ((k, j), (cell, h)) in slots.iter().zip(record.iter().zip(headers.iter())) {
-            let v: f64 = cell.parse().map_err(|_| {
-                CliError::input(format!(
-                    "{file}:{line}: column '{h}': '{cell}' is not a number"
-                ))
-            })?;
-            if !v.is_finite() {
+        let raw = split_cells(text, r.line_no, &r.file)?;
+        let names = m.joint_names();
+        let mut seen = std::collections::HashSet::new();
+        for h in raw.iter().map(|h| h.trim()) {
+            let slot = h.split_once('.').and_then(|(key, joint)| {
+                let k = ["q", "v", "a", "tau"].iter().position(|x| *x == key)?;
+                let j = names.iter().position(|n| *n == joint)?;
+                Some((k, j))
+            });
+            let Some(slot) = slot else {
                 return Err(CliError::input(format!(
-                    "{file}:{line}: column '{h}' is not finite ({v})"
+                    "{}: unknown column '{}' (expected q.<joint>, v.<joint>, a.<joint> or tau.<joint>, joints: {})",
+                    r.file,
+                    shorten(h),
+                    names.join(", ")
+                )));
+            };
+            if !seen.insert(slot) {
+                return Err(CliError::input(format!(
+                    "{}: column '{h}' appears twice",
+                    r.file
                 )));
             }
-            x[*k][*j] = v;
+            r.slots.push(slot);
+            r.headers.push(h.to_string());
         }
-        let [q, v, a, tau] = x;
-        rows.push(State { q, v, a, tau });
+        Ok(r)
     }
-    if rows.is_empty() {
-        return Err(CliError::input(format!("{file}: has no rows of states")));
+
+    /// Reads the next non-empty line into `self.line` (line end removed); `false` at the end.
+    fn next_line(&mut self) -> Result<bool, CliError> {
+        use std::io::BufRead;
+        loop {
+            self.line.clear();
+            let n = self
+                .input
+                .read_until(b'\n', &mut self.line)
+                .map_err(|e| match e.kind() {
+                    std::io::ErrorKind::InvalidData => {
+                        CliError::input(format!("{}: {e}", self.file))
+                    }
+                    _ => CliError::input(format!("{}: cannot be read ({e})", self.file)),
+                })?;
+            if n == 0 {
+                return Ok(false);
+            }
+            self.line_no += 1;
+            while matches!(self.line.last(), Some(b'\n' | b'\r')) {
+                self.line.pop();
+            }
+            if !self.line.iter().all(u8::is_ascii_whitespace) {
+                return Ok(true);
+            }
+        }
     }
-    Ok(rows)
+
+    /// Reads the next row into `s` (its columns only: the others stay as they are, zero);
+    /// `false` at the end of the file.
+    fn next(&mut self, s: &mut State) -> Result<bool, CliError> {
+        if !self.next_line()? {
+            return Ok(false);
+        }
+        self.rows += 1;
+        let (file, line) = (&self.file, self.line_no);
+        let Ok(text) = std::str::from_utf8(&self.line) else {
+            return Err(CliError::input(format!(
+                "{file}:{line}: the row is not UTF-8 text"
+            )));
+        };
+        if memchr::memchr(b'"', &self.line).is_some() {
+            let cells = split_cells(text, line, file)?;
+            if cells.len() != self.slots.len() {
+                return Err(ragged(file, line, cells.len(), self.slots.len()));
+            }
+            for (k, cell) in cells.iter().enumerate() {
+                self.store(k, cell, s)?;
+            }
+        } else {
+            let fields = || memchr::memchr_iter(b',', &self.line).count() + 1;
+            let ends = memchr::memchr_iter(b',', &self.line).chain(std::iter::once(text.len()));
+            let (mut start, mut count) = (0, 0);
+            for (k, end) in ends.enumerate() {
+                if k >= self.slots.len() {
+                    return Err(ragged(file, line, fields(), self.slots.len()));
+                }
+                // Commas are ASCII, so these are character boundaries.
+                self.store(k, &text[start..end], s)?;
+                start = end + 1;
+                count = k + 1;
+            }
+            if count != self.slots.len() {
+                return Err(ragged(file, line, count, self.slots.len()));
+            }
+        }
+        Ok(true)
+    }
+
+    /// Parses `cell` of column `k` into its place in `s`.
+    fn store(&self, k: usize, cell: &str, s: &mut State) -> Result<(), CliError> {
+        let (file, line) = (&self.file, self.line_no);
+        let cell = cell.trim_ascii();
+        let x: f64 = cell.parse().map_err(|_| {
+            CliError::input(format!(
+                "{file}:{line}: column '{}': '{}' is not a number",
+                self.headers[k],
+                shorten(cell)
+            ))
+        })?;
+        if !x.is_finite() {
+            return Err(CliError::input(format!(
+                "{file}:{line}: column '{}' is not finite ({x})",
+                self.headers[k]
+            )));
+        }
+        let (slot, j) = self.slots[k];
+        s.slot(slot)[j] = x;
+        Ok(())
+    }
+
+    /// `e` placed at the last row read: "FILE:LINE (row K): ...".
+    fn locate(&self, e: CliError) -> CliError {
+        CliError {
+            code: e.code,
+            message: format!(
+                "{}:{} (row {}): {}",
+                self.file, self.line_no, self.rows, e.message
+            ),
+        }
+    }
 }
 
-fn io_reason(e: &csv::Error) -> String {
-    match e.kind() {
-        csv::ErrorKind::Io(io) => io.to_string(),
-        csv::ErrorKind::UnequalLengths {
-            pos,
-            expected_len,
-            len,
-        } => format!(
-            "line {} has {len} fields, the header has {expected_len}",
-            pos.as_ref().map(|p| p.line()).unwrap_or(0)
-        ),
-        _ => e.to_string().replace('\n', " "),
+/// The cells of one line that holds quotes, by the `csv` crate's rules.
+fn split_cells(text: &str, line: u64, file: &str) -> Result<Vec<String>, CliError> {
+    if !text.contains('"') {
+        return Ok(text.split(',').map(String::from).collect());
+    }
+    let mut r = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .from_reader(text.as_bytes());
+    let mut record = csv::StringRecord::new();
+    match r.read_record(&mut record) {
+        Ok(_) => Ok(record.iter().map(String::from).collect()),
+        Err(e) => Err(CliError::input(format!(
+            "{file}:{line}: {}",
+            e.to_string().replace('\n', " ")
+        ))),
     }
 }
 
-/// Evaluates `f` on every state and prints the reports in the chosen format.
+fn ragged(file: &str, line: u64, fields: usize, expected: usize) -> CliError {
+    CliError::input(format!(
+        "{file}: line {line} has {fields} fields, the header has {expected}"
+    ))
+}
+
+/// At most 60 characters of a cell or column name, for messages.
+fn shorten(s: &str) -> String {
+    match s.char_indices().nth(60) {
+        Some((i, _)) => format!("{}…", &s[..i]),
+        None => s.to_string(),
+    }
+}
+
+/// Evaluates `f` on the state of the flags, or on every row of `--input` as it is read, and
+/// writes each report as soon as it is computed (stdout, in the chosen format): memory does
+/// not grow with the number of rows.
 pub fn run_states(
     m: &Model,
     common: &Common,
     flags: &[(&str, Option<&str>)],
     mut f: impl FnMut(&State) -> Result<Report, CliError>,
 ) -> Result<(), CliError> {
-    let states = states(m, common, flags)?;
     let format = output::resolve(common.model.format);
-    let mut reports = Vec::with_capacity(states.rows.len());
-    for (s, origin) in states.rows.iter().zip(&states.origin) {
-        let r = f(s).map_err(|e| {
-            if states.batch {
-                CliError {
-                    code: e.code,
-                    message: format!("{origin}: {}", e.message),
-                }
-            } else {
-                e
-            }
-        })?;
-        reports.push(r);
+    let stdout = std::io::stdout();
+    let sink = std::io::BufWriter::with_capacity(1 << 16, stdout.lock());
+    let Some(path) = &common.input else {
+        let s = flag_state(m, flags)?;
+        let mut out = output::ReportWriter::new(sink, format, false);
+        out.write(&f(&s)?)?;
+        return out.finish();
+    };
+    if let Some((name, _)) = flags.iter().find(|(_, v)| v.is_some()) {
+        return Err(CliError::input(format!(
+            "--{name} cannot be combined with --input (give {name}.<joint> columns in {})",
+            path.display()
+        )));
     }
-    output::print(&reports, format, states.batch)
+    let mut rows = StateReader::open(m, path)?;
+    let mut s = State::zeros(m.nq());
+    let mut out = output::ReportWriter::new(sink, format, true);
+    while rows.next(&mut s)? {
+        let r = f(&s).map_err(|e| rows.locate(e))?;
+        out.write(&r)?;
+    }
+    if out.count() == 0 {
+        return Err(CliError::input(format!(
+            "{}: has no rows of states",
+            path.display()
+        )));
+    }
+    out.finish()
 }
 
 /// Parses `NAME:mx,my,mz,fx,fy,fz[@world]` into (name, wrench, in world).
@@ -338,7 +534,7 @@ pub fn external_wrenches(
     Ok(Some(ext))
 }
 
-/// The joint names as owned strings.
-pub fn names(m: &Model) -> Vec<String> {
-    m.joint_names().into_iter().map(String::from).collect()
+/// The joint names, as labels shared by every report of the command.
+pub fn names(m: &Model) -> output::Labels {
+    output::labels(&m.joint_names())
 }

@@ -6,6 +6,7 @@ use crate::output::{fmt, resolve, table, write_stdout};
 use crate::CliError;
 use screwdyn::io::LoadOptions;
 use screwdyn::{Model, Workspace};
+use std::path::Path;
 
 /// Indentation stops growing at this depth (deeper levels say their depth), so the drawing of
 /// a long chain stays linear in its length.
@@ -198,13 +199,18 @@ pub fn check(a: &CheckArgs) -> Result<(), CliError> {
 
 /// `screwdyn export MODEL --to urdf [--output FILE]`.
 pub fn export(a: &ExportArgs) -> Result<(), CliError> {
+    if let Some(p) = &a.output {
+        crate::write::refuse_inputs("--output", p, &[Path::new(&a.model)])?;
+    }
     let m = super::load_model(&a.model, a.strict)?;
     let text = match a.to {
         ExportFormat::Urdf => screwdyn::io::urdf::to_urdf_string(&m)?,
     };
     match &a.output {
-        Some(p) => std::fs::write(p, text)
-            .map_err(|e| CliError::input(format!("cannot write {} ({e})", p.display()))),
+        Some(p) => crate::write::atomic(p, |w| {
+            std::io::Write::write_all(w, text.as_bytes())
+                .map_err(|e| CliError::input(format!("cannot write {} ({e})", p.display())))
+        }),
         None => write_stdout(&text),
     }
 }

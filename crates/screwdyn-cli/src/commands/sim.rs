@@ -1,9 +1,10 @@
-//! `simulate` and `torque-profile`: runs over time, written as DESIGN §5 CSV/JSON and plotted.
+//! `simulate` and `torque-profile`: runs over time, written as CSV/JSON (docs/cli.md) and plotted.
 
 use super::{load, names, parse_numbers, parse_per_joint, parse_vector, parse_wrench};
 use crate::args::{ControllerArg, Format, SimulateArgs, TorqueProfileArgs, TrajectoryArg};
 use crate::output::{fmt, resolve, table, Report, Value};
 use crate::plot::{plot_panels, Panel, Series};
+use crate::write::{self, AtomicFile};
 use crate::CliError;
 use screwdyn::dynamics::ForwardMethod;
 use screwdyn::sim::{
@@ -142,6 +143,23 @@ impl SampleSink for RunSinks {
     }
 }
 
+/// Refuses `--output` / `--plot` onto an input of the command (the model file, `extra`).
+fn refuse_onto_inputs(
+    model: &str,
+    extra: Option<&Path>,
+    output: Option<&Path>,
+    plot: Option<&Path>,
+) -> Result<(), CliError> {
+    let mut inputs = vec![Path::new(model)];
+    inputs.extend(extra);
+    for (flag, path) in [("--output", output), ("--plot", plot)] {
+        if let Some(p) = path {
+            write::refuse_inputs(flag, p, &inputs)?;
+        }
+    }
+    Ok(())
+}
+
 fn joint_series(rec: &Recording, x: &[Vec<f64>]) -> Vec<Series> {
     rec.joints
         .iter()
@@ -274,6 +292,12 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
     if let Some(p) = &a.plot {
         plot_kind(p)?;
     }
+    refuse_onto_inputs(
+        &a.model.model,
+        a.torque_csv.as_deref(),
+        a.output.as_deref(),
+        a.plot.as_deref(),
+    )?;
     let mut m = load(&a.model, a.gravity.as_deref())?;
     if let Some(d) = &a.damping {
         let b = parse_per_joint(d, "damping", &m)?;
@@ -465,11 +489,10 @@ fn run_streamed(
         }
     };
     let format = resolve(a.model.format);
-    let file: Option<Box<dyn std::io::Write>> = match &a.output {
-        Some(p) => Some(Box::new(std::io::BufWriter::new(
-            std::fs::File::create(p)
-                .map_err(|e| CliError::input(format!("cannot write {} ({e})", p.display())))?,
-        ))),
+    // The run file is streamed into a temporary file, renamed over --output once complete.
+    let atomic = a.output.as_deref().map(AtomicFile::create).transpose()?;
+    let file: Option<Box<dyn std::io::Write>> = match &atomic {
+        Some(f) => Some(Box::new(f.writer()?)),
         None if format != Format::Table => {
             Some(Box::new(std::io::BufWriter::new(std::io::stdout())))
         }
@@ -499,9 +522,21 @@ fn run_streamed(
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
-    let written = sinks.file.take().map(RunWriter::finish);
+    // A run that failed part-way keeps the samples written so far (complete rows); a file that
+    // could not be written leaves the previous --output as it was.
+    let written = sinks.file.take().map(|w| match w.finish() {
+        Ok(()) => atomic.map_or(Ok(()), AtomicFile::commit),
+        Err(e) => Err(CliError::from(e)),
+    });
     let summary = match (result, &a.output) {
         (Ok(s), _) => s,
+        // Writing the file failed (disk full, file-size limit): nothing replaced --output.
+        (Err(screwdyn::Error::Io(why)), Some(p)) => {
+            return Err(CliError::input(format!(
+                "cannot write {} ({why}); the previous file, if any, is unchanged",
+                p.display()
+            )))
+        }
         (Err(e), Some(p)) if sinks.first.is_some() => {
             let kept = match written {
                 Some(Ok(())) => format!(
@@ -516,7 +551,7 @@ fn run_streamed(
         (Err(e), _) => return Err(e.into()),
     };
     if let Some(w) = written {
-        w.map_err(|e| CliError::input(e.to_string()))?;
+        w?;
     }
     Ok((summary, sinks))
 }
@@ -633,6 +668,7 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
     if let Some(p) = &a.plot {
         plot_kind(p)?;
     }
+    refuse_onto_inputs(&a.model.model, None, a.output.as_deref(), a.plot.as_deref())?;
     let m = load(&a.model, a.gravity.as_deref())?;
     let q0 = parse_vector(a.q0.as_deref(), "q0", &m)?;
     let qf = parse_vector(Some(&a.qf), "qf", &m)?;
@@ -646,14 +682,14 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
     let p = sim::torque_profile_limited(&m, traj.as_ref(), a.dt, a.max_samples)?;
     let rec = &p.samples;
     if let (Some(path), Some(kind)) = (&a.output, output_kind) {
-        let file = std::fs::File::create(path)
-            .map_err(|e| CliError::input(format!("cannot write {} ({e})", path.display())))?;
-        let mut w = RunWriter::new(kind, Box::new(std::io::BufWriter::new(file)));
+        let file = AtomicFile::create(path)?;
+        let mut w = RunWriter::new(kind, Box::new(file.writer()?));
         w.sink().begin(&rec.joints, &rec.frames)?;
         for k in 0..rec.len() {
             w.sink().push(&rec.sample(k)?)?;
         }
         w.finish()?;
+        file.commit()?;
     }
     let r = profile_report(a, &m, &p, traj.duration(), &what);
     if let Some(path) = &a.plot {

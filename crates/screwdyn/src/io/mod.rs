@@ -1,4 +1,4 @@
-//! Robot description formats, all producing the same [`Model`] (DESIGN §4):
+//! Robot description formats, all producing the same [`Model`] (every key in docs/formats.md):
 //!
 //! - **URDF** (`.urdf`): [`urdf::parse_urdf`], and the export [`urdf::to_urdf_string`];
 //! - **DH tables** (`.toml` with `format = "dh"` or `format = "modified-dh"`): [`dh`];

@@ -10,7 +10,7 @@
 //! | `name` | robot name (default: the file name) |
 //! | `base` | root link name (default `base`) |
 //! | `gravity = [gx, gy, gz]` | base-frame gravity, default `[0, 0, -9.81]` |
-//! | `[[body]]` | one per link, in any order; joints are ordered depth-first (DESIGN §4) |
+//! | `[[body]]` | one per link, in any order; joints are ordered depth-first from the root, children in file order |
 //! | `body.name`, `body.parent` | link names (required) |
 //! | `body.joint` | joint name (default `<name>_joint`) |
 //! | `body.type` | `revolute`, `continuous`, `prismatic`, `helical` (with `pitch`, m/rad) or `fixed` |

@@ -1,6 +1,6 @@
 //! URDF: loading ([`parse_urdf`]) and export of any [`Model`] ([`to_urdf_string`]).
 //!
-//! Mapping (DESIGN §3–4): a joint's frame is its child link's frame, so `<origin>` is
+//! Mapping (docs/formats.md): a joint's frame is its child link's frame, so `<origin>` is
 //! `H_c^p(0)` and `<axis>` (any direction, normalised; a zero axis is an error) is written in
 //! the child frame: `S_c^{c,p} = (axis, 0)` for revolute/continuous joints, `(0, axis)` for
 //! prismatic ones. `<inertial>` gives the CoM (`origin xyz`) and the inertia about it in axes
@@ -668,11 +668,37 @@ fn inertial_tag(i: &SpatialInertia) -> String {
     )
 }
 
+/// `s` as the text of a double-quoted XML attribute: markup characters as entities, and tab,
+/// newline and carriage return as character references (an XML reader turns them into spaces
+/// otherwise).
 fn xml_escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\t' => out.push_str("&#9;"),
+            '\n' => out.push_str("&#10;"),
+            '\r' => out.push_str("&#13;"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// `s` as text inside an XML comment, which ends at the first `--` and knows no entities:
+/// every `-` after a `-` is preceded by a space, and line breaks become spaces.
+fn xml_comment(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        if c == '-' && out.ends_with('-') {
+            out.push(' ');
+        }
+        out.push(if c.is_control() { ' ' } else { c });
+    }
+    out
 }
 
 /// Writes `model` as URDF. Each moving body becomes a link named after it; when its screw axis
@@ -725,7 +751,7 @@ pub fn to_urdf_string(model: &Model) -> Result<String> {
     let _ = writeln!(
         out,
         "<!-- Written by screwdyn from model '{}'. -->",
-        xml_escape(model.name())
+        xml_comment(model.name())
     );
     let _ = writeln!(out, "<robot name=\"{}\">", xml_escape(model.name()));
     let base = model.base();

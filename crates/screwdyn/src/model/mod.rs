@@ -2,7 +2,7 @@
 //!
 //! Bodies and joints share one index: joint `i` moves body `i` relative to its parent body
 //! `λ(i)` (`parent(i)`, `None` for the fixed base {0}). Indices follow a depth-first traversal
-//! from the root link, children in the order they were declared, so `λ(i) < i` (DESIGN §4).
+//! from the root link, children in the order they were declared, so `λ(i) < i`.
 //!
 //! ```
 //! let m = screwdyn::builtin::planar2();

@@ -1,5 +1,5 @@
 //! [`Recording`]: what a simulation or torque profile produced, sample by sample, with CSV and
-//! JSON output whose column names follow DESIGN §5.
+//! JSON output (column names `t`, `q.<joint>`, …, listed in docs/cli.md).
 
 use crate::error::{Error, Result};
 use crate::spatial::Se3;
