@@ -74,6 +74,30 @@ pub struct Workspace<T: Real = f64> {
     /// Forward dynamics: the bias `b = C q̇ + g − Σ Jᵀ W_ext` (seed 004 §6.4).
     pub bias: DVector<T>,
 
+    /// `∂τ/∂q` from [`rnea_derivatives`](crate::dynamics::rnea_derivatives): entry `(i, j)` is
+    /// `∂τ_i/∂q_j`.
+    pub dtau_dq: DMatrix<T>,
+    /// `∂τ/∂q̇` from [`rnea_derivatives`](crate::dynamics::rnea_derivatives).
+    pub dtau_dv: DMatrix<T>,
+    /// `∂q̈/∂q` from [`aba_derivatives`](crate::dynamics::aba_derivatives).
+    pub dqdd_dq: DMatrix<T>,
+    /// `∂q̈/∂q̇` from [`aba_derivatives`](crate::dynamics::aba_derivatives).
+    pub dqdd_dv: DMatrix<T>,
+    /// Derivatives: `ṡ_i = ad_{V_i} s_i`, the rate of joint `i`'s screw axis in the base frame.
+    pub screw_rate_in_world: Vec<Twist<T>>,
+    /// Derivatives: `α_i = ad_{A_{λ(i)}} s_i + ad_{V_{λ(i)}} ṡ_i`, the part of `∂A_k/∂q_i` shared
+    /// by the subtree of `i` (base frame).
+    pub acceleration_derivative_in_world: Vec<Twist<T>>,
+    /// Derivatives: `𝔍ᶜ_i`, the subtree's spatial inertia in the base frame.
+    pub subtree_inertia_in_world: Vec<Matrix6<T>>,
+    /// Derivatives: `Dᶜ_i = Σ (𝔍V)⊼ − ad_Vᵀ 𝔍 − 𝔍 ad_V` over the subtree (base frame).
+    pub subtree_velocity_coupling: Vec<Matrix6<T>>,
+    /// Derivatives: `F'_i`, the subtree's Newton–Euler wrench without the wrenches fixed in
+    /// space (base frame).
+    pub subtree_wrench_in_world: Vec<Wrench<T>>,
+    /// Derivatives: `Eᶜ_i`, the subtree's external wrenches given in the base frame.
+    pub subtree_fixed_external_wrench: Vec<Wrench<T>>,
+
     /// Coriolis matrix: joint screw `s_j = Ad_{H_j^0} S_j` in the base frame.
     pub(crate) cor_s: Vec<Twist<T>>,
     /// Coriolis matrix: its time derivative `ṡ_j = ad_{V_j^{0,0}} s_j`.
@@ -115,6 +139,16 @@ impl<T: Real> Workspace<T> {
             aba_small_u: DVector::zeros(n),
             cholesky: DMatrix::zeros(n, n),
             bias: DVector::zeros(n),
+            dtau_dq: DMatrix::zeros(n, n),
+            dtau_dv: DMatrix::zeros(n, n),
+            dqdd_dq: DMatrix::zeros(n, n),
+            dqdd_dv: DMatrix::zeros(n, n),
+            screw_rate_in_world: vec![Twist::zeros(); n],
+            acceleration_derivative_in_world: vec![Twist::zeros(); n],
+            subtree_inertia_in_world: vec![Matrix6::zeros(); n],
+            subtree_velocity_coupling: vec![Matrix6::zeros(); n],
+            subtree_wrench_in_world: vec![Wrench::zeros(); n],
+            subtree_fixed_external_wrench: vec![Wrench::zeros(); n],
             cor_s: vec![Twist::zeros(); n],
             cor_sdot: vec![Twist::zeros(); n],
             cor_inertia: vec![Matrix6::zeros(); n],

@@ -271,6 +271,12 @@ pub fn mass_matrix_inverse<'w, T: Real>(
     q: &[T],
 ) -> Result<&'w DMatrix<T>> {
     crba(model, ws, q)?;
+    invert_mass_matrix(model, ws)?;
+    Ok(&ws.mass_matrix_inverse)
+}
+
+/// `ws.mass_matrix_inverse = ws.mass_matrix⁻¹` by a Cholesky factorisation (in `ws.cholesky`).
+pub(crate) fn invert_mass_matrix<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) -> Result<()> {
     ws.cholesky.copy_from(&ws.mass_matrix);
     cholesky_in_place(&mut ws.cholesky).map_err(|j| singular_error(model, j))?;
     ws.mass_matrix_inverse.fill(T::zero());
@@ -278,5 +284,5 @@ pub fn mass_matrix_inverse<'w, T: Real>(
     for c in 0..model.nv() {
         cholesky_solve_in_place(&ws.cholesky, ws.mass_matrix_inverse.column_mut(c));
     }
-    Ok(&ws.mass_matrix_inverse)
+    Ok(())
 }

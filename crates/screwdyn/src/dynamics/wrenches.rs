@@ -148,6 +148,17 @@ impl<T: Real> ExternalWrenches<T> {
         }
     }
 
+    /// The part of the wrench on body `i` that was given in the base frame (fixed in space),
+    /// `None` when no wrench was given in the base frame.
+    #[inline]
+    pub(crate) fn world_part(&self, i: usize) -> Option<&Wrench<T>> {
+        if self.any_world {
+            Some(&self.world[i])
+        } else {
+            None
+        }
+    }
+
     /// `W_ext^{i,i}` given the pose `H_i^0` of body `i`.
     #[inline]
     pub fn on_body_at(&self, pose_in_world: &Se3<T>, i: usize) -> Wrench<T> {
