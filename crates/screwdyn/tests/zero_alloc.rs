@@ -89,6 +89,10 @@ fn check(model: &Model) {
         total_energy(model, ws, &q, &v).unwrap();
         center_of_mass(model, ws, &q).unwrap();
         power(model, &a, &v).unwrap();
+        rnea_derivatives(model, ws, &q, &v, &a, None).unwrap();
+        rnea_derivatives(model, ws, &q, &v, &a, Some(&ext)).unwrap();
+        aba_derivatives(model, ws, &q, &v, &a, None).unwrap();
+        aba_derivatives(model, ws, &q, &v, &a, Some(&ext)).unwrap();
     };
     run(&mut ws);
     let count = allocations(|| run(&mut ws));
