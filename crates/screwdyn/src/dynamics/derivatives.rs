@@ -77,7 +77,7 @@ use crate::model::Model;
 use crate::scalar::{real, Real};
 use crate::spatial::{ad, ad_matrix, ad_transpose, Twist, Wrench};
 use crate::workspace::Workspace;
-use nalgebra::DVector;
+use nalgebra::{DMatrix, DVector};
 
 /// The partial derivatives `∂τ/∂q` and `∂τ/∂q̇` of inverse dynamics
 /// `τ = M(q) q̈ + C(q, q̇) q̇ + g(q) − Σ_i J_iᵀ W_ext,i` (seed 000's RNEA with gravity and
@@ -259,9 +259,22 @@ pub fn aba_derivatives<T: Real>(
     derivative_passes(model, ws, v, |i| qdd[i], fext);
     ws.qdd = qdd;
     invert_mass_matrix(model, ws)?;
-    ws.dqdd_dq
-        .gemm(-T::one(), &ws.mass_matrix_inverse, &ws.dtau_dq, T::zero());
-    ws.dqdd_dv
-        .gemm(-T::one(), &ws.mass_matrix_inverse, &ws.dtau_dv, T::zero());
+    let n = model.nv();
+    negated_product(&ws.mass_matrix_inverse, &ws.dtau_dq, &mut ws.dqdd_dq, n);
+    negated_product(&ws.mass_matrix_inverse, &ws.dtau_dv, &mut ws.dqdd_dv, n);
     Ok(())
+}
+
+/// `out = −a b` for n×n matrices (a plain loop: `gemm` may allocate packing buffers).
+fn negated_product<T: Real>(a: &DMatrix<T>, b: &DMatrix<T>, out: &mut DMatrix<T>, n: usize) {
+    for j in 0..n {
+        let col = b.column(j);
+        for i in 0..n {
+            let mut s = T::zero();
+            for k in 0..n {
+                s += a[(i, k)] * col[k];
+            }
+            out[(i, j)] = -s;
+        }
+    }
 }
