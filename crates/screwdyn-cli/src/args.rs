@@ -402,8 +402,11 @@ pub struct BenchArgs {
     /// A .urdf or .toml file, or builtin:<name>.
     pub model: String,
     /// Algorithms to time, comma-separated: fk, jacobians, rnea, crba, aba, gravity, nle,
-    /// coriolis, minv, forward_crba.
-    #[arg(long, default_value = "fk,jacobians,rnea,crba,aba")]
+    /// coriolis, minv, forward_crba, rnea_derivatives, aba_derivatives.
+    #[arg(
+        long,
+        default_value = "fk,jacobians,rnea,crba,aba,rnea_derivatives,aba_derivatives"
+    )]
     pub algorithms: String,
     /// Number of timed batches (the median is reported).
     #[arg(long, default_value_t = 21)]
