@@ -83,6 +83,8 @@ pub struct Workspace<T: Real = f64> {
     pub dqdd_dq: DMatrix<T>,
     /// `∂q̈/∂q̇` from [`aba_derivatives`](crate::dynamics::aba_derivatives).
     pub dqdd_dv: DMatrix<T>,
+    /// `Y(q, q̇, q̈)` (n × 10n) from [`regressor`](crate::dynamics::regressor): `τ = Y π`.
+    pub regressor: DMatrix<T>,
     /// Derivatives: `ṡ_i = ad_{V_i} s_i`, the rate of joint `i`'s screw axis in the base frame.
     pub screw_rate_in_world: Vec<Twist<T>>,
     /// Derivatives: `α_i = ad_{A_{λ(i)}} s_i + ad_{V_{λ(i)}} ṡ_i`, the part of `∂A_k/∂q_i` shared
@@ -143,6 +145,7 @@ impl<T: Real> Workspace<T> {
             dtau_dv: DMatrix::zeros(n, n),
             dqdd_dq: DMatrix::zeros(n, n),
             dqdd_dv: DMatrix::zeros(n, n),
+            regressor: DMatrix::zeros(n, 10 * n),
             screw_rate_in_world: vec![Twist::zeros(); n],
             acceleration_derivative_in_world: vec![Twist::zeros(); n],
             subtree_inertia_in_world: vec![Matrix6::zeros(); n],

@@ -25,6 +25,7 @@ mod derivatives;
 pub(crate) mod energy;
 mod forward;
 mod lagrange;
+mod regressor;
 mod rnea;
 mod wrenches;
 
@@ -44,6 +45,10 @@ pub use forward::{
 pub use lagrange::{
     effective_inertia, effective_inertia_free, effective_inertia_locked, lagrange_coefficients,
     mass_matrix_derivatives, LagrangeCoefficients,
+};
+pub use regressor::{
+    body_parameters, inertia_from_parameters, model_parameters, regressor, PARAMETERS_PER_BODY,
+    PARAMETER_NAMES,
 };
 pub use rnea::{base_acceleration, gravity_torque, inverse_dynamics, nonlinear_effects, rnea};
 pub use wrenches::ExternalWrenches;
