@@ -1078,3 +1078,84 @@ impl VelocityDifferentiator {
         }))
     }
 }
+
+/// The joint torques a log of `model` would record at `(q, q̇, q̈)`: inverse dynamics plus the
+/// joints' viscous and Coulomb friction, `τ = RNEA(q, q̇, q̈) + fv q̇ + fc sign(q̇)`. Written into
+/// `tau`.
+///
+/// # Errors
+/// As [`rnea`](crate::dynamics::rnea).
+pub fn logged_torque(
+    model: &Model,
+    ws: &mut Workspace,
+    q: &[f64],
+    v: &[f64],
+    a: &[f64],
+    tau: &mut [f64],
+) -> Result<()> {
+    let t = crate::dynamics::rnea(model, ws, q, v, a)?;
+    for (i, j) in model.joints().iter().enumerate() {
+        tau[i] = t[i] + j.damping * v[i] + j.friction * sign(v[i]);
+    }
+    Ok(())
+}
+
+/// Samples `traj` every `1 / rate` seconds over `[0, duration]` and calls `sink(t, q, q̇, q̈, τ)`
+/// with the torques of [`logged_torque`] plus Gaussian noise of standard deviation `noise`
+/// (Box–Muller from a deterministic generator seeded with `seed`): the log an identification
+/// experiment along an exciting trajectory would record. Streams: nothing is stored.
+///
+/// # Errors
+/// `InvalidArgument` for a non-positive or non-finite duration or rate, or a negative noise;
+/// errors of `sink` are passed on.
+///
+/// ```
+/// use screwdyn::identification::{excitation_log, FourierTrajectory};
+/// let m = screwdyn::builtin::planar2();
+/// let traj = FourierTrajectory::random(&m, 3, 1.0, 7).unwrap();
+/// let mut rows = 0;
+/// excitation_log(&m, &traj, 1.0, 100.0, 0.0, 1, |_, _, _, _, _| { rows += 1; Ok(()) }).unwrap();
+/// assert_eq!(rows, 101);
+/// ```
+#[allow(clippy::type_complexity)]
+pub fn excitation_log<E: From<Error>>(
+    model: &Model,
+    traj: &FourierTrajectory,
+    duration: f64,
+    rate: f64,
+    noise: f64,
+    seed: u64,
+    mut sink: impl FnMut(f64, &[f64], &[f64], &[f64], &[f64]) -> std::result::Result<(), E>,
+) -> std::result::Result<(), E> {
+    if !(duration > 0.0 && duration.is_finite()) || !(rate > 0.0 && rate.is_finite()) {
+        return Err(Error::InvalidArgument(format!(
+            "the duration and the sampling rate must be positive and finite (got {duration} s \
+             and {rate} Hz)"
+        ))
+        .into());
+    }
+    if !(noise >= 0.0 && noise.is_finite()) {
+        return Err(Error::InvalidArgument(format!(
+            "the torque noise must be a non-negative standard deviation, not {noise}"
+        ))
+        .into());
+    }
+    let mut ws = Workspace::new(model);
+    let mut rng = SplitMix(seed ^ 0xA5A5_5A5A_1234_5678);
+    let mut tau = vec![0.0; model.nv()];
+    let samples = (duration * rate).floor() as usize;
+    for k in 0..=samples {
+        let t = k as f64 / rate;
+        let (q, v, a) = traj.sample(t);
+        logged_torque(model, &mut ws, &q, &v, &a, &mut tau)?;
+        if noise > 0.0 {
+            for x in tau.iter_mut() {
+                let u1 = rng.uniform(f64::MIN_POSITIVE, 1.0);
+                let u2 = rng.uniform(0.0, 1.0);
+                *x += noise * (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos();
+            }
+        }
+        sink(t, &q, &v, &a, &tau)?;
+    }
+    Ok(())
+}

@@ -4,6 +4,7 @@
 mod bench;
 mod dynamics;
 mod explain;
+mod identify;
 mod kinematics;
 mod model;
 mod sim;
@@ -38,6 +39,9 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Simulate(a) => sim::simulate(&a),
         Command::TorqueProfile(a) => sim::torque_profile(&a),
         Command::Bench(a) => bench::bench(&a),
+        Command::Derivatives(a) => identify::derivatives(&a),
+        Command::Regressor(a) => identify::regressor(&a),
+        Command::Identify(a) => identify::identify(&a),
     }
 }
 
