@@ -63,7 +63,10 @@ fn derivatives_match_the_seed_closed_form() {
     // ∂q̈/∂τ = M⁻¹ and ∂q̈/∂q = −M⁻¹ ∂τ/∂q with the seed's M.
     let m = fd(&q, &v, &a, 2);
     let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-    let minv = [[m[1][1] / det, -m[0][1] / det], [-m[1][0] / det, m[0][0] / det]];
+    let minv = [
+        [m[1][1] / det, -m[0][1] / det],
+        [-m[1][0] / det, m[0][0] / det],
+    ];
     close_mat(&mat(&out["minv"]), &minv, 1e-7);
     let dq = fd(&q, &v, &a, 0);
     let mut want = [[0.0; 2]; 2];
@@ -89,7 +92,14 @@ fn derivatives_batch_rows_and_csv_columns() {
     assert_eq!(rows.len(), 3);
     let want = fd(&[-0.5, 1.0], &[0.0, 0.0], &[0.0, 0.0], 0);
     close_mat(&mat(&rows[1]["dtau_dq"]), &want, 1e-7);
-    let text = ok(&["derivatives", "builtin:planar2", "--input", p, "--format", "csv"]);
+    let text = ok(&[
+        "derivatives",
+        "builtin:planar2",
+        "--input",
+        p,
+        "--format",
+        "csv",
+    ]);
     let header = text.lines().next().unwrap();
     assert!(header.contains("dtau_dq.joint1.joint2") && header.contains("minv.joint2.joint2"));
     assert_eq!(text.lines().count(), 4);
@@ -173,8 +183,15 @@ fn identify_recovers_the_model_from_an_exciting_log() {
     let text = std::fs::read_to_string(&log).unwrap();
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let keep: Vec<usize> = (0..header.len()).filter(|&i| !header[i].starts_with("a.")).collect();
-    let mut stripped = keep.iter().map(|&i| header[i]).collect::<Vec<_>>().join(",") + "\n";
+    let keep: Vec<usize> = (0..header.len())
+        .filter(|&i| !header[i].starts_with("a."))
+        .collect();
+    let mut stripped = keep
+        .iter()
+        .map(|&i| header[i])
+        .collect::<Vec<_>>()
+        .join(",")
+        + "\n";
     for line in lines {
         let cells: Vec<&str> = line.split(',').collect();
         stripped += &(keep.iter().map(|&i| cells[i]).collect::<Vec<_>>().join(",") + "\n");
@@ -205,7 +222,12 @@ fn bad_logs_are_one_sentence_errors() {
     )
     .unwrap();
     fails(
-        &["identify", "builtin:pendulum", "--input", p.to_str().unwrap()],
+        &[
+            "identify",
+            "builtin:pendulum",
+            "--input",
+            p.to_str().unwrap(),
+        ],
         "too few samples",
     );
     // NaN.
@@ -215,24 +237,46 @@ fn bad_logs_are_one_sentence_errors() {
     )
     .unwrap();
     fails(
-        &["identify", "builtin:pendulum", "--input", p.to_str().unwrap()],
+        &[
+            "identify",
+            "builtin:pendulum",
+            "--input",
+            p.to_str().unwrap(),
+        ],
         "is not finite",
     );
     // Missing column.
     std::fs::write(&p, "t,q.pivot,v.pivot\n0,0.1,0.2\n").unwrap();
     fails(
-        &["identify", "builtin:pendulum", "--input", p.to_str().unwrap()],
+        &[
+            "identify",
+            "builtin:pendulum",
+            "--input",
+            p.to_str().unwrap(),
+        ],
         "has no column 'tau.pivot'",
     );
     // Rank-deficient: the arm stands still at one configuration (gravity only).
-    let mut text = "t,q.joint1,q.joint2,v.joint1,v.joint2,a.joint1,a.joint2,tau.joint1,tau.joint2\n".to_string();
+    let mut text =
+        "t,q.joint1,q.joint2,v.joint1,v.joint2,a.joint1,a.joint2,tau.joint1,tau.joint2\n"
+            .to_string();
     let tau = planar_tau(&[0.3, 0.5], &[0.0, 0.0], &[0.0, 0.0]);
     for k in 0..200 {
-        text += &format!("{},0.3,0.5,0,0,0,0,{},{}\n", k as f64 * 0.01, tau[0], tau[1]);
+        text += &format!(
+            "{},0.3,0.5,0,0,0,0,{},{}\n",
+            k as f64 * 0.01,
+            tau[0],
+            tau[1]
+        );
     }
     std::fs::write(&p, text).unwrap();
     fails(
-        &["identify", "builtin:planar2", "--input", p.to_str().unwrap()],
+        &[
+            "identify",
+            "builtin:planar2",
+            "--input",
+            p.to_str().unwrap(),
+        ],
         "rank-deficient",
     );
     fails(&["identify", "builtin:planar2"], "identify needs a log");

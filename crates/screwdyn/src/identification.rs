@@ -144,8 +144,16 @@ impl SplitMix {
 fn joint_range(model: &Model, i: usize) -> (f64, f64) {
     let l = &model.joints()[i].limits;
     let pi = std::f64::consts::PI;
-    let lo = if l.lower.is_finite() { l.lower.max(-pi) } else { -pi };
-    let hi = if l.upper.is_finite() { l.upper.min(pi) } else { pi };
+    let lo = if l.lower.is_finite() {
+        l.lower.max(-pi)
+    } else {
+        -pi
+    };
+    let hi = if l.upper.is_finite() {
+        l.upper.min(pi)
+    } else {
+        pi
+    };
     if hi > lo {
         (lo, hi)
     } else {
@@ -259,7 +267,7 @@ impl BaseParameters {
         let mut ws = Workspace::new(model);
         let mut w = DMatrix::zeros(states * n, p);
         let mut block = DMatrix::zeros(n, p);
-        let mut rng = SplitMix(seed ^ 0x5EED_0F_BA5E);
+        let mut rng = SplitMix(seed ^ 0x005E_ED0F_BA5E);
         let (mut q, mut v, mut a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         for s in 0..states {
             for i in 0..n {
@@ -273,8 +281,14 @@ impl BaseParameters {
         }
         let (independent, dependent) = greedy_qr(&mut w, &preferred_order(model, friction));
         let rank = independent.len();
-        let r11 = w.select_columns(independent.iter()).rows(0, rank).upper_triangle();
-        let r12 = w.select_columns(dependent.iter()).rows(0, rank).clone_owned();
+        let r11 = w
+            .select_columns(independent.iter())
+            .rows(0, rank)
+            .upper_triangle();
+        let r12 = w
+            .select_columns(dependent.iter())
+            .rows(0, rank)
+            .clone_owned();
         let mut beta = r12;
         if rank > 0 && !r11.solve_upper_triangular_mut(&mut beta) {
             return Err(Error::Numerical(
@@ -421,17 +435,32 @@ impl LeastSquares {
     ///
     /// # Errors
     /// Wrong lengths or non-finite values (named `q`, `v`, `a`, `tau`).
-    pub fn add(&mut self, model: &Model, q: &[f64], v: &[f64], a: &[f64], tau: &[f64]) -> Result<()> {
+    pub fn add(
+        &mut self,
+        model: &Model,
+        q: &[f64],
+        v: &[f64],
+        a: &[f64],
+        tau: &[f64],
+    ) -> Result<()> {
         model.check_vector(tau, "tau")?;
-        full_regressor(model, &mut self.ws, q, v, a, self.base.friction, &mut self.full)?;
+        full_regressor(
+            model,
+            &mut self.ws,
+            q,
+            v,
+            a,
+            self.base.friction,
+            &mut self.full,
+        )?;
         let n = model.nv();
         let r = self.base.rank();
-        for i in 0..n {
+        for (i, t) in tau.iter().enumerate() {
             let row = self.pending_rows + i;
             for (c, &k) in self.base.independent.iter().enumerate() {
                 self.pending[(row, c)] = self.full[(i, k)];
             }
-            self.pending[(row, r)] = tau[i];
+            self.pending[(row, r)] = *t;
         }
         self.pending_rows += n;
         self.samples += 1;
@@ -482,8 +511,12 @@ impl LeastSquares {
         let z = self.factor.view((0, r), (r, 1)).clone_owned();
         let sv = rm.singular_values();
         let (smax, smin) = (sv.max(), sv.min());
-        let cond = if smin > 0.0 { smax / smin } else { f64::INFINITY };
-        if !(cond < 1e10) {
+        let cond = if smin > 0.0 {
+            smax / smin
+        } else {
+            f64::INFINITY
+        };
+        if cond.is_nan() || cond >= 1e10 {
             // The parameter whose diagonal entry in R is smallest is the least excited.
             let worst = (0..r)
                 .min_by(|&a, &b| rm[(a, a)].abs().total_cmp(&rm[(b, b)].abs()))
@@ -983,8 +1016,11 @@ impl FourierTrajectory {
 pub struct VelocityDifferentiator {
     half_window: usize,
     /// Ring of `(t, q, v, tau)`.
-    window: std::collections::VecDeque<(f64, Vec<f64>, Vec<f64>, Vec<f64>)>,
+    window: std::collections::VecDeque<WindowSample>,
 }
+
+/// `(t, q, v, tau)` kept in the differentiator's window.
+type WindowSample = (f64, Vec<f64>, Vec<f64>, Vec<f64>);
 
 /// One sample rebuilt by [`VelocityDifferentiator`]: `q`, `τ` as logged, `q̇` smoothed and
 /// `q̈` differentiated.
@@ -1023,9 +1059,15 @@ impl VelocityDifferentiator {
     ///
     /// # Errors
     /// `InvalidArgument` when time does not increase.
-    pub fn push(&mut self, t: f64, q: &[f64], v: &[f64], tau: &[f64]) -> Result<Option<FilteredSample>> {
+    pub fn push(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        tau: &[f64],
+    ) -> Result<Option<FilteredSample>> {
         if let Some(last) = self.window.back() {
-            if !(t > last.0) {
+            if t.partial_cmp(&last.0) != Some(std::cmp::Ordering::Greater) {
                 return Err(Error::InvalidArgument(format!(
                     "time must increase from row to row to differentiate velocities (t = {t} \
                      after t = {})",
@@ -1127,7 +1169,7 @@ pub fn excitation_log<E: From<Error>>(
     seed: u64,
     mut sink: impl FnMut(f64, &[f64], &[f64], &[f64], &[f64]) -> std::result::Result<(), E>,
 ) -> std::result::Result<(), E> {
-    if !(duration > 0.0 && duration.is_finite()) || !(rate > 0.0 && rate.is_finite()) {
+    if !(duration > 0.0 && duration.is_finite() && rate > 0.0 && rate.is_finite()) {
         return Err(Error::InvalidArgument(format!(
             "the duration and the sampling rate must be positive and finite (got {duration} s \
              and {rate} Hz)"

@@ -168,8 +168,16 @@ fn derivatives_match_central_differences_on_every_joint_shape() {
         .iter()
         .map(|jm| format!("{jm:?}").split(' ').next().unwrap().to_string())
         .collect();
-    for kind in ["RevoluteAxis", "RevoluteOffsetAxis", "PrismaticAxis", "General"] {
-        assert!(shapes.iter().any(|s| s == kind), "{kind} missing: {shapes:?}");
+    for kind in [
+        "RevoluteAxis",
+        "RevoluteOffsetAxis",
+        "PrismaticAxis",
+        "General",
+    ] {
+        assert!(
+            shapes.iter().any(|s| s == kind),
+            "{kind} missing: {shapes:?}"
+        );
     }
     assert!(matches!(m.motions()[3], JointMotion::General { .. }));
     let mut rng = StdRng::seed_from_u64(3);
@@ -205,7 +213,12 @@ fn velocity_derivative_is_twice_the_coriolis_matrix() {
         assert_matrix_close(&mm, crba(&m, &mut ws, &q).unwrap(), 1e-12, "M");
         aba_derivatives(&m, &mut ws, &q, &v, &a, None).unwrap();
         let minv = ws.mass_matrix_inverse.clone();
-        assert_matrix_close(&minv, mass_matrix_inverse(&m, &mut ws, &q).unwrap(), 1e-12, "M⁻¹");
+        assert_matrix_close(
+            &minv,
+            mass_matrix_inverse(&m, &mut ws, &q).unwrap(),
+            1e-12,
+            "M⁻¹",
+        );
     }
 }
 
@@ -219,9 +232,15 @@ fn bad_arguments_are_errors() {
     let mut bad = z.clone();
     bad[2] = f64::NAN;
     let e = rnea_derivatives(&m, &mut ws, &z, &bad, &z, None).unwrap_err();
-    assert!(e.to_string().contains("v contains a non-finite value"), "{e}");
+    assert!(
+        e.to_string().contains("v contains a non-finite value"),
+        "{e}"
+    );
     let e = aba_derivatives(&m, &mut ws, &z, &z, &bad, None).unwrap_err();
-    assert!(e.to_string().contains("tau contains a non-finite value"), "{e}");
+    assert!(
+        e.to_string().contains("tau contains a non-finite value"),
+        "{e}"
+    );
     let other = screwdyn::builtin::planar2();
     let mut ws_other = Workspace::new(&other);
     let e = aba_derivatives(&m, &mut ws_other, &z, &z, &z, None).unwrap_err();

@@ -61,7 +61,10 @@ fn base_columns_reproduce_the_full_regressor() {
                 assert!((base[i] - want[i]).abs() < 1e-9 * scale, "{name}: W_i π_b");
             }
         }
-        assert!(b.rank() < pi.len(), "{name}: some parameters are not identifiable");
+        assert!(
+            b.rank() < pi.len(),
+            "{name}: some parameters are not identifiable"
+        );
     }
 }
 
@@ -86,10 +89,17 @@ fn planar_arm_base_parameters_are_the_textbook_ones() {
         (r2, "m_link2", l2),
         (r2, "m_link1", 0.0),
     ] {
-        assert!((k[(r, col(n))] - want).abs() < 1e-9, "{:?}", b.expressions());
+        assert!(
+            (k[(r, col(n))] - want).abs() < 1e-9,
+            "{:?}",
+            b.expressions()
+        );
     }
     assert_eq!(b.expressions()[r2], "mx_link2 + 0.4 m_link2");
 }
+
+/// `(q, q̇, q̈, τ)` of one logged sample.
+type LogRow = (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>);
 
 fn simulate_log(
     m: &Model,
@@ -98,7 +108,7 @@ fn simulate_log(
     dt: f64,
     noise: f64,
     rng: &mut StdRng,
-) -> Vec<(Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>)> {
+) -> Vec<LogRow> {
     let mut ws = Workspace::new(m);
     (0..samples)
         .map(|k| {
@@ -113,7 +123,10 @@ fn simulate_log(
 #[test]
 fn noisy_fourier_log_recovers_the_base_parameters() {
     let m = load("builtin:ur5")
-        .with_joint_friction(&[0.8, 0.6, 0.5, 0.2, 0.2, 0.1], &[1.5, 1.2, 1.0, 0.4, 0.3, 0.2])
+        .with_joint_friction(
+            &[0.8, 0.6, 0.5, 0.2, 0.2, 0.1],
+            &[1.5, 1.2, 1.0, 0.4, 0.3, 0.2],
+        )
         .unwrap();
     let noise = 0.05;
     let mut rng = StdRng::seed_from_u64(11);
@@ -127,7 +140,11 @@ fn noisy_fourier_log_recovers_the_base_parameters() {
     }
     let est = ls.solve().unwrap();
     assert!(est.condition_number.is_finite() && est.condition_number > 1.0);
-    assert!((est.sigma - noise).abs() < 0.1 * noise, "σ = {} vs noise {noise}", est.sigma);
+    assert!(
+        (est.sigma - noise).abs() < 0.1 * noise,
+        "σ = {} vs noise {noise}",
+        est.sigma
+    );
     for (i, expr) in base.expressions().iter().enumerate() {
         let err = (est.values[i] - truth[i]).abs();
         assert!(
@@ -144,7 +161,8 @@ fn noisy_fourier_log_recovers_the_base_parameters() {
     let mut res = Residuals::new(&m, &base);
     let mut pred = vec![0.0; m.nv()];
     for (q, v, a, tau) in &held {
-        res.add(&m, &base, &est.values, q, v, a, tau, &mut pred).unwrap();
+        res.add(&m, &base, &est.values, q, v, a, tau, &mut pred)
+            .unwrap();
     }
     for (i, r) in res.rms().iter().enumerate() {
         assert!(*r < noise, "joint {i}: held-out RMS torque error {r}");
@@ -165,7 +183,10 @@ fn noisy_fourier_log_recovers_the_base_parameters() {
         res.add(&m, &base, &pib, q, v, a, tau, &mut pred).unwrap();
     }
     for (i, r) in res.rms().iter().enumerate() {
-        assert!(*r < 2.0 * noise, "joint {i}: physical estimate held-out RMS {r}");
+        assert!(
+            *r < 2.0 * noise,
+            "joint {i}: physical estimate held-out RMS {r}"
+        );
     }
 }
 
@@ -180,7 +201,10 @@ fn bad_logs_are_one_sentence_errors() {
     let tau = torque(&m, &mut ws, &q, &v, &a);
     ls.add(&m, &q, &v, &a, &tau).unwrap();
     let e = ls.solve().unwrap_err().to_string();
-    assert!(e.starts_with("too few samples: 1 samples give 6 torque equations"), "{e}");
+    assert!(
+        e.starts_with("too few samples: 1 samples give 6 torque equations"),
+        "{e}"
+    );
     // Only the first joint moves: the other parameters are not excited.
     let mut ls = LeastSquares::new(&m, base.clone());
     for k in 0..500 {
@@ -196,7 +220,10 @@ fn bad_logs_are_one_sentence_errors() {
     let e = ls.solve().unwrap_err().to_string();
     assert!(e.starts_with("the log is rank-deficient"), "{e}");
     // NaN torque.
-    let e = ls.add(&m, &q, &v, &a, &[f64::NAN; 6]).unwrap_err().to_string();
+    let e = ls
+        .add(&m, &q, &v, &a, &[f64::NAN; 6])
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("tau contains a non-finite value"), "{e}");
 }
 
@@ -212,12 +239,19 @@ fn savitzky_golay_differentiator_is_exact_on_quadratics_and_close_on_sines() {
             out.push(s);
         }
     }
-    assert_eq!(out.len(), 14, "the first and last 3 samples have no full window");
+    assert_eq!(
+        out.len(),
+        14,
+        "the first and last 3 samples have no full window"
+    );
     for s in &out {
         assert!((s.a[0] - (2.0 - 6.0 * s.t)).abs() < 1e-9);
         // Truncation error of the centred quadratic fit ≈ |v'''| Σs⁴ / (6 Σs²) ≈ 125 × 1.2e-4.
         assert!((s.a[1] - 5.0 * (5.0 * s.t).cos()).abs() < 2e-2);
     }
-    assert!(d.push(0.0, &[0.0; 2], &[0.0; 2], &[0.0; 2]).is_err(), "time must increase");
+    assert!(
+        d.push(0.0, &[0.0; 2], &[0.0; 2], &[0.0; 2]).is_err(),
+        "time must increase"
+    );
     assert!(VelocityDifferentiator::new(0).is_err());
 }

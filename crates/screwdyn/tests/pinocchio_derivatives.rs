@@ -63,5 +63,8 @@ fn rnea_and_aba_derivatives_match_pinocchio() {
             }
         }
     }
-    assert_eq!(with_wrenches, 30, "half of the 60 states carry external wrenches");
+    assert_eq!(
+        with_wrenches, 30,
+        "half of the 60 states carry external wrenches"
+    );
 }

@@ -95,11 +95,19 @@ pub fn regressor(a: &RegressorArgs) -> Result<(), CliError> {
         ("a", a.a.as_deref()),
     ];
     run_states(&m, &a.common, &flags, |s| {
-        screwdyn::identification::full_regressor(&m, &mut ws, &s.q, &s.v, &s.a, a.friction, &mut y)?;
+        screwdyn::identification::full_regressor(
+            &m, &mut ws, &s.q, &s.v, &s.a, a.friction, &mut y,
+        )?;
         let mut r = Report::new();
         r.add("joints", Value::Names(j.clone()))
-            .add("regressor", Value::Matrix(j.clone(), pnames.clone(), y.clone()))
-            .add("parameters", Value::Vector(pnames.clone(), pi.as_slice().to_vec()));
+            .add(
+                "regressor",
+                Value::Matrix(j.clone(), pnames.clone(), y.clone()),
+            )
+            .add(
+                "parameters",
+                Value::Vector(pnames.clone(), pi.as_slice().to_vec()),
+            );
         Ok(r)
     })
 }
@@ -120,7 +128,11 @@ fn open_log(path: &Path) -> Result<csv::Reader<std::fs::File>, CliError> {
         .map_err(|e| CliError::input(format!("{}: cannot be read ({e})", path.display())))
 }
 
-fn log_columns(m: &Model, path: &Path, headers: &csv::StringRecord) -> Result<LogColumns, CliError> {
+fn log_columns(
+    m: &Model,
+    path: &Path,
+    headers: &csv::StringRecord,
+) -> Result<LogColumns, CliError> {
     let file = path.display();
     let find = |name: &str| headers.iter().position(|h| h == name);
     let joints = m.joint_names();
@@ -243,9 +255,15 @@ fn excite(m: &Model, a: &IdentifyArgs) -> Result<(), CliError> {
             a.frequency
         )));
     }
-    let traj = FourierTrajectory::random(m, a.harmonics, 2.0 * std::f64::consts::PI * a.frequency, a.seed)?;
+    let traj = FourierTrajectory::random(
+        m,
+        a.harmonics,
+        2.0 * std::f64::consts::PI * a.frequency,
+        a.seed,
+    )?;
     let tmp = path.with_extension("csv.tmp");
-    let fail = |e: std::io::Error| CliError::input(format!("cannot write {} ({e})", path.display()));
+    let fail =
+        |e: std::io::Error| CliError::input(format!("cannot write {} ({e})", path.display()));
     let mut out = std::io::BufWriter::new(std::fs::File::create(&tmp).map_err(fail)?);
     let j = m.joint_names();
     let mut header = vec!["t".to_string()];
@@ -254,14 +272,22 @@ fn excite(m: &Model, a: &IdentifyArgs) -> Result<(), CliError> {
     }
     writeln!(out, "{}", header.join(",")).map_err(fail)?;
     let mut rows = 0usize;
-    let result = excitation_log(m, &traj, a.duration, a.rate, a.noise, a.seed, |t, q, v, acc, tau| {
-        let mut line = format!("{t:?}");
-        for x in q.iter().chain(v).chain(acc).chain(tau) {
-            line.push_str(&format!(",{x:?}"));
-        }
-        rows += 1;
-        writeln!(out, "{line}").map_err(fail)
-    });
+    let result = excitation_log(
+        m,
+        &traj,
+        a.duration,
+        a.rate,
+        a.noise,
+        a.seed,
+        |t, q, v, acc, tau| {
+            let mut line = format!("{t:?}");
+            for x in q.iter().chain(v).chain(acc).chain(tau) {
+                line.push_str(&format!(",{x:?}"));
+            }
+            rows += 1;
+            writeln!(out, "{line}").map_err(fail)
+        },
+    );
     if let Err(e) = result {
         let _ = std::fs::remove_file(&tmp);
         return Err(e);
@@ -310,9 +336,13 @@ pub fn identify(a: &IdentifyArgs) -> Result<(), CliError> {
         Ok(())
     })?;
     if samples == 0 {
-        return Err(CliError::input(format!("{file}: the log has no usable samples")));
+        return Err(CliError::input(format!(
+            "{file}: the log has no usable samples"
+        )));
     }
-    let est = ls.solve().map_err(|e| CliError::input(format!("{file}: {e}")))?;
+    let est = ls
+        .solve()
+        .map_err(|e| CliError::input(format!("{file}: {e}")))?;
     let physical = if a.physical {
         let (r, z) = ls.factor();
         let pi = physical_estimate(&m, &base, &r, &z)?;
@@ -350,7 +380,12 @@ pub fn identify(a: &IdentifyArgs) -> Result<(), CliError> {
             series,
             lines: vec![],
         }];
-        plot_panels(p, &format!("identify {}: {file}", m.name()), "t (s)", &panels)?;
+        plot_panels(
+            p,
+            &format!("identify {}: {file}", m.name()),
+            "t (s)",
+            &panels,
+        )?;
     }
     let exprs = base.expressions();
     let mut items = Vec::new();
@@ -388,7 +423,10 @@ pub fn identify(a: &IdentifyArgs) -> Result<(), CliError> {
         output::fmt(est.condition_number),
         output::fmt(est.sigma)
     );
-    t.push_str(&format!("{:>14} {:>12}  base parameter\n", "estimate", "std dev"));
+    t.push_str(&format!(
+        "{:>14} {:>12}  base parameter\n",
+        "estimate", "std dev"
+    ));
     for (k, e) in exprs.iter().enumerate() {
         t.push_str(&format!(
             "{:>14} {:>12}  {e}\n",

@@ -32,8 +32,8 @@ mod wrenches;
 pub use aba::{aba, aba_with};
 pub use closed_form::{closed_form, ClosedForm};
 pub use coriolis::coriolis_matrix;
-pub use derivatives::{aba_derivatives, rnea_derivatives};
 pub use crba::{crba, mass_matrix, mass_matrix_inverse, CompositeInertia};
+pub use derivatives::{aba_derivatives, rnea_derivatives};
 pub use energy::{
     center_of_mass, kinetic_energy, kinetic_energy_mass_matrix, potential_energy, power,
     total_energy,

@@ -136,11 +136,18 @@ pub fn regressor<'w, T: Real>(
     model.check_vector(v, "v")?;
     model.check_vector(a, "a")?;
     forward_kinematics(model, ws, q)?;
-    rnea_passes(model, ws, Some(v), |i| a[i], &base_acceleration(model), None);
+    rnea_passes(
+        model,
+        ws,
+        Some(v),
+        |i| a[i],
+        &base_acceleration(model),
+        None,
+    );
     let n = model.nbodies();
     let (motions, parents) = (model.motions(), model.parents());
-    for i in 0..n {
-        ws.screw_in_world[i] = motions[i].act(&ws.pose_in_world[i]);
+    for (i, m) in motions.iter().enumerate() {
+        ws.screw_in_world[i] = m.act(&ws.pose_in_world[i]);
     }
     let y = &mut ws.regressor;
     y.fill(T::zero());
@@ -162,7 +169,10 @@ pub fn regressor<'w, T: Real>(
         loop {
             // Joint i's screw written in frame k.
             let s = ws.pose_in_world[k].inv_act_twist(&ws.screw_in_world[i]);
-            let (sw, sl) = (Vector3::new(s[0], s[1], s[2]), Vector3::new(s[3], s[4], s[5]));
+            let (sw, sl) = (
+                Vector3::new(s[0], s[1], s[2]),
+                Vector3::new(s[3], s[4], s[5]),
+            );
             y[(i, col)] = sl.dot(&acc);
             let h = first_moment_moment.tr_mul(&sw) + first_moment_force.tr_mul(&sl);
             for c in 0..3 {
