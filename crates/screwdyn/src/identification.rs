@@ -244,14 +244,15 @@ impl BaseParameters {
     /// the columns kept before it; coefficients of `β` below `1e-10` are zeroed.
     ///
     /// # Errors
-    /// `InvalidArgument` when `states` is below `max(3, 10n / n + 1)`-ish too small to span the
-    /// parameters (`states · n < number of parameters`); errors of [`regressor`].
+    /// `InvalidArgument` when `states` is too small to span the parameters
+    /// (`states · n` below the number of standard parameters); errors of [`regressor`].
     ///
     /// ```
     /// use screwdyn::identification::BaseParameters;
-    /// let m = screwdyn::builtin::planar2(); // two point masses, planar: 3 base parameters
+    /// let m = screwdyn::builtin::planar2(); // a planar 2R arm: six base parameters
     /// let b = BaseParameters::new(&m, false, 50, 1).unwrap();
-    /// assert_eq!(b.rank(), 3);
+    /// assert_eq!(b.rank(), 6);
+    /// assert_eq!(b.expressions()[4], "mx_link2 + m_link2"); // link 2's frame is at its end
     /// ```
     pub fn new(model: &Model, friction: bool, states: usize, seed: u64) -> Result<Self> {
         let n = model.nv();
@@ -1156,7 +1157,11 @@ pub fn logged_torque(
 /// let m = screwdyn::builtin::planar2();
 /// let traj = FourierTrajectory::random(&m, 3, 1.0, 7).unwrap();
 /// let mut rows = 0;
-/// excitation_log(&m, &traj, 1.0, 100.0, 0.0, 1, |_, _, _, _, _| { rows += 1; Ok(()) }).unwrap();
+/// excitation_log(&m, &traj, 1.0, 100.0, 0.0, 1, |_, _, _, _, _| {
+///     rows += 1;
+///     Ok::<(), screwdyn::Error>(())
+/// })
+/// .unwrap();
 /// assert_eq!(rows, 101);
 /// ```
 #[allow(clippy::type_complexity)]

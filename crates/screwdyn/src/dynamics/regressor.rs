@@ -27,7 +27,7 @@ pub const PARAMETER_NAMES: [&str; PARAMETERS_PER_BODY] = [
 /// ```
 /// use nalgebra::{Matrix3, Vector3};
 /// use screwdyn::{dynamics::body_parameters, spatial::SpatialInertia};
-/// let i = SpatialInertia::new(2.0, Vector3::new(0.0, 0.0, 0.5), Matrix3::identity() * 0.1);
+/// let i = SpatialInertia::new(2.0_f64, Vector3::new(0.0, 0.0, 0.5), Matrix3::identity() * 0.1);
 /// let p = body_parameters(&i);
 /// assert_eq!(p[0], 2.0);            // m
 /// assert_eq!(p[3], 1.0);            // m c_z
