@@ -5,7 +5,7 @@ use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::scalar::Real;
 use crate::spatial::{Se3, Twist, Wrench};
-use nalgebra::{DMatrix, DVector, Matrix6};
+use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3};
 
 /// Preallocated per-model buffers. Algorithms read a [`Model`] and write here; after
 /// `Workspace::new` no algorithm call allocates.
@@ -90,10 +90,11 @@ pub struct Workspace<T: Real = f64> {
     /// Derivatives: `α_i = ad_{A_{λ(i)}} s_i + ad_{V_{λ(i)}} ṡ_i`, the part of `∂A_k/∂q_i` shared
     /// by the subtree of `i` (base frame).
     pub acceleration_derivative_in_world: Vec<Twist<T>>,
-    /// Derivatives: `𝔍ᶜ_i`, the subtree's spatial inertia in the base frame.
-    pub subtree_inertia_in_world: Vec<Matrix6<T>>,
-    /// Derivatives: `Dᶜ_i = Σ (𝔍V)⊼ − ad_Vᵀ 𝔍 − 𝔍 ad_V` over the subtree (base frame).
-    pub subtree_velocity_coupling: Vec<Matrix6<T>>,
+    /// Derivatives: `Dᶜ₁₁`, the angular block of `Σ (𝔍V)⊼ − ad_Vᵀ 𝔍 − 𝔍 ad_V` over the subtree
+    /// of `i` (base frame; the other non-zero block is `−2[f]`, `f` the linear momentum).
+    pub subtree_velocity_coupling: Vec<Matrix3<T>>,
+    /// Derivatives: the subtree's linear momentum `f` in the base frame.
+    pub subtree_linear_momentum: Vec<Vector3<T>>,
     /// Derivatives: `F'_i`, the subtree's Newton–Euler wrench without the wrenches fixed in
     /// space (base frame).
     pub subtree_wrench_in_world: Vec<Wrench<T>>,
@@ -148,8 +149,8 @@ impl<T: Real> Workspace<T> {
             regressor: DMatrix::zeros(n, 10 * n),
             screw_rate_in_world: vec![Twist::zeros(); n],
             acceleration_derivative_in_world: vec![Twist::zeros(); n],
-            subtree_inertia_in_world: vec![Matrix6::zeros(); n],
-            subtree_velocity_coupling: vec![Matrix6::zeros(); n],
+            subtree_velocity_coupling: vec![Matrix3::zeros(); n],
+            subtree_linear_momentum: vec![Vector3::zeros(); n],
             subtree_wrench_in_world: vec![Wrench::zeros(); n],
             subtree_fixed_external_wrench: vec![Wrench::zeros(); n],
             cor_s: vec![Twist::zeros(); n],

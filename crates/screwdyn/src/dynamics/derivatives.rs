@@ -37,7 +37,8 @@
 //! # Derivatives of the wrenches
 //!
 //! With `D_k = (𝔍_k V_k)⊼ − ad_{V_k}ᵀ 𝔍_k − 𝔍_k ad_{V_k}` (`(h)⊼ X = −ad_Xᵀ h`; `D_k` is twice
-//! the Coriolis factor `B(𝔍, V)` of [`coriolis_matrix`](super::coriolis_matrix)), the
+//! the Coriolis factor `B(𝔍, V)` of [`coriolis_matrix`](super::coriolis_matrix), and only its
+//! left half is non-zero: `D = [[D₁₁, 0], [−2[f], 0]]` with `f` the linear momentum), the
 //! rigid motion of body `k` with joint `j` turns `W_k` as a wrench, `−ad_{s_j}ᵀ W_k`, and the
 //! rest is linear in the subtree:
 //!
@@ -70,21 +71,21 @@
 use super::crba::invert_mass_matrix;
 use super::rnea::base_acceleration;
 use super::wrenches::ExternalWrenches;
-use super::{aba_with, closed_form::bar_matrix};
+use super::{aba_with, CompositeInertia};
 use crate::error::Result;
 use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::{real, Real};
-use crate::spatial::{ad, ad_matrix, ad_transpose, Twist, Wrench};
+use crate::spatial::{ad, ad_transpose, hat, twist, Twist, Wrench};
 use crate::workspace::Workspace;
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 /// The partial derivatives `∂τ/∂q` and `∂τ/∂q̇` of inverse dynamics
 /// `τ = M(q) q̈ + C(q, q̇) q̇ + g(q) − Σ_i J_iᵀ W_ext,i` (seed 000's RNEA with gravity and
 /// external wrenches), analytically (module docs give the equations). Writes `ws.dtau_dq`,
 /// `ws.dtau_dv`, `ws.mass_matrix` (`= ∂τ/∂q̈`, both triangles) and `ws.tau` (`τ` itself), and
-/// leaves `ws.screw_in_world`, `ws.twist_in_world` (`V_i` in {0}) and `ws.twist_dot_in_world`
-/// (`A_i` in {0}, gravity included) set. Entry `(i, j)` of each matrix is `∂τ_i/∂x_j`, rows and
+/// leaves `ws.screw_in_world`, `ws.twist_in_world` (`V_i` in {0}), `ws.twist_dot_in_world`
+/// (`A_i` in {0}, gravity included) and `ws.composite_inertia` (`𝔍ᶜ_i`) set. Entry `(i, j)` of each matrix is `∂τ_i/∂x_j`, rows and
 /// columns in model joint order.
 ///
 /// External wrenches given in a body frame ([`ExternalWrenches::add_local`], tip wrenches) move
@@ -127,6 +128,52 @@ pub fn rnea_derivatives<T: Real>(
     Ok(())
 }
 
+/// `D x` for `D = [[D₁₁, 0], [−2[f], 0]]` (see [`velocity_coupling`]).
+#[inline]
+fn coupling_apply<T: Real>(d11: &Matrix3<T>, f: &Vector3<T>, x: &Twist<T>) -> Wrench<T> {
+    let xa = Vector3::new(x[0], x[1], x[2]);
+    let top = d11 * xa;
+    let bottom = f.cross(&xa) * real::<T>(-2.0);
+    twist(top, bottom)
+}
+
+/// `Dᵀ y = (D₁₁ᵀ y_a + 2 f × y_l, 0)`.
+#[inline]
+fn coupling_transpose_apply<T: Real>(d11: &Matrix3<T>, f: &Vector3<T>, y: &Twist<T>) -> Twist<T> {
+    let ya = Vector3::new(y[0], y[1], y[2]);
+    let yl = Vector3::new(y[3], y[4], y[5]);
+    twist(
+        d11.tr_mul(&ya) + f.cross(&yl) * real::<T>(2.0),
+        Vector3::zeros(),
+    )
+}
+
+/// `D = (𝔍 V)⊼ − ad_Vᵀ 𝔍 − 𝔍 ad_V` of one body, which has only two non-zero blocks: with
+/// `𝔍 = [I [h]; [h]ᵀ m1]` (in {0}), `V = (ω, v)`, `𝔍 V = (μ, f)`,
+/// `D = [[D₁₁, 0], [−2[f], 0]]`, `D₁₁ = −[μ] − (I[ω] + (I[ω])ᵀ) − (v hᵀ + h vᵀ) + 2 (h·v) 1`.
+/// Returns `(D₁₁, f)`; both add over a subtree.
+#[inline]
+fn velocity_coupling<T: Real>(
+    inertia: &CompositeInertia<T>,
+    v: &Twist<T>,
+) -> (Matrix3<T>, Vector3<T>) {
+    let w = Vector3::new(v[0], v[1], v[2]);
+    let l = Vector3::new(v[3], v[4], v[5]);
+    let (i, h, m) = (&inertia.inertia_origin, &inertia.first_moment, inertia.mass);
+    let mu = i * w + h.cross(&l);
+    let f = l * m - h.cross(&w);
+    let k = i * hat(&w);
+    let hv = h.dot(&l) * real::<T>(2.0);
+    let mut d = -hat(&mu);
+    for r in 0..3 {
+        for c in 0..3 {
+            d[(r, c)] -= k[(r, c)] + k[(c, r)] + l[r] * h[c] + h[r] * l[c];
+        }
+        d[(r, r)] += hv;
+    }
+    (d, f)
+}
+
 /// Both passes of [`rnea_derivatives`] given `ws.pose_in_world`.
 fn derivative_passes<T: Real>(
     model: &Model<T>,
@@ -139,6 +186,7 @@ fn derivative_passes<T: Real>(
     let (motions, parents, bodies) = (model.motions(), model.parents(), &model.body_composite);
     let base = base_acceleration(model);
     let two: T = real(2.0);
+    let fixed = fext.is_some_and(|f| f.has_world());
     // Forward pass: s_i, ṡ_i, V_i, A_i, α_i, 𝔍_i, D_i and W_i (+ E_i), all in {0}.
     for i in 0..n {
         let h = ws.pose_in_world[i];
@@ -152,7 +200,6 @@ fn derivative_passes<T: Real>(
         let ai = ap + s * a(i) + sdot * v[i];
         let alpha = ad(&ap, &s) + ad(&vp, &sdot);
         let inertia = bodies[i].transformed(&h);
-        let im = inertia.matrix();
         let momentum = inertia.apply(&vi);
         let mut w = inertia.apply(&ai) - ad_transpose(&vi, &momentum);
         let mut fixed_in_space = Wrench::zeros();
@@ -162,20 +209,21 @@ fn derivative_passes<T: Real>(
                 fixed_in_space = *e;
             }
         }
-        let im_ad = im * ad_matrix(&vi);
+        let (d11, lin_momentum) = velocity_coupling(&inertia, &vi);
         ws.screw_in_world[i] = s;
         ws.screw_rate_in_world[i] = sdot;
         ws.twist_in_world[i] = vi;
         ws.twist_dot_in_world[i] = ai;
         ws.acceleration_derivative_in_world[i] = alpha;
-        ws.subtree_inertia_in_world[i] = im;
-        ws.subtree_velocity_coupling[i] = bar_matrix(&momentum) - im_ad - im_ad.transpose();
+        ws.composite_inertia[i] = inertia;
+        ws.subtree_velocity_coupling[i] = d11;
+        ws.subtree_linear_momentum[i] = lin_momentum;
         ws.subtree_wrench_in_world[i] = w + fixed_in_space;
         ws.subtree_fixed_external_wrench[i] = fixed_in_space;
     }
-    ws.dtau_dq.fill(T::zero());
-    ws.dtau_dv.fill(T::zero());
     if !model.is_chain {
+        ws.dtau_dq.fill(T::zero());
+        ws.dtau_dv.fill(T::zero());
         ws.mass_matrix.fill(T::zero());
     }
     // Backward pass: subtree sums, then the row and column of every joint with its ancestors.
@@ -183,41 +231,54 @@ fn derivative_passes<T: Real>(
         let s = ws.screw_in_world[j];
         let sdot = ws.screw_rate_in_world[j];
         let alpha = ws.acceleration_derivative_in_world[j];
-        let ic = ws.subtree_inertia_in_world[j];
-        let dc = ws.subtree_velocity_coupling[j];
+        let ic = ws.composite_inertia[j];
+        let (d11, lm) = (
+            ws.subtree_velocity_coupling[j],
+            ws.subtree_linear_momentum[j],
+        );
         let fc = ws.subtree_wrench_in_world[j];
         let ec = ws.subtree_fixed_external_wrench[j];
         ws.tau[j] = s.dot(&(fc - ec));
-        let phi = ic * alpha + dc * sdot - ad_transpose(&s, &fc);
-        let ic_sdot = ic * sdot;
-        let psi = ic_sdot * two + dc * s;
-        let g = ic * s;
-        let hh = dc.tr_mul(&s);
+        let ic_sdot = ic.apply(&sdot);
+        let phi = ic.apply(&alpha) + coupling_apply(&d11, &lm, &sdot) - ad_transpose(&s, &fc);
+        let psi = ic_sdot * two + coupling_apply(&d11, &lm, &s);
+        let g = ic.apply(&s);
+        let g2 = g * two;
+        let hh = coupling_transpose_apply(&d11, &lm, &s);
         let e = ad_transpose(&s, &ec);
         ws.dtau_dq[(j, j)] = g.dot(&alpha) + hh.dot(&sdot);
-        ws.dtau_dv[(j, j)] = two * g.dot(&sdot) + hh.dot(&s);
+        ws.dtau_dv[(j, j)] = g2.dot(&sdot) + hh.dot(&s);
         ws.mass_matrix[(j, j)] = g.dot(&s);
         let mut k = j;
         while let Some(p) = parents[k] {
             k = p;
             let (sk, sdk, ak) = (
-                ws.screw_in_world[k],
-                ws.screw_rate_in_world[k],
-                ws.acceleration_derivative_in_world[k],
+                &ws.screw_in_world[k],
+                &ws.screw_rate_in_world[k],
+                &ws.acceleration_derivative_in_world[k],
             );
-            ws.dtau_dq[(k, j)] = sk.dot(&phi);
-            ws.dtau_dv[(k, j)] = sk.dot(&psi);
-            ws.dtau_dq[(j, k)] = g.dot(&ak) + hh.dot(&sdk) + e.dot(&sk);
-            ws.dtau_dv[(j, k)] = two * g.dot(&sdk) + hh.dot(&sk);
+            let mut dq_jk = g.dot(ak) + hh.dot(sdk);
+            if fixed {
+                dq_jk += e.dot(sk);
+            }
+            let (dq_kj, dv_kj) = (sk.dot(&phi), sk.dot(&psi));
+            let dv_jk = g2.dot(sdk) + hh.dot(sk);
             let mkj = sk.dot(&g);
+            ws.dtau_dq[(k, j)] = dq_kj;
+            ws.dtau_dv[(k, j)] = dv_kj;
+            ws.dtau_dq[(j, k)] = dq_jk;
+            ws.dtau_dv[(j, k)] = dv_jk;
             ws.mass_matrix[(k, j)] = mkj;
             ws.mass_matrix[(j, k)] = mkj;
         }
         if let Some(p) = parents[j] {
-            ws.subtree_inertia_in_world[p] += ic;
-            ws.subtree_velocity_coupling[p] += dc;
+            ws.composite_inertia[p].add(&ic);
+            ws.subtree_velocity_coupling[p] += d11;
+            ws.subtree_linear_momentum[p] += lm;
             ws.subtree_wrench_in_world[p] += fc;
-            ws.subtree_fixed_external_wrench[p] += ec;
+            if fixed {
+                ws.subtree_fixed_external_wrench[p] += ec;
+            }
         }
     }
 }
@@ -265,16 +326,18 @@ pub fn aba_derivatives<T: Real>(
     Ok(())
 }
 
-/// `out = −a b` for n×n matrices (a plain loop: `gemm` may allocate packing buffers).
+/// `out = −a b` for n×n matrices, column by column as sums of columns of `a` (a plain loop:
+/// `gemm` may allocate packing buffers).
 fn negated_product<T: Real>(a: &DMatrix<T>, b: &DMatrix<T>, out: &mut DMatrix<T>, n: usize) {
-    for j in 0..n {
-        let col = b.column(j);
-        for i in 0..n {
-            let mut s = T::zero();
-            for k in 0..n {
-                s += a[(i, k)] * col[k];
+    let (a, b) = (a.as_slice(), b.as_slice());
+    let out = &mut out.as_mut_slice()[..n * n];
+    for (j, col) in out.chunks_exact_mut(n).enumerate() {
+        col.fill(T::zero());
+        for (k, ak) in a[..n * n].chunks_exact(n).enumerate() {
+            let x = -b[j * n + k];
+            for (o, y) in col.iter_mut().zip(ak) {
+                *o += *y * x;
             }
-            out[(i, j)] = -s;
         }
     }
 }

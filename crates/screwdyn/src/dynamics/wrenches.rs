@@ -148,6 +148,12 @@ impl<T: Real> ExternalWrenches<T> {
         }
     }
 
+    /// Whether any wrench was given in the base frame.
+    #[inline]
+    pub(crate) fn has_world(&self) -> bool {
+        self.any_world
+    }
+
     /// The part of the wrench on body `i` that was given in the base frame (fixed in space),
     /// `None` when no wrench was given in the base frame.
     #[inline]
