@@ -17,6 +17,10 @@ there. It writes one JSON file per robot to `crates/screwdyn/tests/fixtures/pino
                  unaligned axes, prismatic joints along unaligned axes, random placements and
                  random physical inertias with the centre of mass off the joint origin.
 
+Each state also carries `computeRNEADerivatives` / `computeABADerivatives` with body-fixed
+external forces (issue 15; random on even states, drawn from a second generator so the states
+themselves do not change).
+
 Every spatial quantity is converted from Pinocchio's linear-first convention to screwdyn's
 angular-first one (twists `(w, v)`, Jacobian rows `(angular; linear)`). The schema is
 documented in `crates/screwdyn/tests/fixtures/pinocchio/README.md`. The output is
