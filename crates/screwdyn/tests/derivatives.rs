@@ -246,3 +246,25 @@ fn bad_arguments_are_errors() {
     let e = aba_derivatives(&m, &mut ws_other, &z, &z, &z, None).unwrap_err();
     assert!(e.to_string().contains("workspace was made"), "{e}");
 }
+
+/// The derivatives are generic over the scalar: in `f32` they agree with `f64` to single
+/// precision.
+#[test]
+fn derivatives_work_in_f32() {
+    let m64 = special_chain();
+    let m32: Model<f32> = m64.cast();
+    let (q, v, a) = ([0.3, -0.2, 0.1, 0.5, -0.4, 0.2], [0.5; 6], [-0.3; 6]);
+    let mut ws64 = Workspace::new(&m64);
+    let mut ws32 = Workspace::new(&m32);
+    let f = |x: &[f64]| x.iter().map(|y| *y as f32).collect::<Vec<f32>>();
+    aba_derivatives(&m64, &mut ws64, &q, &v, &a, None).unwrap();
+    aba_derivatives(&m32, &mut ws32, &f(&q), &f(&v), &f(&a), None).unwrap();
+    for (x32, x64) in [
+        (&ws32.dtau_dq, &ws64.dtau_dq),
+        (&ws32.dqdd_dq, &ws64.dqdd_dq),
+        (&ws32.dqdd_dv, &ws64.dqdd_dv),
+    ] {
+        let back = x32.map(|x| x as f64);
+        assert_matrix_close(&back, x64, 1e-3, "f32");
+    }
+}

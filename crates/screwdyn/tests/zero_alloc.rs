@@ -93,6 +93,7 @@ fn check(model: &Model) {
         rnea_derivatives(model, ws, &q, &v, &a, Some(&ext)).unwrap();
         aba_derivatives(model, ws, &q, &v, &a, None).unwrap();
         aba_derivatives(model, ws, &q, &v, &a, Some(&ext)).unwrap();
+        regressor(model, ws, &q, &v, &a).unwrap();
     };
     run(&mut ws);
     let count = allocations(|| run(&mut ws));
