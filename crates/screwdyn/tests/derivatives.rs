@@ -12,8 +12,8 @@ use nalgebra::{DMatrix, Vector3, Vector6};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use screwdyn::dynamics::{
-    aba_derivatives, aba_with, coriolis_matrix, crba, inverse_dynamics, mass_matrix_inverse,
-    rnea_derivatives, ExternalWrenches,
+    aba_derivatives, coriolis_matrix, crba, forward_dynamics, inverse_dynamics,
+    mass_matrix_inverse, rnea_derivatives, ExternalWrenches, ForwardMethod,
 };
 use screwdyn::model::{JointMotion, JointSpec};
 use screwdyn::spatial::{Se3, SpatialInertia};
@@ -137,7 +137,7 @@ fn check_against_finite_differences(m: &Model, rng: &mut StdRng, label: &str) {
     let tau_in = random_vec(rng, n, 5.0);
     aba_derivatives(m, &mut ws, &q, &v, &tau_in, Some(&ext)).unwrap();
     let mut fd = |q: &[f64], v: &[f64], t: &[f64]| -> Vec<f64> {
-        aba_with(m, &mut fd_ws, q, v, t, Some(&ext))
+        forward_dynamics(m, &mut fd_ws, q, v, t, Some(&ext), ForwardMethod::Aba)
             .unwrap()
             .as_slice()
             .to_vec()

@@ -10,6 +10,18 @@ fn err(text: &str, file: &str) -> String {
     }
 }
 
+/// The one physical-consistency finding of a file that loads, as text; the same file loaded
+/// strictly fails with it.
+fn finding(text: &str, file: &str) -> String {
+    let m = load_str(text, file, &LoadOptions::default())
+        .unwrap_or_else(|e| panic!("{file} should load with a finding: {e}"));
+    let f = m.physical_problems();
+    assert_eq!(f.len(), 1, "{file}: {f:?}");
+    let strict = load_str(text, file, &LoadOptions { strict: true }).unwrap_err();
+    assert!(strict.to_string().contains(&f[0].to_string()));
+    f[0].to_string()
+}
+
 fn check(msg: &str, place: &str, words: &[&str]) {
     assert!(
         msg.starts_with(place),
@@ -199,9 +211,9 @@ fn negative_or_zero_mass_on_a_moving_leaf() {
         .join("\n"),
     );
     check(
-        &err(&t, "m.urdf"),
+        &finding(&t, "m.urdf"),
         "m.urdf:4:",
-        &["link 'a' has negative mass"],
+        &["link 'a'", "negative mass"],
     );
     let t = urdf(
         &[
@@ -212,9 +224,9 @@ fn negative_or_zero_mass_on_a_moving_leaf() {
         .join("\n"),
     );
     check(
-        &err(&t, "m.urdf"),
+        &finding(&t, "m.urdf"),
         "m.urdf:3:",
-        &["link 'a'", "joint 'j'", "mass 0"],
+        &["link 'a'", "joint 'j'", "no mass"],
     );
     // A massless moving link is fine when a fixed child carries mass.
     let t = urdf(
@@ -231,7 +243,7 @@ fn negative_or_zero_mass_on_a_moving_leaf() {
 }
 
 #[test]
-fn non_physical_inertias_are_errors_unless_allowed() {
+fn non_physical_inertias_are_findings_and_errors_when_strict() {
     let bad = |ixx: f64, iyy: f64, izz: f64, ixy: f64| {
         urdf(&[
             "<link name=\"base\"/>".to_string(),
@@ -242,24 +254,22 @@ fn non_physical_inertias_are_errors_unless_allowed() {
     // Not positive definite (a negative moment), breaking the triangle inequality (1 + 1 < 3).
     let t = bad(-0.1, 0.1, 0.1, 0.0);
     check(
-        &err(&t, "m.urdf"),
+        &finding(&t, "m.urdf"),
         "m.urdf:4:",
-        &["inertia of link 'a'", "positive"],
+        &["link 'a': its inertia", "positive"],
     );
     let t2 = bad(1.0, 1.0, 3.0, 0.0);
     check(
-        &err(&t2, "m.urdf"),
+        &finding(&t2, "m.urdf"),
         "m.urdf:4:",
-        &["inertia of link 'a'", "triangle inequality"],
+        &["link 'a': its inertia", "triangle inequality"],
     );
     let t3 = bad(1.0, 1.0, 1.0, 2.0);
-    check(&err(&t3, "m.urdf"), "m.urdf:4:", &["inertia of link 'a'"]);
-    let allow = LoadOptions {
-        allow_nonphysical: true,
-    };
-    for t in [t, t2, t3] {
-        assert!(load_str(&t, "m.urdf", &allow).is_ok());
-    }
+    check(
+        &finding(&t3, "m.urdf"),
+        "m.urdf:4:",
+        &["link 'a': its inertia"],
+    );
 }
 
 #[test]
@@ -322,13 +332,13 @@ fn toml_syntax_errors_and_unknown_keys_name_file_and_line() {
 fn toml_model_errors_name_the_element() {
     let e = err("format = \"dh\"\n[[row]]\ntype = \"X\"\n", "t.toml");
     check(&e, "t.toml:2:", &["DH row 1", "'X'"]);
-    let e = err(
+    let e = finding(
         "format = \"dh\"\n[[row]]\ntype = \"R\"\nmass = 1\ninertia = [1, 0, 0, 1, 0, 3]\n",
         "t.toml",
     );
-    check(&e, "t.toml:2:", &["DH row 1", "triangle inequality"]);
-    let e = err("format = \"dh\"\n[[row]]\ntype = \"R\"\n", "t.toml");
-    check(&e, "t.toml:", &["link1", "mass 0"]);
+    check(&e, "t.toml:2:", &["link 'link1'", "triangle inequality"]);
+    let e = finding("format = \"dh\"\n[[row]]\ntype = \"R\"\n", "t.toml");
+    check(&e, "t.toml:", &["link1", "no mass"]);
     let e = err("format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"revolute\"\nmass = 1\n", "t.toml");
     check(&e, "t.toml:2:", &["body 'a'", "no screw axis"]);
     let e = err("format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"revolute\"\nscrew_in_child = [0, 0, 0, 0, 0, 0]\nmass = 1\n", "t.toml");
@@ -377,4 +387,110 @@ fn files_that_cannot_be_read_or_have_no_known_format() {
     check(&e, "robot.sdf:", &["unknown model format"]);
     let e = load_model("builtin:nope").unwrap_err().to_string();
     assert!(e.contains("nope") && e.contains("planar2"), "{e}");
+}
+
+/// Issue 12.2: every bad value is refused where it is read, with file:line.
+#[test]
+fn bad_joint_values_are_refused_at_their_line() {
+    let with = |inner: &str| {
+        urdf(&[
+            "<link name=\"base\"/>".to_string(),
+            link("a"),
+            format!(
+                "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"a\"/>\n{inner}\n</joint>"
+            ),
+        ]
+        .join("\n"))
+    };
+    let cases: [(&str, &[&str]); 8] = [
+        (
+            "<limit lower=\"1\" upper=\"-1\" effort=\"1\" velocity=\"1\"/>",
+            &["lower = 1 above upper = -1"],
+        ),
+        (
+            "<limit lower=\"-1\" upper=\"1\" effort=\"-5\" velocity=\"1\"/>",
+            &["effort", "negative"],
+        ),
+        (
+            "<limit lower=\"-1\" upper=\"1\" effort=\"5\" velocity=\"-1\"/>",
+            &["velocity", "negative"],
+        ),
+        (
+            "<limit lower=\"-1\" upper=\"1\" effort=\"nan\" velocity=\"1\"/>",
+            &["'nan' is not a finite number"],
+        ),
+        ("<dynamics damping=\"-0.1\"/>", &["damping", "negative"]),
+        (
+            "<dynamics friction=\"NaN\"/>",
+            &["friction", "not a finite number"],
+        ),
+        ("<axis xyz=\"0 0 0\"/>", &["zero axis"]),
+        ("<mimic joint=\"ghost\"/>", &["mimics joint 'ghost'"]),
+    ];
+    for (inner, words) in cases {
+        let e = err(&with(inner), "m.urdf");
+        let line = if inner.starts_with("<mimic") {
+            "m.urdf:4:"
+        } else {
+            "m.urdf:5:"
+        };
+        check(&e, line, words);
+    }
+    // A huge axis normalises instead of overflowing to "[0,0,0]".
+    let m = load_str(
+        &with("<axis xyz=\"1e308 1e308 0\"/>"),
+        "m.urdf",
+        &LoadOptions::default(),
+    )
+    .unwrap();
+    let s = m.joints()[0].screw;
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    assert!((s[0] - h).abs() < 1e-15 && (s[1] - h).abs() < 1e-15 && s[2] == 0.0);
+    // Names: empty, or with a line break.
+    let e = err(&urdf("<link name=\"\"/>\n<link name=\"b\"/>"), "m.urdf");
+    check(&e, "m.urdf:2:", &["non-empty"]);
+    let e = err(
+        &urdf("<link name=\"base\"/>\n<link name=\"a&#10;b\"/>"),
+        "m.urdf",
+    );
+    check(&e, "m.urdf:3:", &["control characters"]);
+}
+
+#[test]
+fn a_huge_quaternion_is_normalised_and_a_zero_one_refused() {
+    let text = |q: &str| {
+        format!(
+            "format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"revolute\"\nscrew_in_child = [0, 0, 1, 0, 0, 0]\nmass = 1\nhome = {{ quaternion = {q} }}\n"
+        )
+    };
+    // [w, x, y, z] = [1e308, 1e308, 0, 0] is (1, 1, 0, 0)/√2 once normalised: a quarter turn
+    // about x (w = cos 45°, x = sin 45°).
+    let m = load_str(
+        &text("[1e308, 1e308, 0, 0]"),
+        "q.toml",
+        &LoadOptions::default(),
+    )
+    .unwrap();
+    let r = m.joints()[0].home.rotation;
+    let rx = screwdyn::spatial::Se3::from_rpy(std::f64::consts::FRAC_PI_2, 0.0, 0.0).rotation;
+    assert!((r - rx).amax() < 1e-12, "{r}");
+    let e = err(&text("[0, 0, 0, 0]"), "q.toml");
+    check(&e, "q.toml:2:", &["quaternion"]);
+}
+
+#[cfg(unix)]
+#[test]
+fn a_fifo_given_as_a_model_is_refused_without_blocking() {
+    let dir = std::env::temp_dir().join(format!("screwdyn-fifo-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("robot.urdf");
+    let _ = std::fs::remove_file(&path);
+    let status = std::process::Command::new("mkfifo").arg(&path).status();
+    if !matches!(status, Ok(s) if s.success()) {
+        eprintln!("mkfifo is not available here; skipped");
+        return;
+    }
+    let e = screwdyn::io::load_model(path.to_str().unwrap()).unwrap_err();
+    assert!(e.to_string().contains("not a regular file"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
 }

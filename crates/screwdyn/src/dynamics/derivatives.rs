@@ -68,14 +68,15 @@
 //! All of it is one forward and one backward pass, O(n d) with `d` the depth of the tree
 //! (O(n²) on a chain), and allocates nothing.
 
+use super::aba::articulated_body;
 use super::crba::invert_mass_matrix;
 use super::rnea::base_acceleration;
 use super::wrenches::ExternalWrenches;
-use super::{aba_with, CompositeInertia};
 use crate::error::Result;
 use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::{real, Real};
+use crate::spatial::CompositeInertia;
 use crate::spatial::{ad, ad_transpose, hat, twist, Twist, Wrench};
 use crate::workspace::Workspace;
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
@@ -286,7 +287,7 @@ fn derivative_passes<T: Real>(
 /// The partial derivatives of forward dynamics `q̈ = M⁻¹(τ − C q̇ − g + Σ_i J_iᵀ W_ext,i)`:
 /// `∂q̈/∂q = −M⁻¹ ∂τ/∂q`, `∂q̈/∂q̇ = −M⁻¹ ∂τ/∂q̇` (the inverse-dynamics derivatives of
 /// [`rnea_derivatives`] taken at `q̈ = FD(q, q̇, τ)`) and `∂q̈/∂τ = M⁻¹`. Writes `ws.qdd`
-/// (forward dynamics by [`aba_with`]), `ws.dqdd_dq`, `ws.dqdd_dv`, `ws.mass_matrix_inverse`,
+/// (forward dynamics by the articulated-body algorithm, [`aba`](super::aba)), `ws.dqdd_dq`, `ws.dqdd_dv`, `ws.mass_matrix_inverse`,
 /// and everything [`rnea_derivatives`] writes. Entry `(i, j)` is `∂q̈_i/∂x_j`.
 ///
 /// # Errors
@@ -314,7 +315,7 @@ pub fn aba_derivatives<T: Real>(
     ws.check(model)?;
     model.check_vector(v, "v")?;
     model.check_vector(tau, "tau")?;
-    aba_with(model, ws, q, v, tau, fext)?;
+    articulated_body(model, ws, q, v, tau, fext)?;
     // Poses are those of `q` (set by ABA); q̈ is read from a moved-out buffer (no allocation).
     let qdd = std::mem::replace(&mut ws.qdd, DVector::zeros(0));
     derivative_passes(model, ws, v, |i| qdd[i], fext);

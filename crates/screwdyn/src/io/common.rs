@@ -60,6 +60,9 @@ pub(crate) struct PoseSpec {
 
 impl PoseSpec {
     /// The pose, or a phrase saying what is wrong.
+    ///
+    /// # Errors
+    /// A phrase saying which value is malformed (the loader adds file and line).
     pub fn to_se3(&self) -> std::result::Result<Se3, String> {
         let n = self.rpy.is_some() as u8
             + self.quaternion.is_some() as u8
@@ -70,8 +73,13 @@ impl PoseSpec {
         let mut h = if let Some([r, p, y]) = self.rpy {
             Se3::from_rpy(r, p, y)
         } else if let Some([w, x, y, z]) = self.quaternion {
-            let q = Quaternion::new(w, x, y, z);
-            if q.norm().is_nan() || q.norm() <= 1e-9 {
+            // Scaled first, so that a huge quaternion normalises instead of overflowing.
+            let scale = [w, x, y, z].iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+            if !(scale.is_finite() && scale > 0.0) {
+                return Err("has a zero quaternion (or a non-finite one)".into());
+            }
+            let q = Quaternion::new(w / scale, x / scale, y / scale, z / scale);
+            if q.norm() * scale <= 1e-9 {
                 return Err("has a zero quaternion".into());
             }
             Se3::new(
@@ -129,6 +137,9 @@ pub(crate) fn inertia_matrix(i: [f64; 6]) -> Matrix3<f64> {
 }
 
 impl InertiaSpec {
+    ///
+    /// # Errors
+    /// A phrase saying which value is malformed (the loader adds file and line).
     pub fn to_inertia(&self) -> std::result::Result<SpatialInertia, String> {
         if let Some(rows) = self.spatial_inertia {
             if self.mass.is_some() || self.com.is_some() || self.inertia.is_some() {
@@ -224,18 +235,4 @@ impl LimitSpec {
 pub(crate) fn gravity(g: Option<[f64; 3]>) -> Vector3<f64> {
     g.map(Vector3::from)
         .unwrap_or_else(|| Vector3::new(0.0, 0.0, -9.81))
-}
-
-/// Checks a link inertia before the builder does, so that the message names the file.
-pub(crate) fn check_inertia(
-    i: &SpatialInertia,
-    what: &str,
-    file: &str,
-    allow_nonphysical: bool,
-) -> Result<()> {
-    if allow_nonphysical {
-        return Ok(());
-    }
-    i.check_physical()
-        .map_err(|why| Error::InvalidModel(format!("{file}: the inertia of {what} {why}")))
 }
