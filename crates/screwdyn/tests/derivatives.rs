@@ -268,3 +268,56 @@ fn derivatives_work_in_f32() {
         assert_matrix_close(&back, x64, 1e-3, "f32");
     }
 }
+
+/// Frame twist derivatives (world and local) against central differences of
+/// `kinematics::frame_twist`.
+#[test]
+fn frame_velocity_derivatives_match_central_differences() {
+    use nalgebra::Matrix6xX;
+    use screwdyn::dynamics::frame_velocity_derivatives;
+    use screwdyn::kinematics::{forward_velocity, frame_twist, Reference};
+    let mut rng = StdRng::seed_from_u64(44);
+    for t in 0..6 {
+        let n = rng.gen_range(1..8);
+        let m = random_tree(&mut rng, n, t % 2 == 0);
+        let tool = m.frame_id("tool").unwrap();
+        let (q, v) = (random_vec(&mut rng, n, 2.0), random_vec(&mut rng, n, 2.0));
+        let mut ws = Workspace::new(&m);
+        for reference in [Reference::World, Reference::Local] {
+            let (mut dq, mut dv) = (Matrix6xX::zeros(n), Matrix6xX::zeros(n));
+            frame_velocity_derivatives(&m, &mut ws, tool, reference, &q, &v, &mut dq, &mut dv)
+                .unwrap();
+            let mut fd_ws = Workspace::new(&m);
+            let mut twist = |q: &[f64], v: &[f64]| {
+                forward_velocity(&m, &mut fd_ws, q, v).unwrap();
+                frame_twist(&m, &fd_ws, tool, reference).unwrap()
+            };
+            let h = 1e-6;
+            for j in 0..n {
+                let (mut qp, mut qm) = (q.clone(), q.clone());
+                qp[j] += h;
+                qm[j] -= h;
+                let d = (twist(&qp, &v) - twist(&qm, &v)) / (2.0 * h);
+                assert!((dq.column(j) - d).amax() < 1e-6, "{reference:?} dq col {j}");
+                let (mut vp, mut vm) = (v.clone(), v.clone());
+                vp[j] += h;
+                vm[j] -= h;
+                let d = (twist(&q, &vp) - twist(&q, &vm)) / (2.0 * h);
+                assert!((dv.column(j) - d).amax() < 1e-6, "{reference:?} dv col {j}");
+            }
+        }
+        let (mut dq, mut dv) = (Matrix6xX::zeros(n), Matrix6xX::zeros(n));
+        let e = frame_velocity_derivatives(
+            &m,
+            &mut ws,
+            tool,
+            Reference::LocalWorldAligned,
+            &q,
+            &v,
+            &mut dq,
+            &mut dv,
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("not local-world-aligned"));
+    }
+}

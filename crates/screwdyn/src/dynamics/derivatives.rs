@@ -342,3 +342,99 @@ fn negated_product<T: Real>(a: &DMatrix<T>, b: &DMatrix<T>, out: &mut DMatrix<T>
         }
     }
 }
+
+/// The derivatives of frame `frame`'s twist with respect to `q` and `q̇` (6 × n each, angular
+/// rows first): with `b` the frame's body, `s_j = Ad_{H_j^0} S_j` and `ṡ_j = ad_{V_λ(j)} s_j`,
+/// for every joint `j` supporting `b` (other columns zero)
+///
+/// - `Reference::World` (spatial twist `V_f^{0,0}` in {0}): `∂V/∂q_j = ad_{s_j} V_b + ṡ_j`,
+///   `∂V/∂q̇_j = s_j` (the space Jacobian);
+/// - `Reference::Local` (body twist `V_f^{f,0}`): `∂V/∂q_j = Ad_{H_f^0}⁻¹ ṡ_j`,
+///   `∂V/∂q̇_j = Ad_{H_f^0}⁻¹ s_j` (the body Jacobian),
+///
+/// because `∂H_f^0/∂q_j = [s_j] H_f^0` (the pose derivative: the space-Jacobian column). Writes
+/// `ws.pose_in_world`, `ws.screw_in_world`, `ws.twist_in_world` and `ws.screw_rate_in_world`.
+///
+/// # Errors
+/// `InvalidArgument` for an unknown frame, a workspace made for another model, output
+/// matrices that are not 6 × n, or `Reference::LocalWorldAligned` (not provided);
+/// `DimensionMismatch` / `NonFinite` for bad `q` or `v`.
+///
+/// ```
+/// use nalgebra::Matrix6xX;
+/// use screwdyn::{builtin, dynamics::frame_velocity_derivatives, kinematics::Reference, Workspace};
+/// let m = builtin::planar2();
+/// let mut ws = Workspace::new(&m);
+/// let (mut dq, mut dv) = (Matrix6xX::zeros(2), Matrix6xX::zeros(2));
+/// let tip = m.frame_id("link2").unwrap();
+/// frame_velocity_derivatives(&m, &mut ws, tip, Reference::Local, &[0.0, 0.0], &[1.0, 0.0],
+///                            &mut dq, &mut dv).unwrap();
+/// // At q1 = 0 with q̇ = (1, 0) the tip's velocity in its own frame is (sin q2, 1 + cos q2):
+/// // ∂v/∂q̇1 = (0, 2) at q2 = 0 (body Jacobian), and ∂v_x/∂q2 = cos q2 = 1.
+/// assert!((dv[(4, 0)] - 2.0).abs() < 1e-12 && (dq[(3, 1)] - 1.0).abs() < 1e-12);
+/// ```
+#[allow(clippy::too_many_arguments)]
+pub fn frame_velocity_derivatives<T: Real>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    frame: usize,
+    reference: crate::kinematics::Reference,
+    q: &[T],
+    v: &[T],
+    dv_dq: &mut nalgebra::Matrix6xX<T>,
+    dv_dv: &mut nalgebra::Matrix6xX<T>,
+) -> Result<()> {
+    use crate::kinematics::Reference;
+    ws.check(model)?;
+    model.check_vector(v, "v")?;
+    let n = model.nv();
+    if dv_dq.ncols() != n || dv_dv.ncols() != n {
+        return Err(crate::Error::InvalidArgument(format!(
+            "the derivative matrices have {} and {} columns, the model has {n} joints",
+            dv_dq.ncols(),
+            dv_dv.ncols()
+        )));
+    }
+    if reference == Reference::LocalWorldAligned {
+        return Err(crate::Error::InvalidArgument(
+            "frame velocity derivatives are given in the world or the local frame, not \
+             local-world-aligned"
+                .into(),
+        ));
+    }
+    let (body, placement) = {
+        let f = model.frame(frame)?;
+        (f.body, f.placement)
+    };
+    forward_kinematics(model, ws, q)?;
+    let (motions, parents) = (model.motions(), model.parents());
+    for i in 0..n {
+        let s = motions[i].act(&ws.pose_in_world[i]);
+        let vp = parents[i].map_or(Twist::zeros(), |p| ws.twist_in_world[p]);
+        ws.screw_in_world[i] = s;
+        ws.screw_rate_in_world[i] = ad(&vp, &s);
+        ws.twist_in_world[i] = vp + s * v[i];
+    }
+    dv_dq.fill(T::zero());
+    dv_dv.fill(T::zero());
+    let Some(b) = body else {
+        return Ok(());
+    };
+    let pose = ws.pose_in_world[b].compose(&placement);
+    let vb = ws.twist_in_world[b];
+    let mut j = b;
+    loop {
+        let (s, sdot) = (ws.screw_in_world[j], ws.screw_rate_in_world[j]);
+        let (dq, dv) = match reference {
+            Reference::World => (ad(&s, &vb) + sdot, s),
+            _ => (pose.inv_act_twist(&sdot), pose.inv_act_twist(&s)),
+        };
+        dv_dq.set_column(j, &dq);
+        dv_dv.set_column(j, &dv);
+        match parents[j] {
+            Some(p) => j = p,
+            None => break,
+        }
+    }
+    Ok(())
+}

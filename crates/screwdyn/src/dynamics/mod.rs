@@ -35,7 +35,7 @@ pub use aba::aba;
 pub use closed_form::{closed_form, ClosedForm};
 pub use coriolis::coriolis_matrix;
 pub use crba::{crba, mass_matrix, mass_matrix_inverse};
-pub use derivatives::{aba_derivatives, rnea_derivatives};
+pub use derivatives::{aba_derivatives, frame_velocity_derivatives, rnea_derivatives};
 pub use energy::{
     center_of_mass, kinetic_energy, kinetic_energy_mass_matrix, potential_energy, power,
     total_energy,
