@@ -21,6 +21,10 @@
 //! log), then [`LeastSquares::solve`] returns `π̂_b = R⁻¹ z`, standard deviations
 //! `σ √diag((RᵀR)⁻¹)` with `σ² = RSS / (rows − r)`, and the condition number of the
 //! regressor.
+//!
+//! Identification works on `f64` models (it is batch analysis over a log, not a per-call
+//! algorithm); the regressor itself, [`regressor`], is generic over the scalar type and
+//! allocation-free.
 
 use crate::dynamics::{
     body_parameters, inertia_from_parameters, model_parameters, regressor, PARAMETERS_PER_BODY,
