@@ -25,6 +25,7 @@ mod crba;
 mod derivatives;
 pub(crate) mod energy;
 mod forward;
+mod inputs;
 mod lagrange;
 mod regressor;
 mod rnea;
@@ -32,7 +33,7 @@ mod trace;
 mod wrenches;
 
 pub use aba::aba;
-pub use closed_form::{closed_form, ClosedForm};
+pub use closed_form::{closed_form, ClosedForm, MAX_CLOSED_FORM_JOINTS};
 pub use coriolis::coriolis_matrix;
 pub use crba::{crba, mass_matrix, mass_matrix_inverse};
 pub use derivatives::{aba_derivatives, frame_velocity_derivatives, rnea_derivatives};
@@ -45,7 +46,7 @@ pub use forward::{
 };
 pub use lagrange::{
     effective_inertia, effective_inertia_free, effective_inertia_locked, lagrange_coefficients,
-    mass_matrix_derivatives, LagrangeCoefficients,
+    mass_matrix_derivatives, LagrangeCoefficients, MAX_LAGRANGE_JOINTS,
 };
 pub use regressor::{
     body_parameters, inertia_from_parameters, model_parameters, regressor, PARAMETERS_PER_BODY,

@@ -309,6 +309,83 @@ fn parse_joint(ctx: &Ctx, n: Node) -> Result<UJoint> {
     Ok(j)
 }
 
+/// URDF's joint type for `j`, its axis, and the offset from the child frame to a point on the
+/// axis (non-zero when the screw axis misses the child origin, which URDF cannot say directly).
+fn urdf_joint_kind(j: &crate::model::Joint) -> Result<(&'static str, Vector3<f64>, Vector3<f64>)> {
+    let (w, v) = (ang(&j.screw), lin(&j.screw));
+    Ok(match j.kind {
+        JointKind::Helical { .. } => {
+            return Err(Error::InvalidModel(format!(
+                "joint '{}' is helical, which URDF cannot describe",
+                j.name
+            )))
+        }
+        JointKind::Prismatic => ("prismatic", v, Vector3::zeros()),
+        JointKind::Continuous => ("continuous", w, w.cross(&v)),
+        JointKind::Revolute => {
+            let unlimited = !limited(j.limits.lower) && !limited(j.limits.upper);
+            (
+                if unlimited { "continuous" } else { "revolute" },
+                w,
+                w.cross(&v),
+            )
+        }
+    })
+}
+
+/// The `<joint>` element of a moving joint: parent, child, origin, axis, limits, dynamics and
+/// mimic.
+fn joint_element(
+    j: &crate::model::Joint,
+    kind: &str,
+    parent: &str,
+    child: &str,
+    home: &Se3,
+    axis: &Vector3<f64>,
+) -> String {
+    let mut limit = String::new();
+    for (key, x, on) in [
+        ("lower", j.limits.lower, kind != "continuous"),
+        ("upper", j.limits.upper, kind != "continuous"),
+        ("effort", j.limits.effort, true),
+        ("velocity", j.limits.velocity, true),
+    ] {
+        if on && limited(x) {
+            let _ = write!(limit, " {key}=\"{}\"", num(x));
+        }
+    }
+    let mut s = format!(
+        "  <joint name=\"{}\" type=\"{kind}\">\n    <parent link=\"{}\"/>\n    <child link=\"{}\"/>\n    {}\n    <axis xyz=\"{}\"/>\n",
+        xml_escape(&j.name),
+        xml_escape(parent),
+        xml_escape(child),
+        origin_tag(home),
+        v3(axis)
+    );
+    if !limit.is_empty() {
+        let _ = writeln!(s, "    <limit{limit}/>");
+    }
+    if j.damping != 0.0 || j.friction != 0.0 {
+        let _ = writeln!(
+            s,
+            "    <dynamics damping=\"{}\" friction=\"{}\"/>",
+            num(j.damping),
+            num(j.friction)
+        );
+    }
+    if let Some(m) = &j.mimic {
+        let _ = writeln!(
+            s,
+            "    <mimic joint=\"{}\" multiplier=\"{}\" offset=\"{}\"/>",
+            xml_escape(&m.joint),
+            num(m.multiplier),
+            num(m.offset)
+        );
+    }
+    s += "  </joint>\n";
+    s
+}
+
 /// Parses URDF text into a [`Model`]; `file` names the source in messages (`file:line: …`).
 ///
 /// # Errors
@@ -659,25 +736,7 @@ pub fn to_urdf_string(model: &Model) -> Result<String> {
     };
     for (i, (j, body)) in model.joints().iter().zip(model.bodies()).enumerate() {
         let parent = body_link(model.parents()[i]);
-        let (w, v) = (ang(&j.screw), lin(&j.screw));
-        let (kind, axis, offset) = match j.kind {
-            JointKind::Helical { .. } => {
-                return Err(Error::InvalidModel(format!(
-                    "joint '{}' is helical, which URDF cannot describe",
-                    j.name
-                )))
-            }
-            JointKind::Prismatic => ("prismatic", v, Vector3::zeros()),
-            JointKind::Continuous => ("continuous", w, w.cross(&v)),
-            JointKind::Revolute => {
-                let unlimited = !limited(j.limits.lower) && !limited(j.limits.upper);
-                (
-                    if unlimited { "continuous" } else { "revolute" },
-                    w,
-                    w.cross(&v),
-                )
-            }
-        };
+        let (kind, axis, offset) = urdf_joint_kind(j)?;
         let split = offset.norm() > 1e-12;
         let moving = if split {
             let mut name = format!("{}_axis", body.name);
@@ -690,47 +749,7 @@ pub fn to_urdf_string(model: &Model) -> Result<String> {
             body.name.clone()
         };
         let home = j.home.compose(&Se3::from_translation(offset));
-        let mut limit = String::new();
-        for (key, x, on) in [
-            ("lower", j.limits.lower, kind != "continuous"),
-            ("upper", j.limits.upper, kind != "continuous"),
-            ("effort", j.limits.effort, true),
-            ("velocity", j.limits.velocity, true),
-        ] {
-            if on && limited(x) {
-                let _ = write!(limit, " {key}=\"{}\"", num(x));
-            }
-        }
-        let mut s = format!(
-            "  <joint name=\"{}\" type=\"{kind}\">\n    <parent link=\"{}\"/>\n    <child link=\"{}\"/>\n    {}\n    <axis xyz=\"{}\"/>\n",
-            xml_escape(&j.name),
-            xml_escape(&parent),
-            xml_escape(&moving),
-            origin_tag(&home),
-            v3(&axis)
-        );
-        if !limit.is_empty() {
-            let _ = writeln!(s, "    <limit{limit}/>");
-        }
-        if j.damping != 0.0 || j.friction != 0.0 {
-            let _ = writeln!(
-                s,
-                "    <dynamics damping=\"{}\" friction=\"{}\"/>",
-                num(j.damping),
-                num(j.friction)
-            );
-        }
-        if let Some(m) = &j.mimic {
-            let _ = writeln!(
-                s,
-                "    <mimic joint=\"{}\" multiplier=\"{}\" offset=\"{}\"/>",
-                xml_escape(&m.joint),
-                num(m.multiplier),
-                num(m.offset)
-            );
-        }
-        s += "  </joint>\n";
-        joints += &s;
+        joints += &joint_element(j, kind, &parent, &moving, &home, &axis);
         if split {
             link(&moving, None);
             link(&body.name, Some(&body.inertia));
