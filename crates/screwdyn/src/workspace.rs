@@ -93,7 +93,8 @@ pub struct Workspace<T: Real = f64> {
     pub dqdd_dq: DMatrix<T>,
     /// `∂q̈/∂q̇` from [`aba_derivatives`](crate::dynamics::aba_derivatives).
     pub dqdd_dv: DMatrix<T>,
-    /// `Y(q, q̇, q̈)` (n × 10n) from [`regressor`](crate::dynamics::regressor): `τ = Y π`.
+    /// `Y(q, q̇, q̈)` (n × 10n) from [`regressor`](crate::dynamics::regressor): `τ = Y π`
+    /// (empty until the first call).
     pub regressor: DMatrix<T>,
     /// Derivatives: `α_i = ad_{A_{λ(i)}} s_i + ad_{V_{λ(i)}} ṡ_i`, the part of `∂A_k/∂q_i` shared
     /// by the subtree of `i` (base frame).
@@ -168,11 +169,11 @@ impl<T: Real> Workspace<T> {
             screw_rate_in_world: vec![Twist::zeros(); n],
             composite_inertia_matrix: vec![Matrix6::zeros(); n],
             composite_coriolis_factor: vec![Matrix6::zeros(); n],
-            dtau_dq: DMatrix::zeros(n, n),
-            dtau_dv: DMatrix::zeros(n, n),
-            dqdd_dq: DMatrix::zeros(n, n),
-            dqdd_dv: DMatrix::zeros(n, n),
-            regressor: DMatrix::zeros(n, 10 * n),
+            dtau_dq: DMatrix::zeros(sq, sq),
+            dtau_dv: DMatrix::zeros(sq, sq),
+            dqdd_dq: DMatrix::zeros(sq, sq),
+            dqdd_dv: DMatrix::zeros(sq, sq),
+            regressor: DMatrix::zeros(0, 0),
             acceleration_derivative_in_world: vec![Twist::zeros(); n],
             subtree_velocity_coupling: vec![Matrix3::zeros(); n],
             subtree_linear_momentum: vec![Vector3::zeros(); n],
@@ -220,6 +221,50 @@ impl<T: Real> Workspace<T> {
             self.mass_matrix_inverse = try_square(n)?;
             self.coriolis_matrix = try_square(n)?;
             self.cholesky = try_square(n)?;
+        }
+        Ok(())
+    }
+
+    /// [`Workspace::ensure_square`] and the four `n × n` derivative matrices (`dtau_dq`,
+    /// `dtau_dv`, `dqdd_dq`, `dqdd_dv`, made with the workspace up to
+    /// [`EAGER_SQUARE_BUFFERS`] bodies).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the memory cannot be had.
+    pub(crate) fn ensure_derivatives(&mut self) -> Result<()> {
+        self.ensure_square()?;
+        let n = self.nbodies;
+        if self.dtau_dq.nrows() != n {
+            self.dtau_dq = try_square(n)?;
+            self.dtau_dv = try_square(n)?;
+            self.dqdd_dq = try_square(n)?;
+            self.dqdd_dv = try_square(n)?;
+        }
+        Ok(())
+    }
+
+    /// The `n × 10n` regressor buffer, made on the first call of
+    /// [`regressor`](crate::dynamics::regressor) (it is ten times a mass matrix).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the memory cannot be had.
+    pub(crate) fn ensure_regressor(&mut self) -> Result<()> {
+        let n = self.nbodies;
+        if self.regressor.shape() != (n, 10 * n) {
+            let cols = n.checked_mul(10).ok_or_else(|| {
+                Error::InvalidArgument(format!("a regressor for {n} joints is too large"))
+            })?;
+            let len = n.checked_mul(cols).ok_or_else(|| {
+                Error::InvalidArgument(format!("a regressor for {n} joints is too large"))
+            })?;
+            let mut data: Vec<T> = Vec::new();
+            data.try_reserve_exact(len).map_err(|_| {
+                Error::InvalidArgument(format!(
+                    "the {n} × {cols} regressor cannot be allocated for a model of {n} joints"
+                ))
+            })?;
+            data.resize(len, T::zero());
+            self.regressor = DMatrix::from_vec(n, cols, data);
         }
         Ok(())
     }

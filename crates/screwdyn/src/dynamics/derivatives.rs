@@ -124,6 +124,7 @@ pub fn rnea_derivatives<T: Real>(
     if let Some(f) = fext {
         f.check(model)?;
     }
+    ws.ensure_derivatives()?;
     forward_kinematics(model, ws, q)?;
     derivative_passes(model, ws, v, |i| a[i], fext);
     Ok(())
@@ -315,6 +316,7 @@ pub fn aba_derivatives<T: Real>(
     ws.check(model)?;
     model.check_vector(v, "v")?;
     model.check_vector(tau, "tau")?;
+    ws.ensure_derivatives()?;
     articulated_body(model, ws, q, v, tau, fext)?;
     // Poses are those of `q` (set by ABA); q̈ is read from a moved-out buffer (no allocation).
     let qdd = std::mem::replace(&mut ws.qdd, DVector::zeros(0));

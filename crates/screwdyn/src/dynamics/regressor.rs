@@ -135,6 +135,7 @@ pub fn regressor<'w, T: Real>(
     ws.check(model)?;
     model.check_vector(v, "v")?;
     model.check_vector(a, "a")?;
+    ws.ensure_regressor()?;
     forward_kinematics(model, ws, q)?;
     rnea_passes(
         model,
