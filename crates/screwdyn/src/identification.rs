@@ -507,7 +507,7 @@ impl LeastSquares {
         let n_rows = self.samples * (self.full.nrows());
         if n_rows <= r {
             return Err(Error::InvalidArgument(format!(
-                "too few samples: {} samples give {n_rows} torque equations for {r} base \
+                "too few samples: {} sample(s) give {n_rows} torque equations for {r} base \
                  parameters (need more than {r})",
                 self.samples
             )));

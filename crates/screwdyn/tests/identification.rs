@@ -202,7 +202,7 @@ fn bad_logs_are_one_sentence_errors() {
     ls.add(&m, &q, &v, &a, &tau).unwrap();
     let e = ls.solve().unwrap_err().to_string();
     assert!(
-        e.starts_with("too few samples: 1 samples give 6 torque equations"),
+        e.starts_with("too few samples: 1 sample(s) give 6 torque equations"),
         "{e}"
     );
     // Only the first joint moves: the other parameters are not excited.
