@@ -16,7 +16,8 @@
 #    portable: target-cpu=native is only used here, so both sides get the same CPU flags).
 # 4. Runs, ROUNDS times and alternating, `pinocchio_bench` and `screwdyn bench` on UR5 and Panda
 #    (fixed base), then prints per-call medians (median over rounds of the per-round medians)
-#    and the ratio ours / Pinocchio for fk, jacobians, rnea, crba and aba. The ratio is the
+#    and the ratio ours / Pinocchio for fk, jacobians, rnea, crba, aba, rnea_derivatives
+#    (computeRNEADerivatives) and aba_derivatives (computeABADerivatives). The ratio is the
 #    median of the per-round ratios: each round's two numbers were taken seconds apart, so a
 #    burst of load from another process on this shared machine hits fewer ratios than medians.
 set -euo pipefail
@@ -74,8 +75,8 @@ done
 "$VENV/bin/python" - "$OUT/runs.jsonl" <<'EOF'
 import json, statistics, sys
 runs = [json.loads(l) for l in open(sys.argv[1])]
-algos = ["fk", "jacobians", "rnea", "crba", "aba"]
-print(f"{'robot (nq)':<11}{'algorithm':<11}{'screwdyn ns':>13}{'Pinocchio ns':>14}{'ratio':>8}   per-round ratios")
+algos = ["fk", "jacobians", "rnea", "crba", "aba", "rnea_derivatives", "aba_derivatives"]
+print(f"{'robot (nq)':<11}{'algorithm':<17}{'screwdyn ns':>13}{'Pinocchio ns':>14}{'ratio':>8}   per-round ratios")
 for robot in ["ur5", "panda"]:
     rs = [r for r in runs if r["robot"] == robot]
     nq = rs[0]["screwdyn"]["nq"]
@@ -86,5 +87,5 @@ for robot in ["ur5", "panda"]:
         ratios = [r["screwdyn"]["ns_per_call"][a] / r["pinocchio"]["ns_per_call"][a] for r in rs]
         per = " ".join(f"{x:.2f}" for x in ratios)
         name = f"{robot} ({nq})"
-        print(f"{name:<11}{a:<11}{ours:>13.1f}{pin:>14.1f}{statistics.median(ratios):>8.2f}   {per}")
+        print(f"{name:<11}{a:<17}{ours:>13.1f}{pin:>14.1f}{statistics.median(ratios):>8.2f}   {per}")
 EOF

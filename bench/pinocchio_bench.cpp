@@ -20,11 +20,13 @@
 #include <pinocchio/multibody.hpp>
 
 #include <pinocchio/algorithm/aba.hpp>
+#include <pinocchio/algorithm/aba-derivatives.hpp>
 #include <pinocchio/algorithm/crba.hpp>
 #include <pinocchio/algorithm/jacobian.hpp>
 #include <pinocchio/algorithm/joint-configuration.hpp>
 #include <pinocchio/algorithm/kinematics.hpp>
 #include <pinocchio/algorithm/rnea.hpp>
+#include <pinocchio/algorithm/rnea-derivatives.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -196,9 +198,21 @@ int main(int argc, char ** argv)
     keep(pinocchio::aba(model, data, qs[k], vs[k], taus[k]));
   });
 
+  // Derivatives (issue 15): the data.dtau_dq / dtau_dv (M in data.M, upper triangle) and
+  // data.ddq_dq / ddq_dv / Minv outputs, no external forces.
+  const double rnea_derivatives = time_it(batches, calls, nstates, [&](int k) {
+    pinocchio::computeRNEADerivatives(model, data, qs[k], vs[k], as[k]);
+    keep(data.dtau_dq);
+  });
+  const double aba_derivatives = time_it(batches, calls, nstates, [&](int k) {
+    pinocchio::computeABADerivatives(model, data, qs[k], vs[k], taus[k]);
+    keep(data.ddq_dq);
+  });
+
   std::printf(
     "{\"model\": \"%s\", \"nq\": %d, \"ns_per_call\": {\"fk\": %.2f, \"jacobians\": %.2f, "
-    "\"rnea\": %.2f, \"crba\": %.2f, \"aba\": %.2f}}\n",
-    model.name.c_str(), n, fk, jac, rnea, crba, aba);
+    "\"rnea\": %.2f, \"crba\": %.2f, \"aba\": %.2f, \"rnea_derivatives\": %.2f, "
+    "\"aba_derivatives\": %.2f}}\n",
+    model.name.c_str(), n, fk, jac, rnea, crba, aba, rnea_derivatives, aba_derivatives);
   return 0;
 }

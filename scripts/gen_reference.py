@@ -17,6 +17,10 @@ there. It writes one JSON file per robot to `crates/screwdyn/tests/fixtures/pino
                  unaligned axes, prismatic joints along unaligned axes, random placements and
                  random physical inertias with the centre of mass off the joint origin.
 
+Each state also carries `computeRNEADerivatives` / `computeABADerivatives` with body-fixed
+external forces (issue 15; random on even states, drawn from a second generator so the states
+themselves do not change).
+
 Every spatial quantity is converted from Pinocchio's linear-first convention to screwdyn's
 angular-first one (twists `(w, v)`, Jacobian rows `(angular; linear)`). The schema is
 documented in `crates/screwdyn/tests/fixtures/pinocchio/README.md`. The output is
@@ -272,7 +276,47 @@ def random_state(model, rng):
     return q, v, a, tau_in
 
 
-def state_json(model, data, q, v, a, tau_in, frame_names, jac_frames):
+def random_fext(model, rng_fext, k):
+    """External wrenches for state k: random on even states, zero on odd ones (angular first)."""
+    w = np.zeros((model.nv, 6))
+    if k % 2 == 0:
+        w = rng_fext.normal(size=(model.nv, 6)) * np.array([2.0, 2.0, 2.0, 10.0, 10.0, 10.0])
+    return w
+
+
+def symmetric_upper(m):
+    m = np.array(m)
+    return np.triu(m) + np.triu(m, 1).T
+
+
+def derivatives_json(model, data, q, v, a, tau_in, w):
+    """computeRNEADerivatives / computeABADerivatives with body-fixed external forces.
+
+    `w` holds one wrench per joint, angular first, in the joint (= body) frame; Pinocchio's
+    `pin.Force` is linear first. Joint-space derivatives need no other conversion.
+    """
+    fext = [pin.Force.Zero()] + [pin.Force(wi[3:], wi[:3]) for wi in w]
+    tau = pin.rnea(model, data, q, v, a, fext).copy()
+    dq, dv, da = (np.array(x).copy() for x in pin.computeRNEADerivatives(model, data, q, v, a, fext))
+    da = symmetric_upper(da)
+    qdd = pin.aba(model, data, q, v, tau_in, fext).copy()
+    ddq, ddv, minv = (np.array(x).copy() for x in pin.computeABADerivatives(model, data, q, v, tau_in, fext))
+    minv = symmetric_upper(minv)
+    assert np.allclose(minv @ da, np.eye(model.nv), atol=1e-8)
+    return {
+        "fext": rows(w),
+        "tau_fext": fl(tau),
+        "qdd_fext": fl(qdd),
+        "dtau_dq": rows(dq),
+        "dtau_dv": rows(dv),
+        "dtau_da": rows(da),
+        "dqdd_dq": rows(ddq),
+        "dqdd_dv": rows(ddv),
+        "minv": rows(minv),
+    }
+
+
+def state_json(model, data, q, v, a, tau_in, frame_names, jac_frames, w):
     tau = pin.rnea(model, data, q, v, a).copy()
     m = pin.crba(model, data, q).copy()
     m = np.triu(m) + np.triu(m, 1).T  # crba fills the upper triangle
@@ -315,10 +359,11 @@ def state_json(model, data, q, v, a, tau_in, frame_names, jac_frames):
         "jacobians_world": jw,
         "jacobians_local": jl,
         "jacobians_local_world_aligned": jlwa,
+        "derivatives": derivatives_json(model, data, q, v, a, tau_in, w),
     }
 
 
-def fixture(robot, model, source, urdf_path, rng):
+def fixture(robot, model, source, urdf_path, rng, rng_fext):
     assert model.nq == model.nv, f"{robot}: nq = {model.nq} != nv = {model.nv}"
     data = model.createData()
     pin.forwardKinematics(model, data, pin.neutral(model))
@@ -327,9 +372,10 @@ def fixture(robot, model, source, urdf_path, rng):
     jac_frames = JACOBIAN_FRAMES[robot]
     assert all(n in frame_names for n in jac_frames)
     states = []
-    for _ in range(N_STATES):
+    for k in range(N_STATES):
         q, v, a, tau_in = random_state(model, rng)
-        states.append(state_json(model, data, q, v, a, tau_in, frame_names, jac_frames))
+        w = random_fext(model, rng_fext, k)
+        states.append(state_json(model, data, q, v, a, tau_in, frame_names, jac_frames, w))
     return {
         "robot": robot,
         "source": source,
@@ -357,14 +403,17 @@ def write(fx):
 
 def main():
     rng = np.random.default_rng(SEED)
+    # A second stream for the external wrenches, so that the states drawn from `rng` stay the
+    # same as before the derivatives were added.
+    rng_fext = np.random.default_rng(SEED + 1)
     for robot in ("ur5", "panda"):
         path = erd_urdf_path(robot)
         model = pin.buildModelFromUrdf(path)  # fixed base
         src = f"example-robot-data {URDFS[robot]}, pinocchio.buildModelFromUrdf (fixed base)"
-        write(fixture(robot, model, src, path, rng))
+        write(fixture(robot, model, src, path, rng, rng_fext))
     tree = build_tree(rng)
     src = "random tree built in scripts/gen_reference.py with pin.Model()"
-    write(fixture("tree", tree, src, None, rng))
+    write(fixture("tree", tree, src, None, rng, rng_fext))
 
 
 if __name__ == "__main__":

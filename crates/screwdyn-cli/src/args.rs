@@ -65,6 +65,105 @@ pub enum Command {
     /// Inertia tensor of a shape (box, cylinder, sphere, rod, point) about a point, in turned
     /// axes (seed 003: parallel-axis theorem).
     Inertia(InertiaArgs),
+    /// Analytical derivatives of inverse and forward dynamics at (q, q̇, q̈): ∂τ/∂q, ∂τ/∂q̇,
+    /// ∂q̈/∂q, ∂q̈/∂q̇ and ∂q̈/∂τ = M⁻¹ (forward dynamics at τ = ID(q, q̇, q̈)).
+    Derivatives(DerivativesArgs),
+    /// The joint-torque regressor Y(q, q̇, q̈) with τ = Y π, or with --base the base
+    /// (identifiable) parameters and their expressions.
+    Regressor(RegressorArgs),
+    /// Least-squares identification of the base inertial parameters from a log (t, q.*, v.*,
+    /// a.*, tau.*), or with --excite the writing of an exciting trajectory log.
+    Identify(IdentifyArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct DerivativesArgs {
+    #[command(flatten)]
+    pub common: Common,
+    /// Joint positions q, comma-separated (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub q: Option<String>,
+    /// Joint velocities q̇ (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub v: Option<String>,
+    /// Joint accelerations q̈ (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub a: Option<String>,
+    #[command(flatten)]
+    pub wrenches: WrenchArgs,
+}
+
+#[derive(Args, Debug)]
+pub struct RegressorArgs {
+    #[command(flatten)]
+    pub common: Common,
+    /// Joint positions q, comma-separated (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub q: Option<String>,
+    /// Joint velocities q̇ (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub v: Option<String>,
+    /// Joint accelerations q̈ (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub a: Option<String>,
+    /// Append viscous and Coulomb friction columns (fv_<joint>, fc_<joint>).
+    #[arg(long)]
+    pub friction: bool,
+    /// Print the base parameters (numerical rank, expressions, model values) instead of Y.
+    #[arg(long)]
+    pub base: bool,
+    /// Random states used to find the base parameters.
+    #[arg(long, default_value_t = 100)]
+    pub states: usize,
+}
+
+#[derive(Args, Debug)]
+pub struct IdentifyArgs {
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// Gravity x,y,z in the base frame (m/s²), overriding the model's.
+    #[arg(long, allow_hyphen_values = true, value_name = "X,Y,Z")]
+    pub gravity: Option<String>,
+    /// The log: CSV with columns t, q.<joint>, v.<joint>, tau.<joint> and optionally
+    /// a.<joint> (without them, q̈ is the slope of a Savitzky–Golay quadratic fit of q̇).
+    #[arg(long, value_name = "LOG.CSV")]
+    pub input: Option<std::path::PathBuf>,
+    /// Also estimate viscous and Coulomb friction per joint.
+    #[arg(long)]
+    pub friction: bool,
+    /// Constrain the estimate to physically consistent bodies (log-Cholesky parametrisation).
+    #[arg(long)]
+    pub physical: bool,
+    /// Half width (samples) of the Savitzky–Golay window used when a.* columns are absent.
+    #[arg(long, default_value_t = 5)]
+    pub window: usize,
+    /// Plot the torque residual per joint over time (.png or .svg).
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<std::path::PathBuf>,
+    /// Write an exciting Fourier-series trajectory log to --output instead of identifying.
+    #[arg(long)]
+    pub excite: bool,
+    /// With --excite: the log to write (.csv).
+    #[arg(long, value_name = "LOG.CSV")]
+    pub output: Option<std::path::PathBuf>,
+    /// With --excite: duration (s).
+    #[arg(long, default_value_t = 20.0)]
+    pub duration: f64,
+    /// With --excite: samples per second.
+    #[arg(long, default_value_t = 100.0)]
+    pub rate: f64,
+    /// With --excite: base frequency of the Fourier series (Hz).
+    #[arg(long, default_value_t = 0.1)]
+    pub frequency: f64,
+    /// With --excite: harmonics per joint.
+    #[arg(long, default_value_t = 5)]
+    pub harmonics: usize,
+    /// With --excite: standard deviation of the Gaussian noise added to the torques (N·m, N).
+    #[arg(long, default_value_t = 0.0)]
+    pub noise: f64,
+    /// With --excite: random seed of the coefficients and the noise.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
 }
 
 #[derive(Args, Debug)]
@@ -433,8 +532,11 @@ pub struct BenchArgs {
     /// A .urdf or .toml file, or builtin:<name>.
     pub model: String,
     /// Algorithms to time, comma-separated: fk, jacobians, rnea, crba, aba, gravity, nle,
-    /// coriolis, minv, forward_crba.
-    #[arg(long, default_value = "fk,jacobians,rnea,crba,aba")]
+    /// coriolis, minv, forward_crba, rnea_derivatives, aba_derivatives.
+    #[arg(
+        long,
+        default_value = "fk,jacobians,rnea,crba,aba,rnea_derivatives,aba_derivatives"
+    )]
     pub algorithms: String,
     /// Number of timed batches (the median is reported).
     #[arg(long, default_value_t = 21)]

@@ -20,6 +20,7 @@
 pub mod builtin;
 pub mod dynamics;
 mod error;
+pub mod identification;
 pub mod inertia;
 pub mod io;
 pub mod kinematics;

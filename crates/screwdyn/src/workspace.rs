@@ -5,7 +5,7 @@ use crate::model::Model;
 use crate::scalar::Real;
 use crate::spatial::CompositeInertia;
 use crate::spatial::{Se3, Twist, Wrench};
-use nalgebra::{DMatrix, DVector, Matrix6};
+use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3};
 
 /// Preallocated per-model buffers. Algorithms read a [`Model`] and write here; after
 /// `Workspace::new` no algorithm call allocates. Every field is public and documented with the
@@ -83,6 +83,32 @@ pub struct Workspace<T: Real = f64> {
     pub composite_inertia_matrix: Vec<Matrix6<T>>,
     /// Coriolis matrix: composite base-frame factor `Bᶜ_j = Σ B(𝔍_i, V_i)` of the subtree of `j`.
     pub composite_coriolis_factor: Vec<Matrix6<T>>,
+
+    /// `∂τ/∂q` from [`rnea_derivatives`](crate::dynamics::rnea_derivatives): entry `(i, j)` is
+    /// `∂τ_i/∂q_j`.
+    pub dtau_dq: DMatrix<T>,
+    /// `∂τ/∂q̇` from [`rnea_derivatives`](crate::dynamics::rnea_derivatives).
+    pub dtau_dv: DMatrix<T>,
+    /// `∂q̈/∂q` from [`aba_derivatives`](crate::dynamics::aba_derivatives).
+    pub dqdd_dq: DMatrix<T>,
+    /// `∂q̈/∂q̇` from [`aba_derivatives`](crate::dynamics::aba_derivatives).
+    pub dqdd_dv: DMatrix<T>,
+    /// `Y(q, q̇, q̈)` (n × 10n) from [`regressor`](crate::dynamics::regressor): `τ = Y π`
+    /// (empty until the first call).
+    pub regressor: DMatrix<T>,
+    /// Derivatives: `α_i = ad_{A_{λ(i)}} s_i + ad_{V_{λ(i)}} ṡ_i`, the part of `∂A_k/∂q_i` shared
+    /// by the subtree of `i` (base frame).
+    pub acceleration_derivative_in_world: Vec<Twist<T>>,
+    /// Derivatives: `Dᶜ₁₁`, the angular block of `Σ (𝔍V)⊼ − ad_Vᵀ 𝔍 − 𝔍 ad_V` over the subtree
+    /// of `i` (base frame; the other non-zero block is `−2[f]`, `f` the linear momentum).
+    pub subtree_velocity_coupling: Vec<Matrix3<T>>,
+    /// Derivatives: the subtree's linear momentum `f` in the base frame.
+    pub subtree_linear_momentum: Vec<Vector3<T>>,
+    /// Derivatives: `F'_i`, the subtree's Newton–Euler wrench without the wrenches fixed in
+    /// space (base frame).
+    pub subtree_wrench_in_world: Vec<Wrench<T>>,
+    /// Derivatives: `Eᶜ_i`, the subtree's external wrenches given in the base frame.
+    pub subtree_fixed_external_wrench: Vec<Wrench<T>>,
     /// The number of bodies of the model this workspace was made for.
     nbodies: usize,
 }
@@ -143,6 +169,16 @@ impl<T: Real> Workspace<T> {
             screw_rate_in_world: vec![Twist::zeros(); n],
             composite_inertia_matrix: vec![Matrix6::zeros(); n],
             composite_coriolis_factor: vec![Matrix6::zeros(); n],
+            dtau_dq: DMatrix::zeros(sq, sq),
+            dtau_dv: DMatrix::zeros(sq, sq),
+            dqdd_dq: DMatrix::zeros(sq, sq),
+            dqdd_dv: DMatrix::zeros(sq, sq),
+            regressor: DMatrix::zeros(0, 0),
+            acceleration_derivative_in_world: vec![Twist::zeros(); n],
+            subtree_velocity_coupling: vec![Matrix3::zeros(); n],
+            subtree_linear_momentum: vec![Vector3::zeros(); n],
+            subtree_wrench_in_world: vec![Wrench::zeros(); n],
+            subtree_fixed_external_wrench: vec![Wrench::zeros(); n],
             nbodies: n,
         }
     }
@@ -185,6 +221,50 @@ impl<T: Real> Workspace<T> {
             self.mass_matrix_inverse = try_square(n)?;
             self.coriolis_matrix = try_square(n)?;
             self.cholesky = try_square(n)?;
+        }
+        Ok(())
+    }
+
+    /// [`Workspace::ensure_square`] and the four `n × n` derivative matrices (`dtau_dq`,
+    /// `dtau_dv`, `dqdd_dq`, `dqdd_dv`, made with the workspace up to
+    /// [`EAGER_SQUARE_BUFFERS`] bodies).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the memory cannot be had.
+    pub(crate) fn ensure_derivatives(&mut self) -> Result<()> {
+        self.ensure_square()?;
+        let n = self.nbodies;
+        if self.dtau_dq.nrows() != n {
+            self.dtau_dq = try_square(n)?;
+            self.dtau_dv = try_square(n)?;
+            self.dqdd_dq = try_square(n)?;
+            self.dqdd_dv = try_square(n)?;
+        }
+        Ok(())
+    }
+
+    /// The `n × 10n` regressor buffer, made on the first call of
+    /// [`regressor`](crate::dynamics::regressor) (it is ten times a mass matrix).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the memory cannot be had.
+    pub(crate) fn ensure_regressor(&mut self) -> Result<()> {
+        let n = self.nbodies;
+        if self.regressor.shape() != (n, 10 * n) {
+            let cols = n.checked_mul(10).ok_or_else(|| {
+                Error::InvalidArgument(format!("a regressor for {n} joints is too large"))
+            })?;
+            let len = n.checked_mul(cols).ok_or_else(|| {
+                Error::InvalidArgument(format!("a regressor for {n} joints is too large"))
+            })?;
+            let mut data: Vec<T> = Vec::new();
+            data.try_reserve_exact(len).map_err(|_| {
+                Error::InvalidArgument(format!(
+                    "the {n} × {cols} regressor cannot be allocated for a model of {n} joints"
+                ))
+            })?;
+            data.resize(len, T::zero());
+            self.regressor = DMatrix::from_vec(n, cols, data);
         }
         Ok(())
     }

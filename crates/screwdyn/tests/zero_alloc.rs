@@ -58,6 +58,7 @@ fn check(model: &Model) {
     ext.add_local(0, Vector6::repeat(0.5)).unwrap();
     ext.add_world(n - 1, Vector6::repeat(-0.25)).unwrap();
     let mut jac = Matrix6xX::zeros(n);
+    let mut jac2 = Matrix6xX::zeros(n);
     let tip = model.body_frame(n - 1).unwrap();
     // Warm up once (nothing lazily allocated should remain), then count.
     let mut run = |ws: &mut Workspace| {
@@ -89,6 +90,22 @@ fn check(model: &Model) {
         total_energy(model, ws, &q, &v).unwrap();
         center_of_mass(model, ws, &q).unwrap();
         power(model, &a, &v).unwrap();
+        rnea_derivatives(model, ws, &q, &v, &a, None).unwrap();
+        rnea_derivatives(model, ws, &q, &v, &a, Some(&ext)).unwrap();
+        aba_derivatives(model, ws, &q, &v, &a, None).unwrap();
+        aba_derivatives(model, ws, &q, &v, &a, Some(&ext)).unwrap();
+        regressor(model, ws, &q, &v, &a).unwrap();
+        frame_velocity_derivatives(
+            model,
+            ws,
+            tip,
+            Reference::Local,
+            &q,
+            &v,
+            &mut jac,
+            &mut jac2,
+        )
+        .unwrap();
     };
     run(&mut ws);
     let count = allocations(|| run(&mut ws));

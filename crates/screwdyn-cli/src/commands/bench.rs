@@ -10,6 +10,7 @@ use crate::args::{BenchArgs, Format};
 use crate::output::resolve;
 use crate::CliError;
 use screwdyn::dynamics::{aba, coriolis_matrix, crba, forward_dynamics, gravity_torque};
+use screwdyn::dynamics::{aba_derivatives, rnea_derivatives};
 use screwdyn::dynamics::{mass_matrix_inverse, nonlinear_effects, rnea, ForwardMethod};
 use screwdyn::kinematics::{compute_joint_jacobians, forward_kinematics};
 use screwdyn::{Model, Workspace};
@@ -28,6 +29,8 @@ const ALGORITHMS: &[&str] = &[
     "coriolis",
     "minv",
     "forward_crba",
+    "rnea_derivatives",
+    "aba_derivatives",
 ];
 
 const STATES: usize = 1000;
@@ -147,6 +150,14 @@ fn run(model: &Model, s: &States, name: &str, batches: usize, calls: usize) -> O
                 None,
                 ForwardMethod::Crba,
             );
+            let _ = black_box(r.is_ok());
+        }),
+        "rnea_derivatives" => time_it(b, c, |k| {
+            let r = rnea_derivatives(m, w, black_box(&s.q[k]), &s.v[k], &s.a[k], None);
+            let _ = black_box(r.is_ok());
+        }),
+        "aba_derivatives" => time_it(b, c, |k| {
+            let r = aba_derivatives(m, w, black_box(&s.q[k]), &s.v[k], &s.tau[k], None);
             let _ = black_box(r.is_ok());
         }),
         _ => return None,

@@ -5,6 +5,7 @@ mod bench;
 mod classic;
 mod dynamics;
 mod explain;
+mod identify;
 mod inertia;
 mod kinematics;
 mod model;
@@ -43,6 +44,9 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Bench(a) => bench::bench(&a),
         Command::Symbolic(a) => symbolic::symbolic(&a),
         Command::Inertia(a) => inertia::inertia(&a),
+        Command::Derivatives(a) => identify::derivatives(&a),
+        Command::Regressor(a) => identify::regressor(&a),
+        Command::Identify(a) => identify::identify(&a),
     }
 }
 

@@ -1,7 +1,7 @@
 //! The joint-space mass matrix by the composite-rigid-body algorithm (O(n²) on a tree), and its
 //! inverse.
 
-use super::cholesky::{cholesky_in_place, cholesky_solve_in_place, singular_error};
+use super::cholesky::singular_error;
 use crate::error::Result;
 use crate::kinematics::forward_kinematics;
 use crate::model::Model;
@@ -111,12 +111,83 @@ pub fn mass_matrix_inverse<'w, T: Real>(
     q: &[T],
 ) -> Result<&'w DMatrix<T>> {
     crba(model, ws, q)?;
-    ws.cholesky.copy_from(&ws.mass_matrix);
-    cholesky_in_place(&mut ws.cholesky).map_err(|j| singular_error(model, j))?;
-    ws.mass_matrix_inverse.fill(T::zero());
-    ws.mass_matrix_inverse.fill_diagonal(T::one());
-    for c in 0..model.nv() {
-        cholesky_solve_in_place(&ws.cholesky, ws.mass_matrix_inverse.column_mut(c));
-    }
+    invert_mass_matrix(model, ws)?;
     Ok(&ws.mass_matrix_inverse)
+}
+
+/// `ws.mass_matrix_inverse = ws.mass_matrix⁻¹` by a Cholesky factorisation `M = L Lᵀ` (in
+/// `ws.cholesky`, lower triangle), the inverse `L⁻¹` and `M⁻¹ = L⁻ᵀ L⁻¹`, all by operations on
+/// contiguous columns (column-major storage).
+pub(crate) fn invert_mass_matrix<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) -> Result<()> {
+    let n = model.nv();
+    ws.cholesky.copy_from(&ws.mass_matrix);
+    let a = &mut ws.cholesky.as_mut_slice()[..n * n];
+    let scale = (0..n).fold(T::zero(), |s, i| s.max(a[i * n + i].abs()));
+    let tiny = scale * T::default_epsilon() * crate::scalar::real(64.0);
+    // Right-looking Cholesky: column j of L, then update the trailing lower triangle.
+    for j in 0..n {
+        let d = a[j * n + j];
+        if d.partial_cmp(&tiny) != Some(std::cmp::Ordering::Greater) {
+            return Err(singular_error(model, j));
+        }
+        let d = d.sqrt();
+        a[j * n + j] = d;
+        let inv = T::one() / d;
+        for x in &mut a[j * n + j + 1..(j + 1) * n] {
+            *x *= inv;
+        }
+        let (head, tail) = a.split_at_mut((j + 1) * n);
+        let lj = &head[j * n..(j + 1) * n];
+        for (c, col) in tail.chunks_exact_mut(n).enumerate() {
+            let c = c + j + 1;
+            let f = lj[c];
+            for (x, l) in col[c..].iter_mut().zip(&lj[c..]) {
+                *x -= f * *l;
+            }
+        }
+    }
+    // L⁻¹ (lower triangular) in place of L: column c solves L x = e_c.
+    for c in 0..n {
+        // x_k for k < c is zero; work on column c of the result, stored in the upper part of
+        // mass_matrix_inverse first.
+        let out = &mut ws.mass_matrix_inverse.as_mut_slice()[c * n..(c + 1) * n];
+        out.fill(T::zero());
+        out[c] = T::one();
+        for k in c..n {
+            let col = &a[k * n..(k + 1) * n];
+            let xk = out[k] / col[k];
+            out[k] = xk;
+            for (o, l) in out[k + 1..].iter_mut().zip(&col[k + 1..]) {
+                *o -= xk * *l;
+            }
+        }
+    }
+    // M⁻¹_ij = Σ_{k ≥ max(i, j)} L⁻¹_ki L⁻¹_kj: dots of columns of L⁻¹. The strict upper
+    // triangle of L⁻¹ is zero, so it takes M⁻¹_ij (i < j) first; then the diagonal; then the
+    // lower triangle is mirrored over L⁻¹ (`cholesky` keeps L).
+    let minv = &mut ws.mass_matrix_inverse.as_mut_slice()[..n * n];
+    let dot = |m: &[T], i: usize, j: usize| {
+        let mut s = T::zero();
+        for (x, y) in m[i * n + j..(i + 1) * n]
+            .iter()
+            .zip(&m[j * n + j..(j + 1) * n])
+        {
+            s += *x * *y;
+        }
+        s
+    };
+    for j in 1..n {
+        for i in 0..j {
+            minv[j * n + i] = dot(minv, i, j);
+        }
+    }
+    for j in 0..n {
+        minv[j * n + j] = dot(minv, j, j);
+    }
+    for j in 0..n {
+        for i in j + 1..n {
+            minv[j * n + i] = minv[i * n + j];
+        }
+    }
+    Ok(())
 }

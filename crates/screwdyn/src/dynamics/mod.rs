@@ -23,10 +23,12 @@ mod classic_newton_euler;
 mod closed_form;
 mod coriolis;
 mod crba;
+mod derivatives;
 pub(crate) mod energy;
 mod forward;
 mod inputs;
 mod lagrange;
+mod regressor;
 mod rnea;
 mod trace;
 mod wrenches;
@@ -36,6 +38,7 @@ pub use classic_newton_euler::{classic_newton_euler, ClassicLink};
 pub use closed_form::{closed_form, ClosedForm, MAX_CLOSED_FORM_JOINTS};
 pub use coriolis::coriolis_matrix;
 pub use crba::{crba, mass_matrix, mass_matrix_inverse};
+pub use derivatives::{aba_derivatives, frame_velocity_derivatives, rnea_derivatives};
 pub use energy::{
     center_of_mass, kinetic_energy, kinetic_energy_mass_matrix, potential_energy, power,
     total_energy,
@@ -46,6 +49,10 @@ pub use forward::{
 pub use lagrange::{
     effective_inertia, effective_inertia_free, effective_inertia_locked, lagrange_coefficients,
     mass_matrix_derivatives, LagrangeCoefficients, MAX_LAGRANGE_JOINTS,
+};
+pub use regressor::{
+    body_parameters, inertia_from_parameters, model_parameters, regressor, PARAMETERS_PER_BODY,
+    PARAMETER_NAMES,
 };
 pub use rnea::{base_acceleration, gravity_torque, inverse_dynamics, nonlinear_effects, rnea};
 pub use trace::{rnea_trace, BackwardStep, ForwardStep, RneaTrace};

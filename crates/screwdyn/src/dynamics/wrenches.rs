@@ -188,6 +188,23 @@ impl<T: Real> ExternalWrenches<T> {
         }
     }
 
+    /// Whether any wrench was given in the base frame.
+    #[inline]
+    pub(crate) fn has_world(&self) -> bool {
+        self.any_world
+    }
+
+    /// The part of the wrench on body `i` that was given in the base frame (fixed in space),
+    /// `None` when no wrench was given in the base frame.
+    #[inline]
+    pub(crate) fn world_part(&self, i: usize) -> Option<&Wrench<T>> {
+        if self.any_world {
+            Some(&self.world[i])
+        } else {
+            None
+        }
+    }
+
     /// `W_ext^{i,i}` given the pose `H_i^0` of body `i`.
     #[inline]
     pub(crate) fn on_body_at(&self, pose_in_world: &Se3<T>, i: usize) -> Wrench<T> {

@@ -141,6 +141,29 @@ pub struct State {
     pub jacobians_world: BTreeMap<String, Vec<Vec<f64>>>,
     pub jacobians_local: BTreeMap<String, Vec<Vec<f64>>>,
     pub jacobians_local_world_aligned: BTreeMap<String, Vec<Vec<f64>>>,
+    /// `computeRNEADerivatives` / `computeABADerivatives` with external wrenches.
+    pub derivatives: DerivativeData,
+}
+
+/// Pinocchio's first-order derivatives at one state, with body-fixed external wrenches `fext`
+/// (random on even states, zero on odd ones). Matrices are lists of rows, entry `(i, j)` is
+/// `∂y_i/∂x_j`.
+#[derive(Clone, Debug, Deserialize)]
+pub struct DerivativeData {
+    /// One wrench per joint, angular first, in the joint (body) frame: on the body.
+    pub fext: Vec<[f64; 6]>,
+    /// `rnea(q, v, a, fext)`.
+    pub tau_fext: Vec<f64>,
+    /// `aba(q, v, tau_in, fext)`.
+    pub qdd_fext: Vec<f64>,
+    /// `computeRNEADerivatives(q, v, a, fext)`.
+    pub dtau_dq: Vec<Vec<f64>>,
+    pub dtau_dv: Vec<Vec<f64>>,
+    pub dtau_da: Vec<Vec<f64>>,
+    /// `computeABADerivatives(q, v, tau_in, fext)`.
+    pub dqdd_dq: Vec<Vec<f64>>,
+    pub dqdd_dv: Vec<Vec<f64>>,
+    pub minv: Vec<Vec<f64>>,
 }
 
 /// A whole fixture file.

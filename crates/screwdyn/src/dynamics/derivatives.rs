@@ -1,0 +1,442 @@
+//! Analytical first-order derivatives of inverse and forward dynamics, written with the seeds'
+//! operators in the base frame {0} (twists angular first, `ad`, `ad*`).
+//!
+//! # Notation
+//!
+//! Every spatial quantity is written in the base frame {0} (moments about the base origin):
+//!
+//! - `s_i = Ad_{H_i^0} S_i^{i,λ(i)}`: joint `i`'s screw axis (a column of the space Jacobian);
+//! - `V_i = V_{λ(i)} + s_i q̇_i`: body `i`'s twist `Ad_{H_i^0} V_i^{i,0}`;
+//! - `ṡ_i = ad_{V_i} s_i = ad_{V_{λ(i)}} s_i`: the time derivative of `s_i`;
+//! - `A_i = A_{λ(i)} + s_i q̈_i + ṡ_i q̇_i` with `A_base = (0, −g)` (seed 000's base
+//!   acceleration): `d/dt V_i + gravity`, equal to `Ad_{H_i^0} V̇_i^{i,0}`;
+//! - `𝔍_i = Ad_{H_0^i}ᵀ 𝔍^{i,i} Ad_{H_0^i}`: body `i`'s spatial inertia;
+//! - `W_i = 𝔍_i A_i − ad_{V_i}ᵀ 𝔍_i V_i − W_ext,i`: the Newton–Euler wrench of seed 000's
+//!   backward pass, written in {0}, and `F_i = Σ_{k ⪰ i} W_k` (the subtree of `i`), so that
+//!   `τ_i = s_iᵀ F_i`.
+//!
+//! # Derivatives of the kinematic quantities
+//!
+//! A body-fixed twist moves with `q_j` (`j ⪯ k`, i.e. `j` supports `k`) as
+//! `∂(Ad_{H_k^0} X)/∂q_j = ad_{s_j} Ad_{H_k^0} X`, because `∂H_k^0/∂q_j = [s_j] H_k^0`. Hence,
+//! for `j ⪯ k` (all other derivatives are zero):
+//!
+//! ```text
+//! ∂s_k/∂q_j  = ad_{s_j} s_k
+//! ∂V_k/∂q_j  = ad_{s_j} (V_k − V_{λ(j)})  = ad_{s_j} V_k + ṡ_j
+//! ∂V_k/∂q̇_j = s_j
+//! ∂A_k/∂q_j  = ad_{s_j} A_k + α_j − ad_{V_k} ṡ_j,   α_j = ad_{A_{λ(j)}} s_j + ad_{V_{λ(j)}} ṡ_j
+//! ∂A_k/∂q̇_j = ad_{s_j} V_k + 2 ṡ_j
+//! ∂𝔍_k/∂q_j  = −ad_{s_j}ᵀ 𝔍_k − 𝔍_k ad_{s_j}
+//! ```
+//!
+//! (the first three are the derivatives of frame poses and twists: the space-Jacobian column
+//! `s_j` moves the pose, `ad_{s_j} V_k + ṡ_j` is the derivative of the twist of any frame on
+//! body `k`).
+//!
+//! # Derivatives of the wrenches
+//!
+//! With `D_k = (𝔍_k V_k)⊼ − ad_{V_k}ᵀ 𝔍_k − 𝔍_k ad_{V_k}` (`(h)⊼ X = −ad_Xᵀ h`; `D_k` is twice
+//! the Coriolis factor `B(𝔍, V)` of [`coriolis_matrix`](super::coriolis_matrix), and only its
+//! left half is non-zero: `D = [[D₁₁, 0], [−2[f], 0]]` with `f` the linear momentum), the
+//! rigid motion of body `k` with joint `j` turns `W_k` as a wrench, `−ad_{s_j}ᵀ W_k`, and the
+//! rest is linear in the subtree:
+//!
+//! ```text
+//! ∂W_k/∂q_j  = −ad_{s_j}ᵀ (W_k + E_k) + 𝔍_k α_j + D_k ṡ_j
+//! ∂W_k/∂q̇_j = 2 𝔍_k ṡ_j + D_k s_j
+//! ```
+//!
+//! where `E_k` is the part of the external wrench fixed in the base frame (wrenches given in
+//! the body frame move with the body and are covered by the first term). With the subtree sums
+//! `𝔍ᶜ_j = Σ_{k⪰j} 𝔍_k`, `Dᶜ_j = Σ_{k⪰j} D_k`, `Eᶜ_j = Σ_{k⪰j} E_k` and `F'_j = F_j + Eᶜ_j`:
+//!
+//! ```text
+//! i ⪯ j:  ∂τ_i/∂q_j  = s_iᵀ φ_j,  φ_j = −ad_{s_j}ᵀ F'_j + 𝔍ᶜ_j α_j + Dᶜ_j ṡ_j
+//!         ∂τ_i/∂q̇_j = s_iᵀ ψ_j,  ψ_j = 2 𝔍ᶜ_j ṡ_j + Dᶜ_j s_j
+//! j ⪯ i:  ∂τ_i/∂q_j  = (𝔍ᶜ_i s_i)ᵀ α_j + (Dᶜ_iᵀ s_i)ᵀ ṡ_j + (ad_{s_i}ᵀ Eᶜ_i)ᵀ s_j
+//!         ∂τ_i/∂q̇_j = 2 (𝔍ᶜ_i s_i)ᵀ ṡ_j + (Dᶜ_iᵀ s_i)ᵀ s_j
+//! ```
+//!
+//! (both forms agree on the diagonal), and `∂τ/∂q̈ = M` with `M_ij = s_iᵀ 𝔍ᶜ_j s_j`. Joints
+//! on different branches do not couple. `∂τ/∂q̇ = 2 C` for the Christoffel-consistent Coriolis
+//! matrix `C` when there is no friction (checked in the tests).
+//!
+//! Forward dynamics `q̈ = FD(q, q̇, τ)` satisfies `ID(q, q̇, FD(q, q̇, τ)) = τ`, so
+//! `∂q̈/∂q = −M⁻¹ ∂τ/∂q|_{q̈ = FD}`, `∂q̈/∂q̇ = −M⁻¹ ∂τ/∂q̇|_{q̈ = FD}` and `∂q̈/∂τ = M⁻¹`.
+//!
+//! All of it is one forward and one backward pass, O(n d) with `d` the depth of the tree
+//! (O(n²) on a chain), and allocates nothing.
+
+use super::aba::articulated_body;
+use super::crba::invert_mass_matrix;
+use super::rnea::base_acceleration;
+use super::wrenches::ExternalWrenches;
+use crate::error::Result;
+use crate::kinematics::forward_kinematics;
+use crate::model::Model;
+use crate::scalar::{real, Real};
+use crate::spatial::CompositeInertia;
+use crate::spatial::{ad, ad_transpose, hat, twist, Twist, Wrench};
+use crate::workspace::Workspace;
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+
+/// The partial derivatives `∂τ/∂q` and `∂τ/∂q̇` of inverse dynamics
+/// `τ = M(q) q̈ + C(q, q̇) q̇ + g(q) − Σ_i J_iᵀ W_ext,i` (seed 000's RNEA with gravity and
+/// external wrenches), analytically (module docs give the equations). Writes `ws.dtau_dq`,
+/// `ws.dtau_dv`, `ws.mass_matrix` (`= ∂τ/∂q̈`, both triangles) and `ws.tau` (`τ` itself), and
+/// leaves `ws.screw_in_world`, `ws.twist_in_world` (`V_i` in {0}), `ws.twist_dot_in_world`
+/// (`A_i` in {0}, gravity included) and `ws.composite_inertia` (`𝔍ᶜ_i`) set. Entry `(i, j)` of each matrix is `∂τ_i/∂x_j`, rows and
+/// columns in model joint order.
+///
+/// External wrenches given in a body frame ([`ExternalWrenches::add_local`], tip wrenches) move
+/// with their body; those given in the base frame ([`ExternalWrenches::add_world`]) stay fixed
+/// in space (the convention of Pinocchio's `computeRNEADerivatives`, whose external forces are
+/// body-fixed, for the former).
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) for a workspace or external-wrench
+/// set made for another model; `DimensionMismatch` / `NonFinite` for `q`, `v` or `a` of the
+/// wrong length or with a NaN.
+///
+/// ```
+/// use screwdyn::{builtin, dynamics::rnea_derivatives, Workspace};
+/// let m = builtin::pendulum(); // m = l = 1, hanging along −y
+/// let mut ws = Workspace::new(&m);
+/// let q = 0.4_f64;
+/// rnea_derivatives(&m, &mut ws, &[q], &[0.7], &[0.0], None).unwrap();
+/// // τ = m l² q̈ + m g l sin q: ∂τ/∂q = m g l cos q, ∂τ/∂q̇ = 0.
+/// assert!((ws.dtau_dq[(0, 0)] - 9.81 * q.cos()).abs() < 1e-12);
+/// assert!(ws.dtau_dv[(0, 0)].abs() < 1e-12);
+/// assert!((ws.mass_matrix[(0, 0)] - 1.0).abs() < 1e-12);
+/// ```
+pub fn rnea_derivatives<T: Real>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+    a: &[T],
+    fext: Option<&ExternalWrenches<T>>,
+) -> Result<()> {
+    ws.check(model)?;
+    model.check_vector(v, "v")?;
+    model.check_vector(a, "a")?;
+    if let Some(f) = fext {
+        f.check(model)?;
+    }
+    ws.ensure_derivatives()?;
+    forward_kinematics(model, ws, q)?;
+    derivative_passes(model, ws, v, |i| a[i], fext);
+    Ok(())
+}
+
+/// `D x` for `D = [[D₁₁, 0], [−2[f], 0]]` (see [`velocity_coupling`]).
+#[inline]
+fn coupling_apply<T: Real>(d11: &Matrix3<T>, f: &Vector3<T>, x: &Twist<T>) -> Wrench<T> {
+    let xa = Vector3::new(x[0], x[1], x[2]);
+    let top = d11 * xa;
+    let bottom = f.cross(&xa) * real::<T>(-2.0);
+    twist(top, bottom)
+}
+
+/// `Dᵀ y = (D₁₁ᵀ y_a + 2 f × y_l, 0)`.
+#[inline]
+fn coupling_transpose_apply<T: Real>(d11: &Matrix3<T>, f: &Vector3<T>, y: &Twist<T>) -> Twist<T> {
+    let ya = Vector3::new(y[0], y[1], y[2]);
+    let yl = Vector3::new(y[3], y[4], y[5]);
+    twist(
+        d11.tr_mul(&ya) + f.cross(&yl) * real::<T>(2.0),
+        Vector3::zeros(),
+    )
+}
+
+/// `D = (𝔍 V)⊼ − ad_Vᵀ 𝔍 − 𝔍 ad_V` of one body, which has only two non-zero blocks: with
+/// `𝔍 = [I [h]; [h]ᵀ m1]` (in {0}), `V = (ω, v)`, `𝔍 V = (μ, f)`,
+/// `D = [[D₁₁, 0], [−2[f], 0]]`, `D₁₁ = −[μ] − (I[ω] + (I[ω])ᵀ) − (v hᵀ + h vᵀ) + 2 (h·v) 1`.
+/// Returns `(D₁₁, f)`; both add over a subtree.
+#[inline]
+fn velocity_coupling<T: Real>(
+    inertia: &CompositeInertia<T>,
+    v: &Twist<T>,
+) -> (Matrix3<T>, Vector3<T>) {
+    let w = Vector3::new(v[0], v[1], v[2]);
+    let l = Vector3::new(v[3], v[4], v[5]);
+    let (i, h, m) = (&inertia.inertia_origin, &inertia.first_moment, inertia.mass);
+    let mu = i * w + h.cross(&l);
+    let f = l * m - h.cross(&w);
+    let k = i * hat(&w);
+    let hv = h.dot(&l) * real::<T>(2.0);
+    let mut d = -hat(&mu);
+    for r in 0..3 {
+        for c in 0..3 {
+            d[(r, c)] -= k[(r, c)] + k[(c, r)] + l[r] * h[c] + h[r] * l[c];
+        }
+        d[(r, r)] += hv;
+    }
+    (d, f)
+}
+
+/// Both passes of [`rnea_derivatives`] given `ws.pose_in_world`.
+fn derivative_passes<T: Real>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    v: &[T],
+    a: impl Fn(usize) -> T,
+    fext: Option<&ExternalWrenches<T>>,
+) {
+    let n = model.nbodies();
+    let (motions, parents, bodies) = (model.motions(), model.parents(), &model.body_composite);
+    let base = base_acceleration(model);
+    let two: T = real(2.0);
+    let fixed = fext.is_some_and(|f| f.has_world());
+    // Forward pass: s_i, ṡ_i, V_i, A_i, α_i, 𝔍_i, D_i and W_i (+ E_i), all in {0}.
+    for i in 0..n {
+        let h = ws.pose_in_world[i];
+        let s = motions[i].act(&h);
+        let (vp, ap) = match parents[i] {
+            Some(p) => (ws.twist_in_world[p], ws.twist_dot_in_world[p]),
+            None => (Twist::zeros(), base),
+        };
+        let sdot = ad(&vp, &s);
+        let vi = vp + s * v[i];
+        let ai = ap + s * a(i) + sdot * v[i];
+        let alpha = ad(&ap, &s) + ad(&vp, &sdot);
+        let inertia = bodies[i].transformed(&h);
+        let momentum = inertia.apply(&vi);
+        let mut w = inertia.apply(&ai) - ad_transpose(&vi, &momentum);
+        let mut fixed_in_space = Wrench::zeros();
+        if let Some(f) = fext {
+            w -= f.in_world_at(&h, i);
+            if let Some(e) = f.world_part(i) {
+                fixed_in_space = *e;
+            }
+        }
+        let (d11, lin_momentum) = velocity_coupling(&inertia, &vi);
+        ws.screw_in_world[i] = s;
+        ws.screw_rate_in_world[i] = sdot;
+        ws.twist_in_world[i] = vi;
+        ws.twist_dot_in_world[i] = ai;
+        ws.acceleration_derivative_in_world[i] = alpha;
+        ws.composite_inertia[i] = inertia;
+        ws.subtree_velocity_coupling[i] = d11;
+        ws.subtree_linear_momentum[i] = lin_momentum;
+        ws.subtree_wrench_in_world[i] = w + fixed_in_space;
+        ws.subtree_fixed_external_wrench[i] = fixed_in_space;
+    }
+    if !model.is_chain {
+        ws.dtau_dq.fill(T::zero());
+        ws.dtau_dv.fill(T::zero());
+        ws.mass_matrix.fill(T::zero());
+    }
+    // Backward pass: subtree sums, then the row and column of every joint with its ancestors.
+    for j in (0..n).rev() {
+        let s = ws.screw_in_world[j];
+        let sdot = ws.screw_rate_in_world[j];
+        let alpha = ws.acceleration_derivative_in_world[j];
+        let ic = ws.composite_inertia[j];
+        let (d11, lm) = (
+            ws.subtree_velocity_coupling[j],
+            ws.subtree_linear_momentum[j],
+        );
+        let fc = ws.subtree_wrench_in_world[j];
+        let ec = ws.subtree_fixed_external_wrench[j];
+        ws.tau[j] = s.dot(&(fc - ec));
+        let ic_sdot = ic.apply(&sdot);
+        let phi = ic.apply(&alpha) + coupling_apply(&d11, &lm, &sdot) - ad_transpose(&s, &fc);
+        let psi = ic_sdot * two + coupling_apply(&d11, &lm, &s);
+        let g = ic.apply(&s);
+        let g2 = g * two;
+        let hh = coupling_transpose_apply(&d11, &lm, &s);
+        let e = ad_transpose(&s, &ec);
+        ws.dtau_dq[(j, j)] = g.dot(&alpha) + hh.dot(&sdot);
+        ws.dtau_dv[(j, j)] = g2.dot(&sdot) + hh.dot(&s);
+        ws.mass_matrix[(j, j)] = g.dot(&s);
+        let mut k = j;
+        while let Some(p) = parents[k] {
+            k = p;
+            let (sk, sdk, ak) = (
+                &ws.screw_in_world[k],
+                &ws.screw_rate_in_world[k],
+                &ws.acceleration_derivative_in_world[k],
+            );
+            let mut dq_jk = g.dot(ak) + hh.dot(sdk);
+            if fixed {
+                dq_jk += e.dot(sk);
+            }
+            let (dq_kj, dv_kj) = (sk.dot(&phi), sk.dot(&psi));
+            let dv_jk = g2.dot(sdk) + hh.dot(sk);
+            let mkj = sk.dot(&g);
+            ws.dtau_dq[(k, j)] = dq_kj;
+            ws.dtau_dv[(k, j)] = dv_kj;
+            ws.dtau_dq[(j, k)] = dq_jk;
+            ws.dtau_dv[(j, k)] = dv_jk;
+            ws.mass_matrix[(k, j)] = mkj;
+            ws.mass_matrix[(j, k)] = mkj;
+        }
+        if let Some(p) = parents[j] {
+            ws.composite_inertia[p].add(&ic);
+            ws.subtree_velocity_coupling[p] += d11;
+            ws.subtree_linear_momentum[p] += lm;
+            ws.subtree_wrench_in_world[p] += fc;
+            if fixed {
+                ws.subtree_fixed_external_wrench[p] += ec;
+            }
+        }
+    }
+}
+
+/// The partial derivatives of forward dynamics `q̈ = M⁻¹(τ − C q̇ − g + Σ_i J_iᵀ W_ext,i)`:
+/// `∂q̈/∂q = −M⁻¹ ∂τ/∂q`, `∂q̈/∂q̇ = −M⁻¹ ∂τ/∂q̇` (the inverse-dynamics derivatives of
+/// [`rnea_derivatives`] taken at `q̈ = FD(q, q̇, τ)`) and `∂q̈/∂τ = M⁻¹`. Writes `ws.qdd`
+/// (forward dynamics by the articulated-body algorithm, [`aba`](super::aba)), `ws.dqdd_dq`, `ws.dqdd_dv`, `ws.mass_matrix_inverse`,
+/// and everything [`rnea_derivatives`] writes. Entry `(i, j)` is `∂q̈_i/∂x_j`.
+///
+/// # Errors
+/// As [`rnea_derivatives`] (with `tau` for `a`), and
+/// [`Error::Numerical`](crate::Error::Numerical) when the mass matrix is singular.
+///
+/// ```
+/// use screwdyn::{builtin, dynamics::aba_derivatives, Workspace};
+/// let m = builtin::pendulum(); // m = l = 1: q̈ = τ − g sin q
+/// let mut ws = Workspace::new(&m);
+/// let q = 0.4_f64;
+/// aba_derivatives(&m, &mut ws, &[q], &[0.7], &[0.3], None).unwrap();
+/// assert!((ws.dqdd_dq[(0, 0)] + 9.81 * q.cos()).abs() < 1e-12);
+/// assert!(ws.dqdd_dv[(0, 0)].abs() < 1e-12);
+/// assert!((ws.mass_matrix_inverse[(0, 0)] - 1.0).abs() < 1e-12);
+/// ```
+pub fn aba_derivatives<T: Real>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+    tau: &[T],
+    fext: Option<&ExternalWrenches<T>>,
+) -> Result<()> {
+    ws.check(model)?;
+    model.check_vector(v, "v")?;
+    model.check_vector(tau, "tau")?;
+    ws.ensure_derivatives()?;
+    articulated_body(model, ws, q, v, tau, fext)?;
+    // Poses are those of `q` (set by ABA); q̈ is read from a moved-out buffer (no allocation).
+    let qdd = std::mem::replace(&mut ws.qdd, DVector::zeros(0));
+    derivative_passes(model, ws, v, |i| qdd[i], fext);
+    ws.qdd = qdd;
+    invert_mass_matrix(model, ws)?;
+    let n = model.nv();
+    negated_product(&ws.mass_matrix_inverse, &ws.dtau_dq, &mut ws.dqdd_dq, n);
+    negated_product(&ws.mass_matrix_inverse, &ws.dtau_dv, &mut ws.dqdd_dv, n);
+    Ok(())
+}
+
+/// `out = −a b` for n×n matrices, column by column as sums of columns of `a` (a plain loop:
+/// `gemm` may allocate packing buffers).
+fn negated_product<T: Real>(a: &DMatrix<T>, b: &DMatrix<T>, out: &mut DMatrix<T>, n: usize) {
+    let (a, b) = (a.as_slice(), b.as_slice());
+    let out = &mut out.as_mut_slice()[..n * n];
+    for (j, col) in out.chunks_exact_mut(n).enumerate() {
+        col.fill(T::zero());
+        for (k, ak) in a[..n * n].chunks_exact(n).enumerate() {
+            let x = -b[j * n + k];
+            for (o, y) in col.iter_mut().zip(ak) {
+                *o += *y * x;
+            }
+        }
+    }
+}
+
+/// The derivatives of frame `frame`'s twist with respect to `q` and `q̇` (6 × n each, angular
+/// rows first): with `b` the frame's body, `s_j = Ad_{H_j^0} S_j` and `ṡ_j = ad_{V_λ(j)} s_j`,
+/// for every joint `j` supporting `b` (other columns zero)
+///
+/// - `Reference::World` (spatial twist `V_f^{0,0}` in {0}): `∂V/∂q_j = ad_{s_j} V_b + ṡ_j`,
+///   `∂V/∂q̇_j = s_j` (the space Jacobian);
+/// - `Reference::Local` (body twist `V_f^{f,0}`): `∂V/∂q_j = Ad_{H_f^0}⁻¹ ṡ_j`,
+///   `∂V/∂q̇_j = Ad_{H_f^0}⁻¹ s_j` (the body Jacobian),
+///
+/// because `∂H_f^0/∂q_j = [s_j] H_f^0` (the pose derivative: the space-Jacobian column). Writes
+/// `ws.pose_in_world`, `ws.screw_in_world`, `ws.twist_in_world` and `ws.screw_rate_in_world`.
+///
+/// # Errors
+/// `InvalidArgument` for an unknown frame, a workspace made for another model, output
+/// matrices that are not 6 × n, or `Reference::LocalWorldAligned` (not provided);
+/// `DimensionMismatch` / `NonFinite` for bad `q` or `v`.
+///
+/// ```
+/// use nalgebra::Matrix6xX;
+/// use screwdyn::{builtin, dynamics::frame_velocity_derivatives, kinematics::Reference, Workspace};
+/// let m = builtin::planar2();
+/// let mut ws = Workspace::new(&m);
+/// let (mut dq, mut dv) = (Matrix6xX::zeros(2), Matrix6xX::zeros(2));
+/// let tip = m.frame_id("link2").unwrap();
+/// frame_velocity_derivatives(&m, &mut ws, tip, Reference::Local, &[0.0, 0.0], &[1.0, 0.0],
+///                            &mut dq, &mut dv).unwrap();
+/// // At q1 = 0 with q̇ = (1, 0) the tip's velocity in its own frame is (sin q2, 1 + cos q2):
+/// // ∂v/∂q̇1 = (0, 2) at q2 = 0 (body Jacobian), and ∂v_x/∂q2 = cos q2 = 1.
+/// assert!((dv[(4, 0)] - 2.0).abs() < 1e-12 && (dq[(3, 1)] - 1.0).abs() < 1e-12);
+/// ```
+#[allow(clippy::too_many_arguments)]
+pub fn frame_velocity_derivatives<T: Real>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    frame: usize,
+    reference: crate::kinematics::Reference,
+    q: &[T],
+    v: &[T],
+    dv_dq: &mut nalgebra::Matrix6xX<T>,
+    dv_dv: &mut nalgebra::Matrix6xX<T>,
+) -> Result<()> {
+    use crate::kinematics::Reference;
+    ws.check(model)?;
+    model.check_vector(v, "v")?;
+    let n = model.nv();
+    if dv_dq.ncols() != n || dv_dv.ncols() != n {
+        return Err(crate::Error::InvalidArgument(format!(
+            "the derivative matrices have {} and {} columns, the model has {n} joints",
+            dv_dq.ncols(),
+            dv_dv.ncols()
+        )));
+    }
+    if reference == Reference::LocalWorldAligned {
+        return Err(crate::Error::InvalidArgument(
+            "frame velocity derivatives are given in the world or the local frame, not \
+             local-world-aligned"
+                .into(),
+        ));
+    }
+    let (body, placement) = {
+        let f = model.frame(frame)?;
+        (f.body, f.placement)
+    };
+    forward_kinematics(model, ws, q)?;
+    let (motions, parents) = (model.motions(), model.parents());
+    for i in 0..n {
+        let s = motions[i].act(&ws.pose_in_world[i]);
+        let vp = parents[i].map_or(Twist::zeros(), |p| ws.twist_in_world[p]);
+        ws.screw_in_world[i] = s;
+        ws.screw_rate_in_world[i] = ad(&vp, &s);
+        ws.twist_in_world[i] = vp + s * v[i];
+    }
+    dv_dq.fill(T::zero());
+    dv_dv.fill(T::zero());
+    let Some(b) = body else {
+        return Ok(());
+    };
+    let pose = ws.pose_in_world[b].compose(&placement);
+    let vb = ws.twist_in_world[b];
+    let mut j = b;
+    loop {
+        let (s, sdot) = (ws.screw_in_world[j], ws.screw_rate_in_world[j]);
+        let (dq, dv) = match reference {
+            Reference::World => (ad(&s, &vb) + sdot, s),
+            _ => (pose.inv_act_twist(&sdot), pose.inv_act_twist(&s)),
+        };
+        dv_dq.set_column(j, &dq);
+        dv_dv.set_column(j, &dv);
+        match parents[j] {
+            Some(p) => j = p,
+            None => break,
+        }
+    }
+    Ok(())
+}
