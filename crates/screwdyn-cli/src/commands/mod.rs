@@ -7,6 +7,7 @@ mod explain;
 mod kinematics;
 mod model;
 mod sim;
+mod view;
 
 use crate::args::{Cli, Command, Common, ModelArgs};
 use crate::output::{self, Report};
@@ -38,6 +39,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Simulate(a) => sim::simulate(&a),
         Command::TorqueProfile(a) => sim::torque_profile(&a),
         Command::Bench(a) => bench::bench(&a),
+        Command::View(a) => view::view(&a),
     }
 }
 
