@@ -455,9 +455,14 @@ window.addEventListener("unhandledrejection", function (e) {
     if (!run) return;
     const dpr = window.devicePixelRatio || 1;
     const W = Math.round(plotCanvas.clientWidth * dpr), H = Math.round(plotCanvas.clientHeight * dpr);
-    const ctx = plotCanvas.getContext("2d");
+    const out = plotCanvas.getContext("2d");
     if (plotCanvas.width !== W || plotCanvas.height !== H || !plotImage) {
+      // The curves are drawn once into an off-screen canvas; each frame copies it and adds
+      // the cursor.
       plotCanvas.width = W; plotCanvas.height = H;
+      const off = document.createElement("canvas");
+      off.width = W; off.height = H;
+      const ctx = off.getContext("2d");
       const ps = panels(), pw = W / ps.length, L = 34 * dpr, B = 14 * dpr;
       ctx.fillStyle = "#fff"; ctx.fillRect(0, 0, W, H);
       ctx.font = 10 * dpr + "px sans-serif";
@@ -491,13 +496,13 @@ window.addEventListener("unhandledrejection", function (e) {
         ctx.fillText(+run.duration.toPrecision(4) + " s", x0 + w - 40 * dpr, H - 2 * dpr);
         p.box = { x0: x0, w: w, y0: y0, h: h };
       });
-      plotImage = { data: ctx.getImageData(0, 0, W, H), panels: ps };
+      plotImage = { canvas: off, panels: ps };
     }
-    ctx.putImageData(plotImage.data, 0, 0);
-    ctx.strokeStyle = "#000"; ctx.lineWidth = dpr;
+    out.drawImage(plotImage.canvas, 0, 0);
+    out.strokeStyle = "#000"; out.lineWidth = dpr;
     for (const p of plotImage.panels) {
       const x = p.box.x0 + (player.t / Math.max(run.duration, 1e-12)) * p.box.w;
-      ctx.beginPath(); ctx.moveTo(x, p.box.y0); ctx.lineTo(x, p.box.y0 + p.box.h); ctx.stroke();
+      out.beginPath(); out.moveTo(x, p.box.y0); out.lineTo(x, p.box.y0 + p.box.h); out.stroke();
     }
   }
   plotCanvas.addEventListener("click", function (e) {
@@ -510,8 +515,15 @@ window.addEventListener("unhandledrejection", function (e) {
 
   // -------------------------------------------------------------- start
   // The URL hash chooses the start: #t=0.5 (a time of the run, paused), &play=1, &grid=0,
-  // &frames=1, &axes=1, &coms=0|1, &path=0.
+  // &frames=1, &axes=1, &coms=0|1, &path=0, &size=700x450 (a fixed size of the 3-D view in
+  // CSS pixels, so that its picture does not depend on the window's height).
   const hash = new URLSearchParams(location.hash.replace(/^#/, ""));
+  const fixed = /^(\d+)x(\d+)$/.exec(hash.get("size") || "");
+  if (fixed) {
+    canvas.style.width = fixed[1] + "px";
+    canvas.style.height = fixed[2] + "px";
+    canvas.style.minHeight = "0";
+  }
   for (const key of Object.keys(show))
     if (hash.has(key)) { show[key] = hash.get(key) === "1"; document.getElementById("show-" + key).checked = show[key]; }
   fitCamera();

@@ -50,7 +50,10 @@ fn stl_binary(facets: &[([f32; 3], [[f32; 3]; 3])]) -> Vec<u8> {
 fn stl_ascii(facets: &[([f32; 3], [[f32; 3]; 3])]) -> String {
     let mut s = "solid tet\n".to_string();
     for (n, c) in facets {
-        s += &format!("  facet normal {} {} {}\n    outer loop\n", n[0], n[1], n[2]);
+        s += &format!(
+            "  facet normal {} {} {}\n    outer loop\n",
+            n[0], n[1], n[2]
+        );
         for v in c {
             s += &format!("      vertex {} {} {}\n", v[0], v[1], v[2]);
         }
@@ -97,7 +100,13 @@ fn obj_quads_and_negative_indices() {
         s += &format!("v {} {} {}\n", k & 1, (k >> 1) & 1, (k >> 2) & 1);
     }
     s += "vt 0 0\nvn 0 0 1\n";
-    for q in [[1, 3, 4, 2], [5, 6, 8, 7], [1, 2, 6, 5], [3, 7, 8, 4], [1, 5, 7, 3]] {
+    for q in [
+        [1, 3, 4, 2],
+        [5, 6, 8, 7],
+        [1, 2, 6, 5],
+        [3, 7, 8, 4],
+        [1, 5, 7, 3],
+    ] {
         s += &format!("f {}/1/1 {}/1/1 {}/1/1 {}/1/1\n", q[0], q[1], q[2], q[3]);
     }
     // The last face (x = 1: vertices 2, 4, 8, 6) by negative indices (−8 is vertex 1).
@@ -109,7 +118,9 @@ fn obj_quads_and_negative_indices() {
     for t in m.indices[30..36].iter() {
         assert_eq!(m.positions[*t as usize][0], 1.0);
     }
-    let err = read_obj("v 0 0 0\nf 1 2 3\n", "bad.obj").unwrap_err().to_string();
+    let err = read_obj("v 0 0 0\nf 1 2 3\n", "bad.obj")
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("bad.obj") && err.contains("line 2"), "{err}");
 }
 
@@ -147,13 +158,21 @@ fn dae_node_transforms_unit_and_materials() {
     assert_eq!(m.triangles(), 2);
     assert_eq!(m.color, Some([1.0, 0.0, 0.0, 1.0]));
     // Corner (10, 20, 0): scaled (20, 20, 0), turned (−20, 20, 0), moved (80, 20, 0) mm.
-    let expected = [[0.1, 0.0, 0.0], [0.1, 0.02, 0.0], [0.08, 0.02, 0.0], [0.08, 0.0, 0.0]];
+    let expected = [
+        [0.1, 0.0, 0.0],
+        [0.1, 0.02, 0.0],
+        [0.08, 0.02, 0.0],
+        [0.08, 0.0, 0.0],
+    ];
     for (p, e) in m.positions.iter().zip(expected) {
         for k in 0..3 {
             assert!((p[k] - e[k]).abs() < 1e-6, "{p:?} vs {e:?}");
         }
     }
-    assert!(read_dae("<COLLADA>", "broken.dae").unwrap_err().to_string().starts_with("broken.dae:"));
+    assert!(read_dae("<COLLADA>", "broken.dae")
+        .unwrap_err()
+        .to_string()
+        .starts_with("broken.dae:"));
 }
 
 #[test]
@@ -174,7 +193,10 @@ fn package_relative_and_env_paths_resolve() {
     // Above the URDF's folder.
     assert_eq!(resolve_mesh(uri, &pkg.join("urdf"), &[]).unwrap(), want);
     // Relative to the URDF's folder, and absolute / file://.
-    assert_eq!(resolve_mesh("../meshes/a.stl", &pkg.join("urdf"), &[]).unwrap(), pkg.join("urdf/../meshes/a.stl"));
+    assert_eq!(
+        resolve_mesh("../meshes/a.stl", &pkg.join("urdf"), &[]).unwrap(),
+        pkg.join("urdf/../meshes/a.stl")
+    );
     let abs = format!("file://{}", want.display());
     assert_eq!(resolve_mesh(&abs, &elsewhere, &[]).unwrap(), want);
     // ROS_PACKAGE_PATH (this is the only test of this binary that sets it).
@@ -182,8 +204,13 @@ fn package_relative_and_env_paths_resolve() {
     let found = resolve_mesh(uri, &elsewhere, &[]);
     std::env::remove_var("ROS_PACKAGE_PATH");
     assert_eq!(found.unwrap(), want);
-    let err = resolve_mesh("package://nope/x.stl", &elsewhere, &[]).unwrap_err().to_string();
-    assert!(err.contains("package 'nope' not found") && err.contains("--package-path"), "{err}");
+    let err = resolve_mesh("package://nope/x.stl", &elsewhere, &[])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("package 'nope' not found") && err.contains("--package-path"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -207,13 +234,17 @@ fn planar2_skeleton_runs_through_the_joints() {
         let want = [[Vector3::zeros(), j2], [j2, tip]];
         assert_eq!(got.len(), 2);
         for (g, w) in got.iter().zip(&want) {
-            assert!((g[0] - w[0]).norm() < 1e-12 && (g[1] - w[1]).norm() < 1e-12, "{g:?} vs {w:?}");
+            assert!(
+                (g[0] - w[0]).norm() < 1e-12 && (g[1] - w[1]).norm() < 1e-12,
+                "{g:?} vs {w:?}"
+            );
         }
     }
 }
 
 fn write_run(path: &Path, rows: &[(f64, [f64; 2], [f64; 2])]) {
-    let mut s = "t,q.joint1,q.joint2,v.joint1,v.joint2,tau.joint1,tau.joint2,total_energy\n".to_string();
+    let mut s =
+        "t,q.joint1,q.joint2,v.joint1,v.joint2,tau.joint1,tau.joint2,total_energy\n".to_string();
     for (t, q, tau) in rows {
         s += &format!("{t},{},{},0,0,{},{},1\n", q[0], q[1], tau[0], tau[1]);
     }
@@ -251,7 +282,11 @@ fn runs_are_strided_and_keep_violations_of_dropped_samples() {
     // Row 37 was dropped; its violation is carried by the next kept row (40), row 55's by 60.
     assert_eq!(run.flags[4][0], PAST_LIMIT);
     assert_eq!(run.flags[6][0], PAST_EFFORT);
-    assert!(run.flags.iter().enumerate().all(|(k, f)| f[1] == 0 && (k == 4 || k == 6 || f[0] == 0)));
+    assert!(run
+        .flags
+        .iter()
+        .enumerate()
+        .all(|(k, f)| f[1] == 0 && (k == 4 || k == 6 || f[0] == 0)));
     assert_eq!(run.violations.len(), 2);
     let v = &run.violations;
     assert!((v[0].first_time - 0.37).abs() < 1e-12 && v[0].worst == 1.5 && v[0].count == 1);
@@ -260,10 +295,17 @@ fn runs_are_strided_and_keep_violations_of_dropped_samples() {
 
     // A run of another robot: one sentence naming the column and the model's joints.
     std::fs::write(dir.join("other.csv"), "t,q.shoulder,q.joint2\n0,0,0\n").unwrap();
-    let e = read_run(&dir.join("other.csv"), &m, 100).unwrap_err().to_string();
-    assert!(e.contains("'q.shoulder'") && e.contains("joint1, joint2"), "{e}");
+    let e = read_run(&dir.join("other.csv"), &m, 100)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("'q.shoulder'") && e.contains("joint1, joint2"),
+        "{e}"
+    );
     std::fs::write(dir.join("short.csv"), "t,q.joint1\n0,0\n").unwrap();
-    let e = read_run(&dir.join("short.csv"), &m, 100).unwrap_err().to_string();
+    let e = read_run(&dir.join("short.csv"), &m, 100)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("no position column for joint(s) joint2"), "{e}");
 }
 
@@ -301,11 +343,28 @@ fn missing_meshes_warn_and_huge_meshes_are_capped() {
         },
     )
     .unwrap();
-    assert!(page.triangles <= 5000 + 12 * 3, "{} triangles", page.triangles);
+    assert!(
+        page.triangles <= 5000 + 12 * 3,
+        "{} triangles",
+        page.triangles
+    );
     let kinds: Vec<_> = page.warnings.iter().map(|w| w.kind).collect();
-    assert!(kinds.contains(&WarningKind::MeshMissing) && kinds.contains(&WarningKind::Decimated), "{kinds:?}");
-    assert!(page.warnings.iter().any(|w| w.message.contains("package://gone/arm.dae")));
+    assert!(
+        kinds.contains(&WarningKind::MeshMissing) && kinds.contains(&WarningKind::Decimated),
+        "{kinds:?}"
+    );
+    assert!(page
+        .warnings
+        .iter()
+        .any(|w| w.message.contains("package://gone/arm.dae")));
     // Without the cap the sphere is kept whole.
-    let full = render_html(&m, &ViewOptions { urdf: Some(urdf), ..Default::default() }).unwrap();
+    let full = render_html(
+        &m,
+        &ViewOptions {
+            urdf: Some(urdf),
+            ..Default::default()
+        },
+    )
+    .unwrap();
     assert!(full.triangles >= tris);
 }
