@@ -118,8 +118,8 @@ impl Mesh {
                     (sums.len() - 1) as u32
                 });
                 let s = &mut sums[c as usize];
-                for k in 0..3 {
-                    s.0[k] += p[k] as f64;
+                for (acc, x) in s.0.iter_mut().zip(p) {
+                    *acc += *x as f64;
                 }
                 s.1 += 1;
                 c

@@ -476,6 +476,7 @@ pub fn read_json(text: &str, file: &str, model: &Model, max_samples: usize) -> R
     let n = model.nq();
     let (mut q, mut tau) = (vec![0.0; n], vec![0.0; n]);
     let mut energy = vec![0.0; energy_names.len()];
+    #[allow(clippy::needless_range_loop)] // r indexes every column of `series`
     for r in 0..rows {
         let mut t = 0.0;
         for (k, c) in cols.iter().enumerate() {
