@@ -255,7 +255,7 @@ pub fn render_html(model: &Model, options: &ViewOptions) -> Result<Page> {
     let duration = options
         .run
         .as_ref()
-        .map_or(String::new(), |r| format!("{}", r.duration()));
+        .map_or(String::new(), |r| format!("{}", (r.duration() * 1e6).round() / 1e6));
     let html = TEMPLATE
         .replace("{{TITLE}}", &escape(&title))
         .replace("{{JOINTS}}", &joints_html)
