@@ -326,3 +326,42 @@ fn bad_input_is_one_sentence() {
     );
     assert!(!tmp("never.html").exists());
 }
+
+#[test]
+fn csv_and_json_runs_give_the_same_page() {
+    // The two files simulate writes hold the same numbers (shortest round-trip decimals), so
+    // the two readers must embed the same data.
+    let (csv, json) = (tmp("view-same.csv"), tmp("view-same.json"));
+    for f in [&csv, &json] {
+        ok(&[
+            "simulate",
+            "builtin:pendulum",
+            "--q0",
+            "0.5",
+            "--duration",
+            "0.3",
+            "--output",
+            f.to_str().unwrap(),
+        ]);
+    }
+    let pages: Vec<String> = [&csv, &json]
+        .iter()
+        .map(|f| {
+            let page = tmp(&format!(
+                "view-same-{}.html",
+                f.extension().unwrap().to_str().unwrap()
+            ));
+            ok(&[
+                "view",
+                "builtin:pendulum",
+                "--run",
+                f.to_str().unwrap(),
+                "--output",
+                page.to_str().unwrap(),
+            ]);
+            std::fs::read_to_string(page).unwrap()
+        })
+        .collect();
+    assert!(pages[0].contains("<span id=\"duration\">0.3</span>"));
+    assert_eq!(pages[0], pages[1]);
+}

@@ -346,6 +346,16 @@ window.addEventListener("unhandledrejection", function (e) {
     li.appendChild(document.createTextNode(" "));
     li.appendChild(v);
   });
+  // The probe: the last body's first part and the centroid of its vertices (mesh frame).
+  const probePart = (function () {
+    const robot = parts.filter((p) => p.g === "robot");
+    if (!robot.length) return null;
+    const last = robot.reduce((a, p) => (p.b > a.b ? p : a), robot[0]);
+    const pos = meshes[last.mesh].pos;
+    let c = [0, 0, 0];
+    for (let v = 0; v < pos.length; v += 3) c = add(c, [pos[v], pos[v + 1], pos[v + 2]]);
+    return { b: last.b, t: last.t, centre: scale(c, 3 / Math.max(3, pos.length)) };
+  })();
   function report(poses, VP) {
     const k = current;
     for (let i = 0; i < nq; i++) {
@@ -359,13 +369,8 @@ window.addEventListener("unhandledrejection", function (e) {
       jointItems[i].classList.toggle("past", flag !== 0);
     }
     document.getElementById("time").textContent = k === null ? "0" : String(+runT[k].toFixed(4));
-    const robot = parts.filter((p) => p.g === "robot");
-    if (robot.length) {
-      const last = robot.reduce((a, p) => (p.b > a.b ? p : a), robot[0]);
-      const pos = meshes[last.mesh].pos;
-      let c = [0, 0, 0];
-      for (let v = 0; v < pos.length; v += 3) c = add(c, [pos[v], pos[v + 1], pos[v + 2]]);
-      c = apply(mul(poseOf(poses, last.b), last.t), scale(c, 3 / pos.length));
+    if (probePart) {
+      const c = apply(mul(poseOf(poses, probePart.b), probePart.t), probePart.centre);
       const x = apply(VP, c), wv = VP[3] * c[0] + VP[7] * c[1] + VP[11] * c[2] + VP[15];
       const r = canvas.getBoundingClientRect();
       const probe = document.getElementById("probe");

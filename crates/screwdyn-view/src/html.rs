@@ -252,10 +252,9 @@ pub fn render_html(model: &Model, options: &ViewOptions) -> Result<Page> {
         .enumerate()
         .map(|(i, n)| format!("<li data-joint=\"{i}\">{}</li>", escape(n)))
         .collect();
-    let duration = options
-        .run
-        .as_ref()
-        .map_or(String::new(), |r| format!("{}", (r.duration() * 1e6).round() / 1e6));
+    let duration = options.run.as_ref().map_or(String::new(), |r| {
+        format!("{}", (r.duration() * 1e6).round() / 1e6)
+    });
     let html = TEMPLATE
         .replace("{{TITLE}}", &escape(&title))
         .replace("{{JOINTS}}", &joints_html)
