@@ -28,6 +28,11 @@ fn chromium() -> PathBuf {
 /// Runs headless Chromium on `page#hash` with `mode` (`--dump-dom` or `--screenshot=…`);
 /// returns stdout. Fails on any console message (the page itself never logs).
 fn browse(page: &Path, hash: &str, mode: &str, profile: &str) -> String {
+    browse_with(page, hash, &[mode], profile)
+}
+
+/// As [`browse`] with any Chromium flags (the mode among them).
+fn browse_with(page: &Path, hash: &str, flags: &[&str], profile: &str) -> String {
     let url = format!("file://{}#{hash}", page.canonicalize().unwrap().display());
     let profile = tmp(&format!("chromium-profile-{profile}"));
     let out = Command::new(chromium())
@@ -42,9 +47,9 @@ fn browse(page: &Path, hash: &str, mode: &str, profile: &str) -> String {
             "--v=0",
             &format!("--window-size={},{}", WINDOW.0, WINDOW.1),
             &format!("--user-data-dir={}", profile.display()),
-            mode,
-            &url,
         ])
+        .args(flags)
+        .arg(&url)
         .output()
         .unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
@@ -172,6 +177,16 @@ fn planar2_run_plays_in_the_browser() {
     let later = screenshot(&page, "t=0.5&grid=0&path=0&size=700x450", "p2-late");
     assert_drawn(&later, probe(&d));
     let early = screenshot(&page, "t=0&grid=0&path=0&size=700x450", "p2-early");
+    // Playing: after about a second of (virtual) time the shown time has moved on.
+    let playing = browse_with(
+        &page,
+        "play=1",
+        &["--virtual-time-budget=1000", "--dump-dom"],
+        "p2-play",
+    );
+    assert!(playing.contains("<div id=\"errors\"></div>"), "{playing}");
+    let t: f64 = text_of(&playing, "time").parse().unwrap();
+    assert!(t > 0.05 && t <= 1.0, "time shown after playing: {t}");
     let changed = early
         .2
         .iter()
