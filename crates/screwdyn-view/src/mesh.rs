@@ -89,9 +89,9 @@ impl Mesh {
             self.indices.clear();
             return true;
         }
-        // A grid of about sqrt(max_triangles / 2) cells along the longest side keeps roughly
-        // max_triangles surface triangles; shrink further until it fits.
-        let mut cells = ((max_triangles as f32 / 2.0).sqrt()).max(1.0);
+        // A grid of n cells along the longest side keeps of the order of n² surface
+        // triangles: start a little finer than that and coarsen by 15 % until it fits.
+        let mut cells = (1.5 * (max_triangles as f32).sqrt()).max(1.0);
         loop {
             let h = extent / cells;
             let reduced = self.clustered(h, lo);
@@ -101,7 +101,7 @@ impl Mesh {
                 self.color = color;
                 return true;
             }
-            cells *= 0.7;
+            cells *= 0.85;
         }
     }
 
