@@ -101,13 +101,55 @@ pub fn render_html(model: &Model, options: &ViewOptions) -> Result<Page> {
     };
     let scene = Scene::build(model, &visuals, &dir, options)?;
     let mut ws = Workspace::new(model);
-    let nb = model.nbodies();
-    let poses = |ws: &mut Workspace, q: &[f64]| -> Result<Vec<f64>> {
-        kinematics::forward_kinematics(model, ws, q)?;
-        Ok(ws.pose_in_world[..nb].iter().flat_map(pose34).collect())
+    let pose0 = body_poses(model, &mut ws, &q0)?;
+    let mut data = scene_json(model, &scene);
+    let names = model.joint_names();
+    let (run_json, samples) = match &options.run {
+        None => (Value::Null, 0),
+        Some(run) => (run_json(model, run, &mut ws)?, run.t.len()),
     };
-    let pose0 = poses(&mut ws, &q0)?;
+    let title = options
+        .title
+        .clone()
+        .unwrap_or_else(|| format!("{} — screwdyn view", model.name()));
+    let extra = json!({
+        "title": title,
+        "joints": names,
+        "bodies": model.bodies().iter().map(|b| b.name.as_str()).collect::<Vec<_>>(),
+        "q0": q0,
+        "pose0": f32s(pose0),
+        "run": run_json,
+        "warnings": scene.warnings.iter().map(|w| w.message.clone()).collect::<Vec<_>>(),
+    });
+    if let (Some(d), Value::Object(e)) = (data.as_object_mut(), extra) {
+        d.extend(e);
+    }
+    // `</` inside a <script> would end it: JSON allows the escape `<\/`.
+    let data = data.to_string().replace("</", "<\\/");
+    let joints_html: String = names
+        .iter()
+        .enumerate()
+        .map(|(i, n)| format!("<li data-joint=\"{i}\">{}</li>", escape(n)))
+        .collect();
+    let duration = options.run.as_ref().map_or(String::new(), |r| {
+        format!("{}", (r.duration() * 1e6).round() / 1e6)
+    });
+    let html = TEMPLATE
+        .replace("{{TITLE}}", &escape(&title))
+        .replace("{{JOINTS}}", &joints_html)
+        .replace("{{DURATION}}", &duration)
+        .replace("{{SCRIPT}}", &SCRIPT.replace("</", "<\\/"))
+        .replace("{{DATA}}", &data);
+    Ok(Page {
+        html,
+        triangles: scene.triangles(),
+        warnings: scene.warnings,
+        samples,
+    })
+}
 
+/// The scene's data: meshes, parts, frames, screw axes, limits and the "up" direction.
+fn scene_json(model: &Model, scene: &Scene) -> Value {
     let meshes: Vec<Value> = scene
         .meshes
         .iter()
@@ -170,68 +212,7 @@ pub fn render_html(model: &Model, options: &ViewOptions) -> Result<Page> {
     } else {
         vec![0.0, 0.0, 1.0]
     };
-    let names = model.joint_names();
-
-    let (run_json, samples) = match &options.run {
-        None => (Value::Null, 0),
-        Some(run) => {
-            let n = run.t.len();
-            if run.q.iter().any(|q| q.len() != model.nq()) {
-                return Err(Error::InvalidArgument(format!(
-                    "the run's samples do not have {} positions (the model's joints: {})",
-                    model.nq(),
-                    names.join(", ")
-                )));
-            }
-            let ee = end_effectors(model);
-            let mut all_poses = Vec::with_capacity(n * nb * 12);
-            let mut paths = vec![Vec::with_capacity(3 * n); ee.len()];
-            for q in &run.q {
-                all_poses.extend(poses(&mut ws, q)?);
-                for (k, f) in ee.iter().enumerate() {
-                    paths[k].extend(kinematics::frame_pose(model, &ws, *f).translation.iter());
-                }
-            }
-            let flags: Vec<u8> = run.flags.iter().flatten().copied().collect();
-            let violations: Vec<Value> = run
-                .violations
-                .iter()
-                .map(|v| {
-                    json!({
-                        "joint": v.joint,
-                        "kind": if v.kind == PAST_LIMIT { "limit" } else if v.kind == PAST_EFFORT { "effort" } else { "?" },
-                        "count": v.count,
-                        "first_time": v.first_time,
-                        "worst": v.worst,
-                    })
-                })
-                .collect();
-            let v = json!({
-                "n": n,
-                "t": f32s(run.t.iter().map(|t| t - run.t[0])),
-                "t0": run.t[0],
-                "duration": run.duration(),
-                "poses": f32s(all_poses),
-                "q": f32s(run.q.iter().flatten().copied()),
-                "tau": run.tau.as_ref().map(|tau| f32s(tau.iter().flatten().copied())),
-                "energy": run.energy.iter().map(|(name, v)| json!({"name": name, "v": f32s(v.iter().copied())})).collect::<Vec<_>>(),
-                "flags": b64(&flags),
-                "paths": ee.iter().zip(&paths).map(|(f, p)| json!({"frame": model.frames()[*f].name, "p": f32s(p.iter().copied())})).collect::<Vec<_>>(),
-                "violations": violations,
-                "samples_read": run.samples_read,
-            });
-            (v, n)
-        }
-    };
-
-    let title = options
-        .title
-        .clone()
-        .unwrap_or_else(|| format!("{} — screwdyn view", model.name()));
-    let data = json!({
-        "title": title,
-        "joints": names,
-        "bodies": model.bodies().iter().map(|b| b.name.as_str()).collect::<Vec<_>>(),
+    json!({
         "up": up,
         "size": scene.size,
         "skeleton": scene.skeleton,
@@ -240,31 +221,66 @@ pub fn render_html(model: &Model, options: &ViewOptions) -> Result<Page> {
         "frames": frames,
         "axes": axes,
         "limits": limits,
-        "q0": q0,
-        "pose0": f32s(pose0),
-        "run": run_json,
-        "warnings": scene.warnings.iter().map(|w| w.message.clone()).collect::<Vec<_>>(),
-    });
-    // `</` inside a <script> would end it: JSON allows the escape `<\/`.
-    let data = data.to_string().replace("</", "<\\/");
-    let joints_html: String = names
-        .iter()
-        .enumerate()
-        .map(|(i, n)| format!("<li data-joint=\"{i}\">{}</li>", escape(n)))
-        .collect();
-    let duration = options.run.as_ref().map_or(String::new(), |r| {
-        format!("{}", (r.duration() * 1e6).round() / 1e6)
-    });
-    let html = TEMPLATE
-        .replace("{{TITLE}}", &escape(&title))
-        .replace("{{JOINTS}}", &joints_html)
-        .replace("{{DURATION}}", &duration)
-        .replace("{{SCRIPT}}", &SCRIPT.replace("</", "<\\/"))
-        .replace("{{DATA}}", &data);
-    Ok(Page {
-        html,
-        triangles: scene.triangles(),
-        warnings: scene.warnings,
-        samples,
     })
+}
+
+/// The body poses `H_i^0` at `q`, as 3×4 row-major blocks.
+fn body_poses(model: &Model, ws: &mut Workspace, q: &[f64]) -> Result<Vec<f64>> {
+    kinematics::forward_kinematics(model, ws, q)?;
+    Ok(ws.pose_in_world[..model.nbodies()]
+        .iter()
+        .flat_map(pose34)
+        .collect())
+}
+
+/// The run's data: per-sample body poses and end-effector paths (computed here), series and
+/// violation flags.
+fn run_json(model: &Model, run: &crate::Run, ws: &mut Workspace) -> Result<Value> {
+    let names = model.joint_names();
+    let nb = model.nbodies();
+    let n = run.t.len();
+    if run.q.iter().any(|q| q.len() != model.nq()) {
+        return Err(Error::InvalidArgument(format!(
+            "the run's samples do not have {} positions (the model's joints: {})",
+            model.nq(),
+            names.join(", ")
+        )));
+    }
+    let ee = end_effectors(model);
+    let mut all_poses = Vec::with_capacity(n * nb * 12);
+    let mut paths = vec![Vec::with_capacity(3 * n); ee.len()];
+    for q in &run.q {
+        all_poses.extend(body_poses(model, ws, q)?);
+        for (k, f) in ee.iter().enumerate() {
+            paths[k].extend(kinematics::frame_pose(model, ws, *f).translation.iter());
+        }
+    }
+    let flags: Vec<u8> = run.flags.iter().flatten().copied().collect();
+    let violations: Vec<Value> = run
+        .violations
+        .iter()
+        .map(|v| {
+            json!({
+                "joint": v.joint,
+                "kind": if v.kind == PAST_LIMIT { "limit" } else if v.kind == PAST_EFFORT { "effort" } else { "?" },
+                "count": v.count,
+                "first_time": v.first_time,
+                "worst": v.worst,
+            })
+        })
+        .collect();
+    Ok(json!({
+        "n": n,
+        "t": f32s(run.t.iter().map(|t| t - run.t[0])),
+        "t0": run.t[0],
+        "duration": run.duration(),
+        "poses": f32s(all_poses),
+        "q": f32s(run.q.iter().flatten().copied()),
+        "tau": run.tau.as_ref().map(|tau| f32s(tau.iter().flatten().copied())),
+        "energy": run.energy.iter().map(|(name, v)| json!({"name": name, "v": f32s(v.iter().copied())})).collect::<Vec<_>>(),
+        "flags": b64(&flags),
+        "paths": ee.iter().zip(&paths).map(|(f, p)| json!({"frame": model.frames()[*f].name, "p": f32s(p.iter().copied())})).collect::<Vec<_>>(),
+        "violations": violations,
+        "samples_read": run.samples_read,
+    }))
 }
