@@ -70,8 +70,12 @@ pub struct ModelArgs {
     /// Output format (default: table on a terminal, JSON otherwise).
     #[arg(long, value_enum)]
     pub format: Option<Format>,
-    /// Accept inertias that are not physically consistent and massless leaf bodies.
+    /// Treat physical-consistency problems of the model (listed as warnings on stderr
+    /// otherwise) as errors.
     #[arg(long)]
+    pub strict: bool,
+    /// Accepted for compatibility: inconsistent inertias are warnings now, not errors.
+    #[arg(long, hide = true)]
     pub allow_nonphysical: bool,
 }
 
@@ -376,8 +380,12 @@ pub struct ExportArgs {
     /// Write to this file instead of stdout.
     #[arg(long)]
     pub output: Option<PathBuf>,
-    /// Accept inertias that are not physically consistent and massless leaf bodies.
+    /// Treat physical-consistency problems of the model (listed as warnings on stderr
+    /// otherwise) as errors.
     #[arg(long)]
+    pub strict: bool,
+    /// Accepted for compatibility: inconsistent inertias are warnings now, not errors.
+    #[arg(long, hide = true)]
     pub allow_nonphysical: bool,
 }
 

@@ -27,6 +27,12 @@ impl CliError {
 }
 
 impl CliError {
+    /// The same error with `suffix` appended to its message.
+    pub fn with_suffix(mut self, suffix: &str) -> Self {
+        self.message.push_str(suffix);
+        self
+    }
+
     /// An internal failure (exit status 1).
     pub fn internal(message: impl Into<String>) -> Self {
         CliError {

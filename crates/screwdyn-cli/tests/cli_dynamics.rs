@@ -326,10 +326,17 @@ fn urdf_and_ur5_match_the_library() {
         for (i, row) in out.iter().enumerate() {
             close(row, &mm.row(i).iter().copied().collect::<Vec<_>>(), 1e-10);
         }
-        let qdd =
-            dynamics::forward_dynamics(&model, &mut ws, &q, &v, tau.as_slice(), ForwardMethod::Aba)
-                .unwrap()
-                .clone();
+        let qdd = dynamics::forward_dynamics(
+            &model,
+            &mut ws,
+            &q,
+            &v,
+            tau.as_slice(),
+            None,
+            ForwardMethod::Aba,
+        )
+        .unwrap()
+        .clone();
         let out = json(&[
             "aba",
             spec,

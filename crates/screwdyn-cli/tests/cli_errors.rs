@@ -256,9 +256,18 @@ fn bad_csv_files() {
 #[test]
 fn models_that_fail_their_checks() {
     let bad = bad_inertia_urdf();
-    let e = fails(&["rnea", &bad], "triangle inequality");
+    // The model loads (as Pinocchio would load it) with one warning line naming file:line,
+    // link and problem; --strict makes it an error.
+    let out = bin().args(["rnea", &bad]).output().unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let warning = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(warning.lines().count(), 1, "{warning}");
+    assert!(warning.starts_with("screwdyn: warning: "));
+    assert!(warning.contains("bad_inertia.urdf:") && warning.contains("link 'link3'"));
+    assert!(warning.contains("triangle inequality"));
+    let e = fails(&["rnea", &bad, "--strict"], "triangle inequality");
     assert!(e.contains("bad_inertia.urdf") && e.contains("link3"));
-    // check lists the problem on stdout and exits 2; --allow-nonphysical lets other commands run.
+    // check lists the problem on stdout and exits 2.
     let out = bin()
         .args(["check", &bad, "--format", "json"])
         .output()
@@ -270,18 +279,16 @@ fn models_that_fail_their_checks() {
         .as_str()
         .unwrap()
         .contains("triangle inequality"));
-    ok(&["rnea", &bad, "--allow-nonphysical"]);
-    // A massless chain: rejected by the loader, and singular in forward dynamics when allowed.
+    // A massless chain: a warning from the loader, an error of --strict and of check, and
+    // singular in forward dynamics, which names the joint.
     let ghost = tmp("ghost.urdf");
     std::fs::write(&ghost, GHOST).unwrap();
     let g = ghost.to_str().unwrap();
-    fails(&["aba", g], "has mass 0");
+    fails(&["aba", g, "--strict"], "no mass");
     fails(&["check", g], "ghost.urdf fails its checks");
     for method in ["aba", "crba", "walker-orin"] {
-        fails(
-            &["aba", g, "--allow-nonphysical", "--method", method],
-            "singular",
-        );
+        let e = fails(&["aba", g, "--method", method], "singular");
+        assert!(e.contains("no mass") && e.contains("joint 'j2'"), "{e}");
     }
 }
 
@@ -295,7 +302,6 @@ fn batch_errors_name_the_row() {
         &[
             "aba",
             ghost.to_str().unwrap(),
-            "--allow-nonphysical",
             "--input",
             p.to_str().unwrap(),
         ],

@@ -53,8 +53,16 @@ fn bench_all(c: &mut Criterion) {
         });
         g.bench_function(BenchmarkId::new("forward_crba", &name), |b| {
             b.iter(|| {
-                forward_dynamics(&model, &mut ws, black_box(&q), &v, &a, ForwardMethod::Crba)
-                    .unwrap();
+                forward_dynamics(
+                    &model,
+                    &mut ws,
+                    black_box(&q),
+                    &v,
+                    &a,
+                    None,
+                    ForwardMethod::Crba,
+                )
+                .unwrap();
             })
         });
         g.finish();

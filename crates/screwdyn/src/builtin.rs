@@ -58,6 +58,9 @@ fn from_file(name: &str) -> Result<Model> {
 
 /// The built-in robot called `name` (without the `builtin:` prefix).
 ///
+/// # Errors
+/// [`Error::UnknownName`] for a name that is not a built-in robot.
+///
 /// ```
 /// assert_eq!(screwdyn::builtin::load("pendulum").unwrap().nq(), 1);
 /// assert_eq!(screwdyn::builtin::load("ur5").unwrap().nq(), 6);

@@ -16,23 +16,33 @@ pub enum Error {
     /// A joint-space vector has the wrong length.
     #[error("{what} has {got} values, the model has {expected} joints: {names}")]
     DimensionMismatch {
+        /// The vector (an argument or flag name).
         what: String,
+        /// Its length.
         got: usize,
+        /// The number of joints.
         expected: usize,
+        /// The joint names, for the message.
         names: String,
     },
     /// A number is NaN or infinite where a finite value is required.
     #[error("{what} contains a non-finite value ({value}) at position {index}")]
     NonFinite {
+        /// The vector or quantity.
         what: String,
+        /// Position of the first bad value.
         index: usize,
+        /// The value, as text.
         value: String,
     },
     /// A frame, body or joint name that the model does not have.
     #[error("the model has no {kind} named '{name}' (known: {known})")]
     UnknownName {
+        /// `frame`, `joint`, `moving body`…
         kind: &'static str,
+        /// The name asked for.
         name: String,
+        /// The names the model has (abbreviated when many).
         known: String,
     },
     /// A model description is inconsistent (bad tree, bad joint, bad inertia...).

@@ -1,5 +1,6 @@
 //! Inertia tensors of common shapes, the parallel-axis theorem both ways, rotation and
-//! combination of inertias, and the physical-consistency check (seed 003, "Mass Distribution").
+//! combination of inertias (seed 003, "Mass Distribution"). The physical-consistency check of
+//! an inertia is [`SpatialInertia::check_physical`].
 //!
 //! Tensors are 3×3 rotational inertias `ᴬI = [Ixx −Ixy −Ixz; −Ixy Iyy −Iyz; −Ixz −Iyz Izz]`
 //! (seed 003's sign convention: products of inertia enter negated), in kg·m².
@@ -23,7 +24,7 @@ use nalgebra::{Matrix3, Vector3};
 fn check<T: Real>(what: &str, values: &[(&str, T)]) -> Result<()> {
     for (name, v) in values {
         if !v.is_finite() || *v < T::zero() {
-            return Err(Error::InvalidModel(format!(
+            return Err(Error::InvalidArgument(format!(
                 "the {name} of the {what} must be a finite non-negative number, got {v:?}"
             )));
         }
@@ -33,6 +34,9 @@ fn check<T: Real>(what: &str, values: &[(&str, T)]) -> Result<()> {
 
 /// A solid box of mass `m` and sides `w` (along x), `l` (y), `h` (z), about its centre of mass:
 /// `diag(m(l² + h²)/12, m(w² + h²)/12, m(w² + l²)/12)` (seed 003).
+///
+/// # Errors
+/// [`Error::InvalidArgument`] when a dimension or the mass is negative or not finite.
 pub fn cuboid<T: Real>(m: T, w: T, l: T, h: T) -> Result<Matrix3<T>> {
     check(
         "box",
@@ -48,6 +52,9 @@ pub fn cuboid<T: Real>(m: T, w: T, l: T, h: T) -> Result<Matrix3<T>> {
 
 /// The same box about the corner at the origin, the body filling `[0,w]×[0,l]×[0,h]`
 /// (seed 003's worked example): `Ixx = m(l² + h²)/3`, `Ixy = m w l / 4` (entered negated), ….
+///
+/// # Errors
+/// [`Error::InvalidArgument`] when a dimension or the mass is negative or not finite.
 ///
 /// ```
 /// let i = screwdyn::inertia::box_about_corner(12.0, 1.0, 2.0, 3.0).unwrap();
@@ -75,6 +82,9 @@ pub fn box_about_corner<T: Real>(m: T, w: T, l: T, h: T) -> Result<Matrix3<T>> {
 
 /// A solid cylinder of mass `m`, radius `r` and height `h`, axis along z, about its centre of
 /// mass: `Ixx = Iyy = m(3r² + h²)/12`, `Izz = m r²/2` (seed 003, tutorial question 1).
+///
+/// # Errors
+/// [`Error::InvalidArgument`] when a dimension or the mass is negative or not finite.
 pub fn solid_cylinder<T: Real>(m: T, r: T, h: T) -> Result<Matrix3<T>> {
     hollow_cylinder(m, T::zero(), r, h)
 }
@@ -82,6 +92,9 @@ pub fn solid_cylinder<T: Real>(m: T, r: T, h: T) -> Result<Matrix3<T>> {
 /// A thick-walled tube of mass `m`, radii `r_in ≤ r_out` and height `h`, axis along z, about its
 /// centre of mass: `Ixx = Iyy = m(3(r_in² + r_out²) + h²)/12`, `Izz = m(r_in² + r_out²)/2`
 /// (`r_in = r_out` is a thin shell).
+///
+/// # Errors
+/// [`Error::InvalidArgument`] when a dimension or the mass is negative or not finite.
 pub fn hollow_cylinder<T: Real>(m: T, r_in: T, r_out: T, h: T) -> Result<Matrix3<T>> {
     check(
         "cylinder",
@@ -93,7 +106,7 @@ pub fn hollow_cylinder<T: Real>(m: T, r_in: T, r_out: T, h: T) -> Result<Matrix3
         ],
     )?;
     if r_in > r_out {
-        return Err(Error::InvalidModel(format!(
+        return Err(Error::InvalidArgument(format!(
             "the inner radius of the cylinder ({r_in:?}) exceeds its outer radius ({r_out:?})"
         )));
     }
@@ -107,12 +120,18 @@ pub fn hollow_cylinder<T: Real>(m: T, r_in: T, r_out: T, h: T) -> Result<Matrix3
 }
 
 /// A solid sphere of mass `m` and radius `r`: `2/5 m r²` about every axis through the centre.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] when a dimension or the mass is negative or not finite.
 pub fn solid_sphere<T: Real>(m: T, r: T) -> Result<Matrix3<T>> {
     check("sphere", &[("mass", m), ("radius", r)])?;
     Ok(Matrix3::identity() * (m * r * r * real(0.4)))
 }
 
 /// A thin spherical shell: `2/3 m r²`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] when a dimension or the mass is negative or not finite.
 pub fn hollow_sphere<T: Real>(m: T, r: T) -> Result<Matrix3<T>> {
     check("sphere", &[("mass", m), ("radius", r)])?;
     Ok(Matrix3::identity() * (m * r * r * real(2.0 / 3.0)))
@@ -120,6 +139,9 @@ pub fn hollow_sphere<T: Real>(m: T, r: T) -> Result<Matrix3<T>> {
 
 /// A thin rod of mass `m` and length `length` along z, about its centre:
 /// `Ixx = Iyy = m L²/12`, `Izz = 0`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] when a dimension or the mass is negative or not finite.
 pub fn thin_rod<T: Real>(m: T, length: T) -> Result<Matrix3<T>> {
     check("rod", &[("mass", m), ("length", length)])?;
     let a = m * length * length / real(12.0);
@@ -178,18 +200,4 @@ pub fn combine<T: Real>(bodies: &[SpatialInertia<T>]) -> SpatialInertia<T> {
     bodies
         .iter()
         .fold(SpatialInertia::zero(), |acc, b| acc.combined(b))
-}
-
-/// Physical consistency of a spatial inertia (non-negative mass, symmetric positive
-/// semi-definite rotational inertia obeying the triangle inequality); `Err` names the reason.
-///
-/// ```
-/// use nalgebra::{Matrix3, Vector3};
-/// use screwdyn::{inertia::check_physical, spatial::SpatialInertia};
-/// let bad = SpatialInertia::new(1.0, Vector3::zeros(), Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, 3.0)));
-/// assert!(check_physical(&bad).unwrap_err().to_string().contains("triangle"));
-/// ```
-pub fn check_physical<T: Real>(i: &SpatialInertia<T>) -> Result<()> {
-    i.check_physical()
-        .map_err(|why| Error::InvalidModel(format!("the inertia {why}")))
 }

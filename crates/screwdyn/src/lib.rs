@@ -13,7 +13,7 @@
 //! let model = builtin::planar2();
 //! let mut ws = Workspace::new(&model);
 //! kinematics::forward_kinematics(&model, &mut ws, &[0.0, 0.0]).unwrap();
-//! let tip = kinematics::frame_pose(&model, &ws, model.frame_id("link2").unwrap());
+//! let tip = kinematics::frame_pose(&model, &ws, model.frame_id("link2").unwrap()).unwrap();
 //! assert_eq!(tip.translation.x, 2.0);
 //! ```
 

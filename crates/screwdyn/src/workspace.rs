@@ -1,14 +1,16 @@
 //! [`Workspace`]: everything an algorithm writes, allocated once per model (Pinocchio's `Data`).
 
-use crate::dynamics::CompositeInertia;
 use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::scalar::Real;
+use crate::spatial::CompositeInertia;
 use crate::spatial::{Se3, Twist, Wrench};
 use nalgebra::{DMatrix, DVector, Matrix6};
 
 /// Preallocated per-model buffers. Algorithms read a [`Model`] and write here; after
-/// `Workspace::new` no algorithm call allocates.
+/// `Workspace::new` no algorithm call allocates. Every field is public and documented with the
+/// quantity it holds after the algorithm that writes it (results such as `tau` or
+/// `mass_matrix`, and the intermediate quantities of ABA, CRBA and the Coriolis matrix).
 ///
 /// Field names follow DESIGN §3: `pose_in_parent[i] = H_i^{λ(i)}(q)`,
 /// `pose_in_world[i] = H_i^0(q)`, `twist[i] = V_i^{i,0}`, `twist_dot[i] = V̇_i^{i,0}`,
@@ -63,25 +65,24 @@ pub struct Workspace<T: Real = f64> {
     pub articulated_bias: Vec<Wrench<T>>,
     /// ABA: velocity-product acceleration `c_i = ad_{V_{λ(i)}^0}(s_i q̇_i)`, in the base frame.
     pub bias_acceleration: Vec<Twist<T>>,
-    /// ABA: `U_i = 𝔍ᴬ_i s_i`.
-    pub aba_u: Vec<Wrench<T>>,
-    /// ABA: `D_i = s_iᵀ U_i`.
-    pub aba_d: DVector<T>,
-    /// ABA: `u_i = τ_i − s_iᵀ pᴬ_i`.
-    pub aba_small_u: DVector<T>,
+    /// ABA: `U_i = 𝔍ᴬ_i s_i`, the articulated inertia times the joint screw.
+    pub articulated_force: Vec<Wrench<T>>,
+    /// ABA: `D_i = s_iᵀ U_i`, the inertia joint `i` feels through its articulated body.
+    pub articulated_joint_inertia: DVector<T>,
+    /// ABA: `u_i = τ_i − s_iᵀ pᴬ_i`, the joint torque left for accelerating it.
+    pub articulated_joint_force: DVector<T>,
     /// Forward dynamics by CRBA: the Cholesky factor of `M` (lower triangle).
     pub cholesky: DMatrix<T>,
     /// Forward dynamics: the bias `b = C q̇ + g − Σ Jᵀ W_ext` (seed 004 §6.4).
     pub bias: DVector<T>,
 
-    /// Coriolis matrix: joint screw `s_j = Ad_{H_j^0} S_j` in the base frame.
-    pub(crate) cor_s: Vec<Twist<T>>,
-    /// Coriolis matrix: its time derivative `ṡ_j = ad_{V_j^{0,0}} s_j`.
-    pub(crate) cor_sdot: Vec<Twist<T>>,
-    /// Coriolis matrix: composite world-frame inertia of the subtree of `j`.
-    pub(crate) cor_inertia: Vec<Matrix6<T>>,
-    /// Coriolis matrix: composite world-frame `B(𝔍, V)` of the subtree of `j`.
-    pub(crate) cor_b: Vec<Matrix6<T>>,
+    /// Coriolis matrix: the time derivative `ṡ_j = ad_{V_j^{0,0}} s_j` of each joint's screw in
+    /// the base frame.
+    pub screw_rate_in_world: Vec<Twist<T>>,
+    /// Coriolis matrix: composite base-frame inertia `𝔍ᶜ_j` (6×6) of the subtree of `j`.
+    pub composite_inertia_matrix: Vec<Matrix6<T>>,
+    /// Coriolis matrix: composite base-frame factor `Bᶜ_j = Σ B(𝔍_i, V_i)` of the subtree of `j`.
+    pub composite_coriolis_factor: Vec<Matrix6<T>>,
     /// The number of bodies of the model this workspace was made for.
     nbodies: usize,
 }
@@ -110,15 +111,14 @@ impl<T: Real> Workspace<T> {
             articulated_inertia: vec![Matrix6::zeros(); n],
             articulated_bias: vec![Wrench::zeros(); n],
             bias_acceleration: vec![Twist::zeros(); n],
-            aba_u: vec![Wrench::zeros(); n],
-            aba_d: DVector::zeros(n),
-            aba_small_u: DVector::zeros(n),
+            articulated_force: vec![Wrench::zeros(); n],
+            articulated_joint_inertia: DVector::zeros(n),
+            articulated_joint_force: DVector::zeros(n),
             cholesky: DMatrix::zeros(n, n),
             bias: DVector::zeros(n),
-            cor_s: vec![Twist::zeros(); n],
-            cor_sdot: vec![Twist::zeros(); n],
-            cor_inertia: vec![Matrix6::zeros(); n],
-            cor_b: vec![Matrix6::zeros(); n],
+            screw_rate_in_world: vec![Twist::zeros(); n],
+            composite_inertia_matrix: vec![Matrix6::zeros(); n],
+            composite_coriolis_factor: vec![Matrix6::zeros(); n],
             nbodies: n,
         }
     }
@@ -132,8 +132,8 @@ impl<T: Real> Workspace<T> {
     ///
     /// ```
     /// use screwdyn::{builtin, Workspace};
-    /// let ws = Workspace::new(&builtin::ur5());
-    /// assert!(ws.check(&builtin::ur5()).is_ok());
+    /// let ws = Workspace::new(&builtin::load("ur5").unwrap());
+    /// assert!(ws.check(&builtin::load("ur5").unwrap()).is_ok());
     /// let e = ws.check(&builtin::planar2()).unwrap_err().to_string();
     /// assert!(e.contains("6 bodies"));
     /// ```

@@ -133,9 +133,10 @@ fn rotation_combination_and_consistency() {
     );
     let whole = combine(&[left, right]);
     assert!((whole.inertia_com - i).amax() < 1e-15 && whole.com.norm() < 1e-15 && whole.mass == m);
-    assert!(check_physical(&whole).is_ok());
+    assert!(whole.check_physical().is_ok());
     let bad = SpatialInertia::new(-1.0, Vector3::zeros(), Matrix3::identity());
-    assert!(check_physical(&bad)
+    assert!(bad
+        .check_physical()
         .unwrap_err()
         .to_string()
         .contains("negative mass"));

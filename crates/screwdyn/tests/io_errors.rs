@@ -10,6 +10,18 @@ fn err(text: &str, file: &str) -> String {
     }
 }
 
+/// The one physical-consistency finding of a file that loads, as text; the same file loaded
+/// strictly fails with it.
+fn finding(text: &str, file: &str) -> String {
+    let m = load_str(text, file, &LoadOptions::default())
+        .unwrap_or_else(|e| panic!("{file} should load with a finding: {e}"));
+    let f = m.physical_problems();
+    assert_eq!(f.len(), 1, "{file}: {f:?}");
+    let strict = load_str(text, file, &LoadOptions { strict: true }).unwrap_err();
+    assert!(strict.to_string().contains(&f[0].to_string()));
+    f[0].to_string()
+}
+
 fn check(msg: &str, place: &str, words: &[&str]) {
     assert!(
         msg.starts_with(place),
@@ -199,9 +211,9 @@ fn negative_or_zero_mass_on_a_moving_leaf() {
         .join("\n"),
     );
     check(
-        &err(&t, "m.urdf"),
+        &finding(&t, "m.urdf"),
         "m.urdf:4:",
-        &["link 'a' has negative mass"],
+        &["link 'a'", "negative mass"],
     );
     let t = urdf(
         &[
@@ -212,9 +224,9 @@ fn negative_or_zero_mass_on_a_moving_leaf() {
         .join("\n"),
     );
     check(
-        &err(&t, "m.urdf"),
+        &finding(&t, "m.urdf"),
         "m.urdf:3:",
-        &["link 'a'", "joint 'j'", "mass 0"],
+        &["link 'a'", "joint 'j'", "no mass"],
     );
     // A massless moving link is fine when a fixed child carries mass.
     let t = urdf(
@@ -231,7 +243,7 @@ fn negative_or_zero_mass_on_a_moving_leaf() {
 }
 
 #[test]
-fn non_physical_inertias_are_errors_unless_allowed() {
+fn non_physical_inertias_are_findings_and_errors_when_strict() {
     let bad = |ixx: f64, iyy: f64, izz: f64, ixy: f64| {
         urdf(&[
             "<link name=\"base\"/>".to_string(),
@@ -242,24 +254,22 @@ fn non_physical_inertias_are_errors_unless_allowed() {
     // Not positive definite (a negative moment), breaking the triangle inequality (1 + 1 < 3).
     let t = bad(-0.1, 0.1, 0.1, 0.0);
     check(
-        &err(&t, "m.urdf"),
+        &finding(&t, "m.urdf"),
         "m.urdf:4:",
-        &["inertia of link 'a'", "positive"],
+        &["link 'a': its inertia", "positive"],
     );
     let t2 = bad(1.0, 1.0, 3.0, 0.0);
     check(
-        &err(&t2, "m.urdf"),
+        &finding(&t2, "m.urdf"),
         "m.urdf:4:",
-        &["inertia of link 'a'", "triangle inequality"],
+        &["link 'a': its inertia", "triangle inequality"],
     );
     let t3 = bad(1.0, 1.0, 1.0, 2.0);
-    check(&err(&t3, "m.urdf"), "m.urdf:4:", &["inertia of link 'a'"]);
-    let allow = LoadOptions {
-        allow_nonphysical: true,
-    };
-    for t in [t, t2, t3] {
-        assert!(load_str(&t, "m.urdf", &allow).is_ok());
-    }
+    check(
+        &finding(&t3, "m.urdf"),
+        "m.urdf:4:",
+        &["link 'a': its inertia"],
+    );
 }
 
 #[test]
@@ -322,13 +332,13 @@ fn toml_syntax_errors_and_unknown_keys_name_file_and_line() {
 fn toml_model_errors_name_the_element() {
     let e = err("format = \"dh\"\n[[row]]\ntype = \"X\"\n", "t.toml");
     check(&e, "t.toml:2:", &["DH row 1", "'X'"]);
-    let e = err(
+    let e = finding(
         "format = \"dh\"\n[[row]]\ntype = \"R\"\nmass = 1\ninertia = [1, 0, 0, 1, 0, 3]\n",
         "t.toml",
     );
-    check(&e, "t.toml:2:", &["DH row 1", "triangle inequality"]);
-    let e = err("format = \"dh\"\n[[row]]\ntype = \"R\"\n", "t.toml");
-    check(&e, "t.toml:", &["link1", "mass 0"]);
+    check(&e, "t.toml:2:", &["link 'link1'", "triangle inequality"]);
+    let e = finding("format = \"dh\"\n[[row]]\ntype = \"R\"\n", "t.toml");
+    check(&e, "t.toml:", &["link1", "no mass"]);
     let e = err("format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"revolute\"\nmass = 1\n", "t.toml");
     check(&e, "t.toml:2:", &["body 'a'", "no screw axis"]);
     let e = err("format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"revolute\"\nscrew_in_child = [0, 0, 0, 0, 0, 0]\nmass = 1\n", "t.toml");

@@ -28,7 +28,7 @@ fn mass_matrix(m: &Model, q: &[f64]) -> DMatrix<f64> {
     let mut out = DMatrix::zeros(n, n);
     let mut j = Matrix6xX::zeros(n);
     for (i, b) in m.bodies().iter().enumerate() {
-        link_jacobian(m, &ws, i, &mut j);
+        link_jacobian(m, &ws, i, &mut j).unwrap();
         let jd = DMatrix::from_column_slice(6, n, j.as_slice());
         let inertia = DMatrix::from_column_slice(6, 6, b.inertia.matrix().as_slice());
         out += jd.transpose() * inertia * jd;
@@ -39,7 +39,9 @@ fn mass_matrix(m: &Model, q: &[f64]) -> DMatrix<f64> {
 fn pose(m: &Model, q: &[f64], frame: &str) -> nalgebra::Matrix4<f64> {
     let mut ws = Workspace::new(m);
     screwdyn::kinematics::forward_kinematics(m, &mut ws, q).unwrap();
-    frame_pose(m, &ws, m.frame_id(frame).unwrap()).to_matrix()
+    frame_pose(m, &ws, m.frame_id(frame).unwrap())
+        .unwrap()
+        .to_matrix()
 }
 
 /// Random configurations within `[-2, 2]` (prismatic joints within their limits).
@@ -255,7 +257,8 @@ fn assert_round_trip(m: &Model, what: &str) {
     let text = screwdyn::io::urdf::to_urdf_string(m).unwrap();
     let back = screwdyn::io::load_str(&text, "export.urdf", &LoadOptions::default())
         .unwrap_or_else(|e| panic!("{what}: {e}\n{text}"))
-        .with_gravity(m.gravity());
+        .with_gravity(m.gravity())
+        .unwrap();
     let frames: Vec<&str> = m.frames().iter().map(|f| f.name.as_str()).collect();
     assert_same_robot(
         &[(what, m.clone()), ("exported", back.clone())],

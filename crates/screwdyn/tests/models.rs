@@ -23,7 +23,7 @@ fn mass_matrix(m: &Model, q: &[f64]) -> DMatrix<f64> {
     let mut out = DMatrix::zeros(n, n);
     let mut j = Matrix6xX::zeros(n);
     for (i, b) in m.bodies().iter().enumerate() {
-        link_jacobian(m, &ws, i, &mut j);
+        link_jacobian(m, &ws, i, &mut j).unwrap();
         let jd = DMatrix::from_column_slice(6, n, j.as_slice());
         out +=
             jd.transpose() * DMatrix::from_column_slice(6, 6, b.inertia.matrix().as_slice()) * jd;
@@ -34,7 +34,9 @@ fn mass_matrix(m: &Model, q: &[f64]) -> DMatrix<f64> {
 fn pose(m: &Model, q: &[f64], frame: &str) -> nalgebra::Matrix4<f64> {
     let mut ws = Workspace::new(m);
     forward_kinematics(m, &mut ws, q).unwrap();
-    frame_pose(m, &ws, m.frame_id(frame).unwrap()).to_matrix()
+    frame_pose(m, &ws, m.frame_id(frame).unwrap())
+        .unwrap()
+        .to_matrix()
 }
 
 fn random_q(m: &Model, rng: &mut impl Rng) -> Vec<f64> {

@@ -93,7 +93,7 @@ fn forward_dynamics_matches_pinocchio_aba_with_all_three_methods() {
                 ForwardMethod::Crba,
                 ForwardMethod::WalkerOrin,
             ] {
-                let qdd = forward_dynamics(&m, &mut ws, &s.q, &s.v, &s.tau_in, method)
+                let qdd = forward_dynamics(&m, &mut ws, &s.q, &s.v, &s.tau_in, None, method)
                     .unwrap()
                     .as_slice()
                     .to_vec();

@@ -11,7 +11,7 @@ fn oscillator(_t: f64, q: &[f64], _v: &[f64], a: &mut [f64]) -> screwdyn::Result
 
 /// Integrates q̈ = −q from (1, 0) to t = T; returns the final error against cos t.
 fn error_after(integrator: Integrator, h: f64, t_end: f64) -> f64 {
-    let mut s = Stepper::new(integrator, 1);
+    let mut s = Stepper::new(integrator, 1).unwrap();
     let (mut q, mut v) = ([1.0], [0.0]);
     let n = (t_end / h).round() as usize;
     for k in 0..n {
@@ -41,7 +41,7 @@ fn rk4_is_fourth_order_and_euler_first_order() {
 #[test]
 fn symplectic_euler_energy_stays_bounded() {
     // Energy ½(q² + v²) of the oscillator over 1000 periods: no secular drift.
-    let mut s = Stepper::new(Integrator::SymplecticEuler, 1);
+    let mut s = Stepper::new(Integrator::SymplecticEuler, 1).unwrap();
     let (mut q, mut v) = ([1.0], [0.0]);
     let h = 0.01;
     let mut worst: f64 = 0.0;
@@ -76,9 +76,9 @@ fn fd_check(traj: &dyn Trajectory) {
     let h = 1e-6;
     for k in 1..100 {
         let t = traj.duration() * k as f64 / 100.0 + 1e-4;
-        traj.sample(t, &mut q, &mut qd, &mut qdd);
-        traj.sample(t + h, &mut qp, &mut d1, &mut d2);
-        traj.sample(t - h, &mut qm, &mut d2, &mut d1);
+        traj.sample(t, &mut q, &mut qd, &mut qdd).unwrap();
+        traj.sample(t + h, &mut qp, &mut d1, &mut d2).unwrap();
+        traj.sample(t - h, &mut qm, &mut d2, &mut d1).unwrap();
         for i in 0..n {
             assert!(
                 ((qp[i] - qm[i]) / (2.0 * h) - qd[i]).abs() < 1e-6,
@@ -97,15 +97,16 @@ fn trapezoid_reaches_cruise_is_continuous_and_stops_at_target() {
     // Joint 1 is short (0.5 rad < v²/a = 1 rad): a triangle peaking at a·√(d/a) = √0.5 rad/s.
     assert!((t.cruise_speeds()[1] - 0.5f64.sqrt()).abs() < 1e-12);
     let (mut q, mut qd, mut qdd) = ([0.0; 3], [0.0; 3], [0.0; 3]);
-    t.sample(1.0, &mut q, &mut qd, &mut qdd);
+    t.sample(1.0, &mut q, &mut qd, &mut qdd).unwrap();
     assert_eq!(qd[0], 1.0);
-    t.sample(t.duration(), &mut q, &mut qd, &mut qdd);
+    t.sample(t.duration(), &mut q, &mut qd, &mut qdd).unwrap();
     assert_eq!(q, qf);
     assert_eq!(qd, [0.0; 3]);
     // Velocity continuity: no jumps between samples 1 ms apart larger than amax·dt.
     let (mut prev, mut cur) = ([0.0; 3], [0.0; 3]);
     for k in 0..=2500 {
-        t.sample(k as f64 * 1e-3, &mut q, &mut cur, &mut qdd);
+        t.sample(k as f64 * 1e-3, &mut q, &mut cur, &mut qdd)
+            .unwrap();
         if k > 0 {
             for i in 0..3 {
                 assert!((cur[i] - prev[i]).abs() <= 4.0 * 1e-3 + 1e-12);
@@ -121,9 +122,10 @@ fn synchronised_trapezoids_end_together() {
     let t = Trapezoid::new(&[0.0, 0.0], &[2.0, 0.3], &[1.0, 1.0], &[2.0, 2.0], true).unwrap();
     let (mut q, mut qd, mut qdd) = ([0.0; 2], [0.0; 2], [0.0; 2]);
     // Joint 1 ends exactly when joint 0 does, and not before.
-    t.sample(t.duration() - 0.05, &mut q, &mut qd, &mut qdd);
+    t.sample(t.duration() - 0.05, &mut q, &mut qd, &mut qdd)
+        .unwrap();
     assert!(qd[1] > 0.0 && q[1] < 0.3);
-    t.sample(t.duration(), &mut q, &mut qd, &mut qdd);
+    t.sample(t.duration(), &mut q, &mut qd, &mut qdd).unwrap();
     assert!((q[1] - 0.3).abs() < 1e-12 && qd[1].abs() < 1e-12);
     fd_check(&t);
 }
@@ -134,9 +136,9 @@ fn quintic_meets_its_boundary_conditions() {
     let (qf, vf, af) = ([1.0, 1.0], [0.0, -0.3], [1.0, 0.0]);
     let t = Quintic::new((&q0, &v0, &a0), (&qf, &vf, &af), 1.7).unwrap();
     let (mut q, mut qd, mut qdd) = ([0.0; 2], [0.0; 2], [0.0; 2]);
-    t.sample(0.0, &mut q, &mut qd, &mut qdd);
+    t.sample(0.0, &mut q, &mut qd, &mut qdd).unwrap();
     assert_eq!((q, qd, qdd), (q0, v0, a0));
-    t.sample(1.7, &mut q, &mut qd, &mut qdd);
+    t.sample(1.7, &mut q, &mut qd, &mut qdd).unwrap();
     for i in 0..2 {
         assert!(
             (q[i] - qf[i]).abs() < 1e-12
@@ -160,7 +162,7 @@ fn waypoints_pass_through_every_point() {
     let w = Waypoints::new(&times, &pts).unwrap();
     let (mut q, mut qd, mut qdd) = ([0.0; 2], [0.0; 2], [0.0; 2]);
     for (k, tk) in times.iter().enumerate() {
-        w.sample(*tk, &mut q, &mut qd, &mut qdd);
+        w.sample(*tk, &mut q, &mut qd, &mut qdd).unwrap();
         assert!((q[0] - pts[k][0]).abs() < 1e-12 && (q[1] - pts[k][1]).abs() < 1e-12);
     }
     fd_check(&w);

@@ -69,7 +69,8 @@ fn passive_ur5_conserves_energy_with_rk4() {
     // defined; RK4 at 1 ms for 10 s from a non-trivial state (joints at up to 2 rad/s).
     let m = builtin::load("ur5")
         .unwrap()
-        .with_gravity(nalgebra::Vector3::zeros());
+        .with_gravity(nalgebra::Vector3::zeros())
+        .unwrap();
     let (q0, v0) = ur5_start();
     let run = run_passive(&m, &q0, &v0, &passive(10.0, 1e-3, Integrator::Rk4, 100));
     let drift = max_energy_deviation(&run) / run.total_energy[0];
@@ -136,7 +137,8 @@ fn symplectic_euler_energy_error_does_not_grow() {
     // second half of a 10 s run is no worse than the first half (with a 2× margin).
     let m = builtin::load("ur5")
         .unwrap()
-        .with_gravity(nalgebra::Vector3::zeros());
+        .with_gravity(nalgebra::Vector3::zeros())
+        .unwrap();
     let (q0, v0) = ur5_start();
     let run = run_passive(
         &m,
@@ -209,8 +211,9 @@ fn dormand_prince_meets_its_tolerance_against_fine_rk4() {
 
 #[test]
 fn damping_makes_energy_decrease_monotonically() {
-    let m =
-        with_damping(&builtin::load("ur5").unwrap(), 0.05).with_gravity(nalgebra::Vector3::zeros());
+    let m = with_damping(&builtin::load("ur5").unwrap(), 0.05)
+        .with_gravity(nalgebra::Vector3::zeros())
+        .unwrap();
     let (q0, v0) = ur5_start();
     let opts = SimOptions {
         duration: 3.0,
@@ -279,7 +282,9 @@ fn computed_torque_tracks_a_quintic_on_the_panda() {
     let (mut qd, mut vd, mut ad) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let mut sum = 0.0;
     for k in 0..run.len() {
-        reference.sample(run.t[k], &mut qd, &mut vd, &mut ad);
+        reference
+            .sample(run.t[k], &mut qd, &mut vd, &mut ad)
+            .unwrap();
         sum += (0..n).map(|i| (run.q[k][i] - qd[i]).powi(2)).sum::<f64>() / n as f64;
     }
     let rms = (sum / run.len() as f64).sqrt();
@@ -369,7 +374,7 @@ fn a_disturbance_wrench_pushes_the_arm_only_while_active() {
         effects: JointEffects::none(),
         ..Default::default()
     };
-    let g = m.with_gravity(nalgebra::Vector3::zeros());
+    let g = m.with_gravity(nalgebra::Vector3::zeros()).unwrap();
     let run = simulate(
         &g,
         &[0.0, 0.0],

@@ -58,12 +58,12 @@ fn check(model: &Model) {
     ext.add_local(0, Vector6::repeat(0.5)).unwrap();
     ext.add_world(n - 1, Vector6::repeat(-0.25)).unwrap();
     let mut jac = Matrix6xX::zeros(n);
-    let tip = model.body_frame(n - 1);
+    let tip = model.body_frame(n - 1).unwrap();
     // Warm up once (nothing lazily allocated should remain), then count.
     let mut run = |ws: &mut Workspace| {
         forward_kinematics(model, ws, &q).unwrap();
         compute_joint_jacobians(model, ws, &q).unwrap();
-        frame_jacobian(model, ws, tip, Reference::World, &mut jac);
+        frame_jacobian(model, ws, tip, Reference::World, &mut jac).unwrap();
         forward_velocity(model, ws, &q, &v).unwrap();
         forward_acceleration(model, ws, &q, &v, &a).unwrap();
         rnea(model, ws, &q, &v, &a).unwrap();
@@ -74,14 +74,14 @@ fn check(model: &Model) {
         gravity_torque(model, ws, &q).unwrap();
         nonlinear_effects(model, ws, &q, &v).unwrap();
         aba(model, ws, &q, &v, &a).unwrap();
-        aba_with(model, ws, &q, &v, &a, Some(&ext)).unwrap();
+        forward_dynamics(model, ws, &q, &v, &a, Some(&ext), ForwardMethod::Aba).unwrap();
         for m in [
             ForwardMethod::Aba,
             ForwardMethod::Crba,
             ForwardMethod::WalkerOrin,
         ] {
-            forward_dynamics(model, ws, &q, &v, &a, m).unwrap();
-            forward_dynamics_with(model, ws, &q, &v, &a, Some(&ext), m).unwrap();
+            forward_dynamics(model, ws, &q, &v, &a, None, m).unwrap();
+            forward_dynamics(model, ws, &q, &v, &a, Some(&ext), m).unwrap();
         }
         kinetic_energy(model, ws, &q, &v).unwrap();
         kinetic_energy_mass_matrix(model, ws, &q, &v).unwrap();

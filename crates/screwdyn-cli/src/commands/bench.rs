@@ -144,6 +144,7 @@ fn run(model: &Model, s: &States, name: &str, batches: usize, calls: usize) -> O
                 black_box(&s.q[k]),
                 &s.v[k],
                 &s.tau[k],
+                None,
                 ForwardMethod::Crba,
             );
             let _ = black_box(r.is_ok());

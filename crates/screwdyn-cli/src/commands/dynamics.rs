@@ -128,7 +128,7 @@ pub fn forward_dynamics(a: &ForwardDynamicsArgs) -> Result<(), CliError> {
     ];
     run_states(&m, &a.common, &flags, |s| {
         let qdd =
-            dynamics::forward_dynamics_with(&m, &mut ws, &s.q, &s.v, &s.tau, ext.as_ref(), method)?;
+            dynamics::forward_dynamics(&m, &mut ws, &s.q, &s.v, &s.tau, ext.as_ref(), method)?;
         let mut r = base(&m);
         r.add("qdd", Value::joints(&j, qdd.as_slice()));
         Ok(r)

@@ -1,5 +1,6 @@
-//! `explain`: the recursive Newton–Euler iterations of seeds 000/002, step by step, re-derived
-//! here from the library's spatial operators so that a student can check a homework line by line:
+//! `explain`: the recursive Newton–Euler iterations of seeds 000/002, step by step
+//! ([`screwdyn::dynamics::rnea_trace`]), printed so that a student can check a homework line by
+//! line:
 //!
 //! - forward, `i = 1 … n`: `H_i^{λ(i)}(θ_i) = H_i^{λ(i)}(0) e^{S̃ θ_i}`,
 //!   `V_i^{i,0} = Ad_{H_{λ(i)}^i} V_{λ(i)} + S_i θ̇_i`,
@@ -14,9 +15,9 @@ use super::{external_wrenches, load, names, run_states};
 use crate::args::ExplainArgs;
 use crate::output::{fmt, Report, Value};
 use crate::CliError;
-use nalgebra::{DMatrix, Vector3};
-use screwdyn::dynamics::ExternalWrenches;
-use screwdyn::spatial::{ad, ad_transpose, twist, Se3, Twist, Wrench};
+use nalgebra::DMatrix;
+use screwdyn::dynamics::{rnea_trace, RneaTrace};
+use screwdyn::spatial::{Se3, Twist, Wrench};
 use screwdyn::Model;
 
 const WRENCH_ROWS: [&str; 6] = ["mx", "my", "mz", "fx", "fy", "fz"];
@@ -36,51 +37,22 @@ fn pose_lines(h: &Se3, indent: &str) -> String {
         .collect()
 }
 
-/// The seeds' quantities of one RNEA run.
-pub struct Iterations {
-    pub pose: Vec<Se3>,
-    pub twist: Vec<Twist>,
-    pub twist_dot: Vec<Twist>,
-    pub wrench: Vec<Wrench>,
-    pub tau: Vec<f64>,
-    pub text: String,
-}
-
-/// Runs both passes and writes the narrative; `ext` adds external wrenches on the bodies.
-pub fn iterations(
-    m: &Model,
-    q: &[f64],
-    v: &[f64],
-    a: &[f64],
-    ext: Option<&ExternalWrenches>,
-) -> Iterations {
-    let n = m.nq();
-    // 1-based seed indices: body i is index i − 1, the base is 0.
+/// The narrative of a [`RneaTrace`] in the seeds' notation (1-based body indices, the base is
+/// 0).
+pub fn narrative(m: &Model, it: &RneaTrace) -> String {
     let idx = |i: usize| i + 1;
-    let par = |i: usize| m.parent(i).map(|p| p + 1).unwrap_or(0);
-    let g = m.gravity();
-    let vdot0: Twist = twist(Vector3::zeros(), -g);
+    let par = |i: usize| m.parents()[i].map_or(0, |p| p + 1);
     let mut t = String::new();
     t.push_str(
         "Recursive Newton–Euler algorithm (seeds 000/002), twists (ω | v), wrenches (m | f).\n",
     );
     t.push_str(&format!(
         "Base: V_0^{{0,0}} = 0, V̇_0^{{0,0}} = (0, −g) = {}  (gravity as a base acceleration)\n\n",
-        six(&vdot0)
+        six(&it.base_acceleration)
     ));
     t.push_str("Forward iterations, i = 1 … n:\n");
-    let (mut pose, mut tw, mut twd) = (Vec::new(), Vec::new(), Vec::new());
-    for (i, joint) in m.joints().iter().enumerate() {
+    for (i, (joint, f)) in m.joints().iter().zip(&it.forward).enumerate() {
         let (k, p) = (idx(i), par(i));
-        let h = joint.pose_in_parent(q[i]);
-        let (v_par, vd_par) = match m.parent(i) {
-            Some(pi) => (h.inv_act_twist(&tw[pi]), h.inv_act_twist(&twd[pi])),
-            None => (Twist::zeros(), h.inv_act_twist(&vdot0)),
-        };
-        let s = joint.screw;
-        let s_qd = s * v[i];
-        let vi = v_par + s_qd;
-        let vdi = vd_par - ad(&s_qd, &v_par) + s * a[i];
         t.push_str(&format!(
             "\n i = {k}: joint '{}' ({}), body '{}', parent {p}{}\n",
             joint.name,
@@ -90,88 +62,63 @@ pub fn iterations(
         ));
         t.push_str(&format!(
             "   θ_{k} = {}, θ̇_{k} = {}, θ̈_{k} = {}\n",
-            fmt(q[i]),
-            fmt(v[i]),
-            fmt(a[i])
+            fmt(f.q),
+            fmt(f.v),
+            fmt(f.a)
         ));
-        t.push_str(&format!("   S_{k}^{{{k},{p}}} = {}\n", six(&s)));
+        t.push_str(&format!("   S_{k}^{{{k},{p}}} = {}\n", six(&joint.screw)));
         t.push_str(&format!(
             "   H_{k}^{p}(θ_{k}) = H_{k}^{p}(0) e^{{S̃_{k} θ_{k}}} =\n{}",
-            pose_lines(&h, "      ")
+            pose_lines(&f.pose_in_parent, "      ")
         ));
         t.push_str(&format!(
             "   Ad_{{H_{p}^{k}}} V_{p}^{{{p},0}} = {}\n",
-            six(&v_par)
+            six(&f.parent_twist)
         ));
         t.push_str(&format!(
             "   V_{k}^{{{k},0}} = Ad_{{H_{p}^{k}}} V_{p}^{{{p},0}} + S_{k}^{{{k},{p}}} θ̇_{k} = {}\n",
-            six(&vi)
+            six(&f.twist)
         ));
         t.push_str(&format!(
             "   V̇_{k}^{{{k},0}} = Ad_{{H_{p}^{k}}} V̇_{p}^{{{p},0}} − ad_{{S_{k} θ̇_{k}}}(Ad_{{H_{p}^{k}}} V_{p}^{{{p},0}}) + S_{k}^{{{k},{p}}} θ̈_{k} = {}\n",
-            six(&vdi)
+            six(&f.twist_dot)
         ));
-        pose.push(h);
-        tw.push(vi);
-        twd.push(vdi);
     }
     t.push_str("\nBackward iterations, i = n … 1:\n");
-    let mut w = vec![Wrench::zeros(); n];
-    let mut tau = vec![0.0; n];
-    // H_i^0, for wrenches given in the base frame.
-    let mut world = vec![Se3::identity(); n];
-    for i in 0..n {
-        world[i] = match m.parent(i) {
-            Some(p) => world[p].compose(&pose[i]),
-            None => pose[i],
-        };
-    }
-    for i in (0..n).rev() {
+    for i in (0..m.nq()).rev() {
         let (k, p) = (idx(i), par(i));
-        let inertia = &m.bodies()[i].inertia;
-        let own = inertia.apply(&twd[i]) - ad_transpose(&tw[i], &inertia.apply(&tw[i]));
+        let b = &it.backward[i];
         t.push_str(&format!("\n i = {k}: body '{}'\n", m.bodies()[i].name));
         t.push_str(&format!(
             "   𝔍^{{{k},{k}}} V̇_{k} − ad_{{V_{k}}}ᵀ(𝔍^{{{k},{k}}} V_{k}) = {}\n",
-            six(&own)
+            six(&b.inertial)
         ));
-        let mut total = own;
-        if let Some(ext) = ext {
-            let we = ext.on_body_at(&world[i], i);
-            if we != Wrench::zeros() {
-                t.push_str(&format!("   − W_ext^{{{k},{k}}} = {}\n", six(&-we)));
-                total -= we;
-            }
+        if b.external != Wrench::zeros() {
+            t.push_str(&format!("   − W_ext^{{{k},{k}}} = {}\n", six(&-b.external)));
         }
-        for &c in m.children(i) {
-            let kc = idx(c);
-            let back = pose[c].inv_act_transpose_wrench(&w[c]);
+        for (c, back) in &b.from_children {
+            let kc = idx(*c);
             t.push_str(&format!(
                 "   + Ad_{{H_{k}^{kc}}}ᵀ W_{k}^{{{kc},{kc}}} = {}\n",
-                six(&back)
+                six(back)
             ));
-            total += back;
         }
-        w[i] = total;
-        tau[i] = m.joints()[i].screw.dot(&total);
-        t.push_str(&format!("   W_{p}^{{{k},{k}}} = {}\n", six(&total)));
+        t.push_str(&format!("   W_{p}^{{{k},{k}}} = {}\n", six(&b.wrench)));
         t.push_str(&format!(
             "   τ_{k} = (S_{k}^{{{k},{p}}})ᵀ W_{p}^{{{k},{k}}} = {}\n",
-            fmt(tau[i])
+            fmt(b.tau)
         ));
     }
     t.push_str("\nJoint torques:\n");
     for (i, j) in m.joints().iter().enumerate() {
-        t.push_str(&format!("   τ_{} ({}) = {}\n", idx(i), j.name, fmt(tau[i])));
+        t.push_str(&format!(
+            "   τ_{} ({}) = {}\n",
+            idx(i),
+            j.name,
+            fmt(it.tau[i])
+        ));
     }
-    Iterations {
-        pose,
-        twist: tw,
-        twist_dot: twd,
-        wrench: w,
-        tau,
-        text: t,
-    }
+    t
 }
 
 /// `screwdyn explain MODEL --q --v --a`.
@@ -185,7 +132,7 @@ pub fn explain(a: &ExplainArgs) -> Result<(), CliError> {
         ("a", a.a.as_deref()),
     ];
     run_states(&m, &a.common, &flags, |s| {
-        let it = iterations(&m, &s.q, &s.v, &s.a, ext.as_ref());
+        let it = rnea_trace(&m, &s.q, &s.v, &s.a, ext.as_ref())?;
         let per_body = |f: &dyn Fn(usize) -> Vec<(String, Value)>| {
             Value::Map(
                 m.bodies()
@@ -196,22 +143,28 @@ pub fn explain(a: &ExplainArgs) -> Result<(), CliError> {
             )
         };
         let forward = per_body(&|i| {
-            let h = it.pose[i].to_matrix();
+            let h = it.forward[i].pose_in_parent.to_matrix();
             vec![
                 (
                     "H".into(),
                     Value::numbered(&DMatrix::from_iterator(4, 4, h.iter().copied())),
                 ),
-                ("V".into(), Value::six(TWIST_ROWS, it.twist[i].as_slice())),
+                (
+                    "V".into(),
+                    Value::six(TWIST_ROWS, it.forward[i].twist.as_slice()),
+                ),
                 (
                     "Vdot".into(),
-                    Value::six(TWIST_ROWS, it.twist_dot[i].as_slice()),
+                    Value::six(TWIST_ROWS, it.forward[i].twist_dot.as_slice()),
                 ),
             ]
         });
         let backward = per_body(&|i| {
             vec![
-                ("W".into(), Value::six(WRENCH_ROWS, it.wrench[i].as_slice())),
+                (
+                    "W".into(),
+                    Value::six(WRENCH_ROWS, it.backward[i].wrench.as_slice()),
+                ),
                 ("tau".into(), Value::Scalar(it.tau[i])),
             ]
         });
@@ -220,7 +173,7 @@ pub fn explain(a: &ExplainArgs) -> Result<(), CliError> {
             .add("forward", forward)
             .add("backward", backward)
             .add("tau", Value::joints(&j, &it.tau));
-        r.table = Some(it.text);
+        r.table = Some(narrative(&m, &it));
         Ok(r)
     })
 }

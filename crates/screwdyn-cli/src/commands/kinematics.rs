@@ -27,11 +27,11 @@ pub fn fk(a: &FkArgs) -> Result<(), CliError> {
         let poses = frames
             .iter()
             .map(|&f| {
-                let h = frame_pose(&m, &ws, f).to_matrix();
+                let h = frame_pose(&m, &ws, f)?.to_matrix();
                 let h = DMatrix::from_iterator(4, 4, h.iter().copied());
-                (m.frames()[f].name.clone(), Value::numbered(&h))
+                Ok((m.frames()[f].name.clone(), Value::numbered(&h)))
             })
-            .collect();
+            .collect::<Result<Vec<_>, CliError>>()?;
         let mut r = Report::new();
         r.add("joints", Value::Names(joints.clone()))
             .add("poses", Value::Map(poses));
@@ -58,7 +58,7 @@ pub fn jacobian(a: &JacobianArgs) -> Result<(), CliError> {
     run_states(&m, &a.common, &[("q", a.q.as_deref())], |s| {
         compute_joint_jacobians(&m, &mut ws, &s.q)?;
         let mut j = Matrix6xX::zeros(m.nq());
-        frame_jacobian(&m, &ws, f, reference, &mut j);
+        frame_jacobian(&m, &ws, f, reference, &mut j)?;
         let j = DMatrix::from_iterator(6, m.nq(), j.iter().copied());
         let mut r = Report::new();
         r.add("joints", Value::Names(joints.clone()))

@@ -43,19 +43,27 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
     }
 }
 
-/// Loads the model of `args` (checks on unless `--allow-nonphysical`), with `--gravity` applied.
+/// Loads the model of `args` with `--gravity` applied; its physical-consistency problems are
+/// warnings on stderr, one line each (errors with `--strict`).
 pub fn load(args: &ModelArgs, gravity: Option<&str>) -> Result<Model, CliError> {
-    let options = LoadOptions {
-        allow_nonphysical: args.allow_nonphysical,
-    };
-    let m = screwdyn::io::load_model_with(&args.model, &options)?;
+    let m = load_model(&args.model, args.strict)?;
     match gravity {
         None => Ok(m),
         Some(text) => {
             let g = parse_fixed(text, "--gravity", 3, "x,y,z")?;
-            Ok(m.with_gravity(Vector3::new(g[0], g[1], g[2])))
+            Ok(m.with_gravity(Vector3::new(g[0], g[1], g[2]))?)
         }
     }
+}
+
+/// Loads `path` (strict: findings are errors) and warns about each physical-consistency
+/// finding on stderr.
+pub fn load_model(path: &str, strict: bool) -> Result<Model, CliError> {
+    let m = screwdyn::io::load_model_with(path, &LoadOptions { strict })?;
+    for f in m.physical_problems() {
+        eprintln!("screwdyn: warning: {f}");
+    }
+    Ok(m)
 }
 
 /// Comma-separated numbers given as `flag`, all finite.
@@ -94,14 +102,7 @@ pub fn parse_vector(text: Option<&str>, name: &str, model: &Model) -> Result<Vec
         return Ok(vec![0.0; model.nq()]);
     };
     let flag = format!("--{name}");
-    let values = text
-        .split(',')
-        .map(|s| {
-            s.trim()
-                .parse::<f64>()
-                .map_err(|_| CliError::input(format!("{flag}: '{}' is not a number", s.trim())))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
+    let values = parse_numbers(text, &flag)?;
     model.check_vector(&values, &flag)?;
     Ok(values)
 }

@@ -7,24 +7,32 @@ use crate::CliError;
 use screwdyn::io::LoadOptions;
 use screwdyn::{Model, Workspace};
 
-fn tree(model: &Model, body: Option<usize>, depth: usize, out: &mut String) {
-    let kids: Vec<usize> = match body {
-        Some(b) => model.children(b).to_vec(),
-        None => (0..model.nq())
-            .filter(|&i| model.parent(i).is_none())
-            .collect(),
-    };
-    for k in kids {
+/// Indentation stops growing at this depth (deeper levels say their depth), so the drawing of
+/// a long chain stays linear in its length.
+const MAX_TREE_INDENT: usize = 24;
+
+/// The kinematic tree below the root, one line per joint, depth-first (iterative: a chain of
+/// any length draws without deep recursion).
+fn tree(model: &Model, out: &mut String) {
+    let roots = (0..model.nq()).filter(|&i| model.parents()[i].is_none());
+    let mut stack: Vec<(usize, usize)> = roots.rev().map(|k| (k, 0)).collect();
+    let children = |b: usize| model.children(b).unwrap_or(&[]);
+    while let Some((k, depth)) = stack.pop() {
         let j = &model.joints()[k];
+        let indent = "   ".repeat(depth.min(MAX_TREE_INDENT));
+        let deep = if depth > MAX_TREE_INDENT {
+            format!("[depth {depth}] ")
+        } else {
+            String::new()
+        };
         out.push_str(&format!(
-            "{}└─ {} ({} {}) → {}\n",
-            "   ".repeat(depth),
+            "{indent}{deep}└─ {} ({} {}) → {}\n",
             j.name,
             j.kind.name(),
             k,
             model.bodies()[k].name
         ));
-        tree(model, Some(k), depth + 1, out);
+        stack.extend(children(k).iter().rev().map(|&c| (c, depth + 1)));
     }
 }
 
@@ -52,7 +60,7 @@ pub fn info(a: &ModelArgs) -> Result<(), CliError> {
                 .enumerate()
                 .map(|(i, b)| serde_json::json!({
                     "name": b.name, "mass": b.inertia.mass, "com": b.inertia.com.as_slice(),
-                    "parent": m.parent(i).map(|p| m.bodies()[p].name.clone()).unwrap_or_else(|| m.base().name.clone()),
+                    "parent": m.parents()[i].map(|p| m.bodies()[p].name.clone()).unwrap_or_else(|| m.base().name.clone()),
                 }))
                 .collect();
             let frames: Vec<_> = m
@@ -126,46 +134,27 @@ pub fn info(a: &ModelArgs) -> Result<(), CliError> {
             let frames: Vec<&str> = m.frames().iter().map(|f| f.name.as_str()).collect();
             out.push_str(&format!("\nframes: {}\n", frames.join(", ")));
             out.push_str(&format!("\ntree:\n{}\n", m.base().name));
-            tree(&m, None, 0, &mut out);
+            tree(&m, &mut out);
             write_stdout(&out)
         }
     }
 }
 
-/// `screwdyn check MODEL`: loads with the checks off to list every problem, then with them on.
+/// `screwdyn check MODEL`: lists the model's physical-consistency problems and whether forward
+/// dynamics works at `q = 0`; exit status 2 when there is any problem.
 pub fn check(a: &CheckArgs) -> Result<(), CliError> {
-    let loose = screwdyn::io::load_model_with(
-        &a.model,
-        &LoadOptions {
-            allow_nonphysical: true,
-        },
-    )?;
-    let strict = screwdyn::io::load_model_with(&a.model, &LoadOptions::default());
-    let mut problems = Vec::new();
-    for (i, b) in loose.bodies().iter().enumerate() {
-        if let Err(why) = b.inertia.check_physical() {
-            problems.push(format!("the inertia of body '{}' {why}", b.name));
-        } else if loose.children(i).is_empty() && b.inertia.mass <= 0.0 {
-            problems.push(format!(
-                "body '{}' is a moving leaf with no mass: joint '{}' has no inertia",
-                b.name,
-                loose.joints()[i].name
-            ));
-        }
-    }
-    if let Err(e) = &strict {
-        if problems.is_empty() {
-            problems.push(e.to_string());
-        }
-    }
-    if problems.is_empty() && loose.nq() > 0 {
+    let loose = screwdyn::io::load_model_with(&a.model, &LoadOptions { strict: false })?;
+    let mut problems: Vec<String> = loose
+        .physical_problems()
+        .iter()
+        .map(|f| f.to_string())
+        .collect();
+    if loose.nq() > 0 {
+        // O(n): ABA fails exactly where the mass matrix is singular, naming the joint.
         let mut ws = Workspace::new(&loose);
-        let q = vec![0.0; loose.nq()];
-        let mm = screwdyn::dynamics::crba(&loose, &mut ws, &q)?.clone();
-        if mm.cholesky().is_none() {
-            problems.push(
-                "the mass matrix at q = 0 is not positive definite (a massless chain?)".into(),
-            );
+        let zero = vec![0.0; loose.nq()];
+        if let Err(e) = screwdyn::dynamics::aba(&loose, &mut ws, &zero, &zero, &zero) {
+            problems.push(format!("at q = 0: {e}"));
         }
     }
     let ok = problems.is_empty();
@@ -209,12 +198,7 @@ pub fn check(a: &CheckArgs) -> Result<(), CliError> {
 
 /// `screwdyn export MODEL --to urdf [--output FILE]`.
 pub fn export(a: &ExportArgs) -> Result<(), CliError> {
-    let m = screwdyn::io::load_model_with(
-        &a.model,
-        &LoadOptions {
-            allow_nonphysical: a.allow_nonphysical,
-        },
-    )?;
+    let m = super::load_model(&a.model, a.strict)?;
     let text = match a.to {
         ExportFormat::Urdf => screwdyn::io::urdf::to_urdf_string(&m)?,
     };

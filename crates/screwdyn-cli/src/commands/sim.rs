@@ -2,15 +2,16 @@
 
 use super::{load, names, parse_numbers, parse_per_joint, parse_vector, parse_wrench};
 use crate::args::{ControllerArg, Format, SimulateArgs, TorqueProfileArgs, TrajectoryArg};
-use crate::output::{fmt, resolve, table, write_stdout, Report, Value};
+use crate::output::{fmt, resolve, table, Report, Value};
 use crate::plot::{plot_panels, Panel, Series};
 use crate::CliError;
-use screwdyn::dynamics::{crba, ForwardMethod};
+use screwdyn::dynamics::ForwardMethod;
 use screwdyn::sim::{
     self, ComputedTorque, ConstantTorque, Controller, Disturbance, Integrator, JointEffects,
-    PdGravity, Quintic, Recording, SimOptions, TorqueSeries, Trajectory, Trapezoid, ZeroTorque,
+    PdGravity, Quintic, Recording, Sample, SampleSink, SimOptions, TorqueSeries, Trajectory,
+    Trapezoid, ZeroTorque,
 };
-use screwdyn::{Model, Workspace};
+use screwdyn::Model;
 use std::io::IsTerminal;
 use std::path::Path;
 
@@ -46,19 +47,99 @@ fn plot_kind(path: &Path) -> Result<(), CliError> {
     }
 }
 
-/// Writes a recording as DESIGN §5 CSV or JSON.
-fn write_recording(rec: &Recording, path: &Path, kind: Format) -> Result<(), CliError> {
-    let fail =
-        |e: std::io::Error| CliError::input(format!("cannot write {} ({e})", path.display()));
-    let mut file = std::io::BufWriter::new(std::fs::File::create(path).map_err(fail)?);
-    match kind {
-        Format::Json => {
-            serde_json::to_writer(&mut file, &rec.to_json())
-                .map_err(|e| CliError::input(format!("cannot write {} ({e})", path.display())))?;
+/// Where a run's samples go as they are recorded: a CSV or JSON file (or stdout), a bounded
+/// copy for the plot, and the first and last samples for the summary.
+struct RunSinks {
+    file: Option<RunWriter>,
+    plot: Option<Decimated>,
+    first: Option<Recording>,
+    last: Recording,
+    joints: Vec<String>,
+}
+
+/// A streaming writer of a run.
+enum RunWriter {
+    Csv(sim::CsvSampleWriter<Box<dyn std::io::Write>>),
+    Json(sim::JsonSampleWriter<Box<dyn std::io::Write>>),
+}
+
+impl RunWriter {
+    fn new(kind: Format, out: Box<dyn std::io::Write>) -> Self {
+        match kind {
+            Format::Json => RunWriter::Json(sim::JsonSampleWriter::new(out)),
+            _ => RunWriter::Csv(sim::CsvSampleWriter::new(out)),
         }
-        _ => rec.write_csv(&mut file).map_err(fail)?,
     }
-    std::io::Write::flush(&mut file).map_err(fail)
+    fn sink(&mut self) -> &mut dyn SampleSink {
+        match self {
+            RunWriter::Csv(w) => w,
+            RunWriter::Json(w) => w,
+        }
+    }
+    /// Completes the file (flushes the CSV, assembles the JSON object).
+    fn finish(self) -> screwdyn::Result<()> {
+        match self {
+            RunWriter::Csv(mut w) => w.flush(),
+            RunWriter::Json(w) => w.finish().map(|_| ()),
+        }
+    }
+}
+
+/// At most `2 · MAX_PLOT_SAMPLES` samples of a run for its plot: every `stride`-th sample,
+/// the stride doubling (and every other kept sample dropped) whenever the buffer is full.
+struct Decimated {
+    rec: Recording,
+    stride: usize,
+    seen: usize,
+}
+
+const MAX_PLOT_SAMPLES: usize = 5000;
+
+impl Decimated {
+    fn push(&mut self, s: &Sample) -> screwdyn::Result<()> {
+        if self.seen % self.stride == 0 {
+            self.rec.push(s)?;
+            if self.rec.len() >= 2 * MAX_PLOT_SAMPLES {
+                let old = std::mem::take(&mut self.rec);
+                self.rec = Recording::new(old.joints.clone(), old.frames.clone());
+                for k in (0..old.len()).step_by(2) {
+                    self.rec.push(&old.sample(k)?)?;
+                }
+                self.stride *= 2;
+            }
+        }
+        self.seen += 1;
+        Ok(())
+    }
+}
+
+impl SampleSink for RunSinks {
+    fn begin(&mut self, joints: &[String], frames: &[String]) -> screwdyn::Result<()> {
+        self.joints = joints.to_vec();
+        if let Some(w) = &mut self.file {
+            w.sink().begin(joints, frames)?;
+        }
+        if let Some(p) = &mut self.plot {
+            p.rec.begin(joints, frames)?;
+        }
+        self.last.begin(joints, frames)
+    }
+    fn push(&mut self, s: &Sample) -> screwdyn::Result<()> {
+        if let Some(w) = &mut self.file {
+            w.sink().push(s)?;
+        }
+        if let Some(p) = &mut self.plot {
+            p.push(s)?;
+        }
+        if self.first.is_none() {
+            let mut first = Recording::default();
+            first.begin(&self.joints, &[])?;
+            first.push(&Sample { poses: &[], ..*s })?;
+            self.first = Some(first);
+        }
+        self.last = Recording::new(self.joints.clone(), vec![]);
+        self.last.push(&Sample { poses: &[], ..*s })
+    }
 }
 
 fn joint_series(rec: &Recording, x: &[Vec<f64>]) -> Vec<Series> {
@@ -267,12 +348,9 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
             Box::new(ConstantTorque(parse_vector(Some(t), "tau", &m)?))
         }
         ControllerArg::Pd => {
-            // Critically damped at 10 rad/s on each joint's own inertia M_ii(target).
-            let mut ws = Workspace::new(&m);
-            let mm = crba(&m, &mut ws, &target)?;
-            let diag: Vec<f64> = (0..m.nq()).map(|i| mm[(i, i)]).collect();
-            let kp = gains(&a.kp, "kp", diag.iter().map(|d| 100.0 * d).collect())?;
-            let kd = gains(&a.kd, "kd", diag.iter().map(|d| 20.0 * d).collect())?;
+            let (kp0, kd0) = PdGravity::default_gains(&m, &target)?;
+            let kp = gains(&a.kp, "kp", kp0)?;
+            let kd = gains(&a.kd, "kd", kd0)?;
             Box::new(PdGravity::new(m.clone(), target.clone(), kp, kd)?)
         }
         ControllerArg::ComputedTorque => {
@@ -282,8 +360,9 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
                 ));
             }
             let traj = Quintic::rest_to_rest(&q0, &target, a.duration)?;
-            let kp = gains(&a.kp, "kp", vec![100.0; m.nq()])?;
-            let kd = gains(&a.kd, "kd", vec![20.0; m.nq()])?;
+            let (kp0, kd0) = ComputedTorque::default_gains(m.nq());
+            let kp = gains(&a.kp, "kp", kp0)?;
+            let kd = gains(&a.kd, "kd", kd0)?;
             Box::new(ComputedTorque::new(m.clone(), Box::new(traj), kp, kd)?)
         }
         ControllerArg::Series => {
@@ -335,49 +414,88 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
             b.set_position((f * 1000.0) as u64);
         }
     };
-    let result = sim::simulate(
+    let format = resolve(a.model.format);
+    let file: Option<Box<dyn std::io::Write>> = match &a.output {
+        Some(p) => Some(Box::new(std::io::BufWriter::new(
+            std::fs::File::create(p)
+                .map_err(|e| CliError::input(format!("cannot write {} ({e})", p.display())))?,
+        ))),
+        None if format != Format::Table => {
+            Some(Box::new(std::io::BufWriter::new(std::io::stdout())))
+        }
+        None => None,
+    };
+    let mut sinks = RunSinks {
+        file: file.map(|out| RunWriter::new(output_kind.unwrap_or(format), out)),
+        plot: a.plot.as_ref().map(|_| Decimated {
+            rec: Recording::default(),
+            stride: 1,
+            seen: 0,
+        }),
+        first: None,
+        last: Recording::default(),
+        joints: Vec::new(),
+    };
+    let result = sim::simulate_into(
         &m,
         &q0,
         &v0,
         controller.as_mut(),
         &disturbances,
         &opts,
+        &mut sinks,
         &mut progress,
     );
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
-    let rec = result?;
-    if let (Some(p), Some(kind)) = (&a.output, output_kind) {
-        write_recording(&rec, p, kind)?;
+    let written = sinks.file.take().map(RunWriter::finish);
+    let summary = match (result, &a.output) {
+        (Ok(s), _) => s,
+        (Err(e), Some(p)) if sinks.first.is_some() => {
+            let kept = match written {
+                Some(Ok(())) => format!(
+                    "; the run up to t = {} s is in {}",
+                    fmt(sinks.last.t[0]),
+                    p.display()
+                ),
+                _ => String::new(),
+            };
+            return Err(CliError::from(e).with_suffix(&kept));
+        }
+        (Err(e), _) => return Err(e.into()),
+    };
+    if let Some(w) = written {
+        w.map_err(|e| CliError::input(e.to_string()))?;
     }
-    if let Some(p) = &a.plot {
+    if let (Some(p), Some(d)) = (&a.plot, &sinks.plot) {
+        let rec = &d.rec;
         let panels = vec![
             Panel {
                 title: "Joint positions".into(),
                 y_label: "q (rad)".into(),
-                series: joint_series(&rec, &rec.q),
+                series: joint_series(rec, &rec.q),
                 lines: vec![],
             },
             Panel {
                 title: "Joint velocities".into(),
                 y_label: "dq/dt (rad/s)".into(),
-                series: joint_series(&rec, &rec.v),
+                series: joint_series(rec, &rec.v),
                 lines: vec![],
             },
             Panel {
                 title: "Applied joint torques".into(),
                 y_label: "τ (N·m)".into(),
-                series: joint_series(&rec, &rec.tau),
+                series: joint_series(rec, &rec.tau),
                 lines: vec![],
             },
             Panel {
                 title: "Energy".into(),
                 y_label: "E (J)".into(),
                 series: vec![
-                    scalar_series(&rec, "kinetic", &rec.kinetic_energy),
-                    scalar_series(&rec, "potential", &rec.potential_energy),
-                    scalar_series(&rec, "total", &rec.total_energy),
+                    scalar_series(rec, "kinetic", &rec.kinetic_energy),
+                    scalar_series(rec, "potential", &rec.potential_energy),
+                    scalar_series(rec, "total", &rec.total_energy),
                 ],
                 lines: vec![],
             },
@@ -385,29 +503,24 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
         let title = format!("{}: simulate, controller {name}", m.name());
         plot_panels(p, &title, "t (s)", &panels)?;
     }
-    let format = resolve(a.model.format);
     if a.output.is_none() && format != Format::Table {
-        let mut text = Vec::new();
-        if format == Format::Csv {
-            rec.write_csv(&mut text)
-                .map_err(|e| CliError::internal(format!("cannot format the run ({e})")))?;
-        } else {
-            text = serde_json::to_vec(&rec.to_json()).expect("JSON of numbers");
-            text.push(b'\n');
-        }
-        return write_stdout(&String::from_utf8_lossy(&text));
+        return Ok(());
     }
+    let (first, last) = match (&sinks.first, &sinks.last) {
+        (Some(f), l) if !l.is_empty() => (f.sample(0)?, l.sample(0)?),
+        _ => return Err(CliError::internal("the run recorded no sample")),
+    };
     // A summary of the run.
     let j = names(&m);
-    let last = rec.len() - 1;
+    let energy = |s: &Sample| s.kinetic_energy + s.potential_energy;
     let mut r = Report::new();
     r.add("joints", Value::Names(j.clone()))
-        .add("samples", Value::Count(rec.len()))
-        .add("t", Value::Scalar(rec.t[last]))
-        .add("q", Value::joints(&j, &rec.q[last]))
-        .add("v", Value::joints(&j, &rec.v[last]))
-        .add("total_energy_start", Value::Scalar(rec.total_energy[0]))
-        .add("total_energy_end", Value::Scalar(rec.total_energy[last]));
+        .add("samples", Value::Count(summary.samples))
+        .add("t", Value::Scalar(last.t))
+        .add("q", Value::joints(&j, last.q))
+        .add("v", Value::joints(&j, last.v))
+        .add("total_energy_start", Value::Scalar(energy(&first)))
+        .add("total_energy_end", Value::Scalar(energy(&last)));
     if format == Format::Table {
         let mut t = table();
         t.set_header(vec![
@@ -420,25 +533,25 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
         for (i, n) in j.iter().enumerate() {
             t.add_row(vec![
                 n.clone(),
-                fmt(rec.q[0][i]),
-                fmt(rec.q[last][i]),
-                fmt(rec.v[last][i]),
-                fmt(rec.tau[last][i]),
+                fmt(first.q[i]),
+                fmt(last.q[i]),
+                fmt(last.v[i]),
+                fmt(last.tau[i]),
             ]);
         }
         let mut text = format!(
             "simulated {} s of {} ({} integrator, {} steps of {} s), {} samples recorded\n{t}\n",
-            fmt(rec.t[last]),
+            fmt(last.t),
             m.name(),
             a.integrator,
-            (a.duration / a.dt).round(),
+            summary.steps,
             a.dt,
-            rec.len()
+            summary.samples
         );
         text.push_str(&format!(
             "total energy: {} J at t = 0, {} J at the end\n",
-            fmt(rec.total_energy[0]),
-            fmt(rec.total_energy[last])
+            fmt(energy(&first)),
+            fmt(energy(&last))
         ));
         if let Some(p) = &a.output {
             text.push_str(&format!("run written to {}\n", p.display()));
@@ -507,40 +620,38 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
     let p = sim::torque_profile(&m, traj.as_ref(), a.dt)?;
     let rec = &p.samples;
     if let (Some(path), Some(kind)) = (&a.output, output_kind) {
-        write_recording(rec, path, kind)?;
+        let file = std::fs::File::create(path)
+            .map_err(|e| CliError::input(format!("cannot write {} ({e})", path.display())))?;
+        let mut w = RunWriter::new(kind, Box::new(std::io::BufWriter::new(file)));
+        w.sink().begin(&rec.joints, &rec.frames)?;
+        for k in 0..rec.len() {
+            w.sink().push(&rec.sample(k)?)?;
+        }
+        w.finish()?;
     }
     let j = names(&m);
-    let n = m.nq();
-    let peak_time: Vec<f64> = (0..n)
-        .map(|i| {
-            let k = (0..rec.len())
-                .max_by(|&x, &y| rec.tau[x][i].abs().total_cmp(&rec.tau[y][i].abs()))
-                .unwrap_or(0);
-            rec.t[k]
+    let viol: Vec<(String, Value)> = j
+        .iter()
+        .zip(&p.violation_summary)
+        .map(|(name, s)| {
+            let (count, first, worst) = s.map_or((0, f64::NAN, f64::NAN), |s| {
+                (s.count, s.first_time, s.worst)
+            });
+            (
+                name.clone(),
+                Value::Map(vec![
+                    ("count".into(), Value::Count(count)),
+                    ("first_time".into(), Value::Scalar(first)),
+                    ("worst".into(), Value::Scalar(worst)),
+                ]),
+            )
         })
         .collect();
-    let mut viol = Vec::new();
-    for (i, name) in j.iter().enumerate() {
-        let mine: Vec<_> = p.violations.iter().filter(|v| v.joint == i).collect();
-        let first = mine.first().map(|v| v.t).unwrap_or(f64::NAN);
-        let worst = mine
-            .iter()
-            .map(|v| v.tau.abs())
-            .fold(f64::NAN, |w: f64, x| if w.is_nan() { x } else { w.max(x) });
-        viol.push((
-            name.clone(),
-            Value::Map(vec![
-                ("count".into(), Value::Count(mine.len())),
-                ("first_time".into(), Value::Scalar(first)),
-                ("worst".into(), Value::Scalar(worst)),
-            ]),
-        ));
-    }
     let mut r = Report::new();
     r.add("joints", Value::Names(j.clone()))
         .add("duration", Value::Scalar(traj.duration()))
         .add("peak", Value::joints(&j, &p.peak))
-        .add("peak_time", Value::joints(&j, &peak_time))
+        .add("peak_time", Value::joints(&j, &p.peak_time))
         .add("rms", Value::joints(&j, &p.rms))
         .add("effort_limit", Value::joints(&j, &p.effort_limit))
         .add("violations", Value::Map(viol));
@@ -555,29 +666,25 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
         "first over (s)",
         "worst |τ| (N·m)",
     ]);
-    for i in 0..n {
-        let mine: Vec<_> = p.violations.iter().filter(|v| v.joint == i).collect();
-        let (first, worst) = if mine.is_empty() {
-            ("-".to_string(), "-".to_string())
-        } else {
-            (
-                fmt(mine[0].t),
-                fmt(mine.iter().map(|v| v.tau.abs()).fold(0.0, f64::max)),
-            )
+    for (i, name) in j.iter().enumerate() {
+        let (count, first, worst) = match p.violation_summary[i] {
+            None => (0, "-".to_string(), "-".to_string()),
+            Some(s) => (s.count, fmt(s.first_time), fmt(s.worst)),
         };
         t.add_row(vec![
-            j[i].clone(),
+            name.clone(),
             fmt(p.peak[i]),
-            format!("{:.3}", peak_time[i]),
+            format!("{:.3}", p.peak_time[i]),
             fmt(p.rms[i]),
             fmt(p.effort_limit[i]),
-            mine.len().to_string(),
+            count.to_string(),
             first,
             worst,
         ]);
     }
-    let over: Vec<&str> = (0..n)
-        .filter(|&i| p.violations.iter().any(|v| v.joint == i))
+    let over: Vec<&str> = p
+        .joints_over_limit()
+        .into_iter()
         .map(|i| j[i].as_str())
         .collect();
     let verdict = if over.is_empty() {

@@ -24,8 +24,12 @@ use nalgebra::DVector;
 ///
 /// Writes `ws.qdd`, and `ws.screw_in_world`, `ws.twist_in_world`, `ws.twist_dot_in_world`
 /// (`V̇_i^0`, the base-frame spatial acceleration) and the articulated quantities, all in the
-/// base frame. Returns `ws.qdd`; `Error::Numerical` when an articulated inertia `D_i` is not
-/// positive (a massless subtree).
+/// base frame. Returns `ws.qdd`.
+///
+/// # Errors
+/// [`Error::DimensionMismatch`]/[`Error::NonFinite`] for bad `q`, `v`, `tau`;
+/// [`Error::InvalidArgument`] for a workspace made for another model; [`Error::Numerical`] when
+/// an articulated inertia `D_i` is not positive (a massless subtree), naming the joint.
 ///
 /// ```
 /// use screwdyn::{builtin, dynamics::aba, Workspace};
@@ -42,11 +46,12 @@ pub fn aba<'w, T: Real>(
     v: &[T],
     tau: &[T],
 ) -> Result<&'w DVector<T>> {
-    aba_with(model, ws, q, v, tau, None)
+    articulated_body(model, ws, q, v, tau, None)
 }
 
-/// [`aba`] with external wrenches on the bodies (and tip wrenches).
-pub fn aba_with<'w, T: Real>(
+/// [`aba`] with external wrenches on the bodies (and tip wrenches); public as
+/// [`forward_dynamics`](super::forward_dynamics) with [`ForwardMethod::Aba`](super::ForwardMethod::Aba).
+pub(crate) fn articulated_body<'w, T: Real>(
     model: &Model<T>,
     ws: &'w mut Workspace<T>,
     q: &[T],
@@ -103,9 +108,9 @@ pub fn aba_with<'w, T: Real>(
             )));
         }
         let small_u = tau[i] - s.dot(&ws.articulated_bias[i]);
-        ws.aba_u[i] = u;
-        ws.aba_d[i] = d;
-        ws.aba_small_u[i] = small_u;
+        ws.articulated_force[i] = u;
+        ws.articulated_joint_inertia[i] = d;
+        ws.articulated_joint_force[i] = small_u;
         if let Some(p) = parents[i] {
             let ud = u / d;
             // 𝔍ᵃ = 𝔍ᴬ − U Uᵀ / D (symmetric), added to the parent's as it is formed.
@@ -128,7 +133,8 @@ pub fn aba_with<'w, T: Real>(
             Some(p) => ws.twist_dot_in_world[p],
             None => base,
         } + ws.bias_acceleration[i];
-        let qdd = (ws.aba_small_u[i] - ws.aba_u[i].dot(&a_par)) / ws.aba_d[i];
+        let qdd = (ws.articulated_joint_force[i] - ws.articulated_force[i].dot(&a_par))
+            / ws.articulated_joint_inertia[i];
         ws.qdd[i] = qdd;
         ws.twist_dot_in_world[i] = a_par + ws.screw_in_world[i] * qdd;
     }

@@ -4,7 +4,7 @@
 
 use super::rnea::base_acceleration;
 use super::wrenches::ExternalWrenches;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::kinematics::forward_kinematics_poe;
 use crate::model::Model;
 use crate::scalar::Real;
@@ -78,6 +78,9 @@ pub(crate) fn bar_matrix<T: Real>(h: &Twist<T>) -> Matrix6<T> {
 /// `M`, `C`, `g` (seed 000, "General n-link manipulator dynamics" and "Adding Gravity";
 /// seed 001, "Dynamic Equations in Closed Form"). `τ = M θ̈ + C θ̇ + g − Jᵀ W_ext`.
 ///
+/// # Errors
+/// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a bad `q` or `v`.
+///
 /// ```
 /// use screwdyn::{builtin, dynamics::closed_form};
 /// let m = builtin::planar2();
@@ -102,12 +105,12 @@ pub fn closed_form<T: Real>(model: &Model<T>, q: &[T], v: &[T]) -> Result<Closed
         let h = joint.pose_in_parent(q[i]); // H_i^{λ(i)}
         let ad_parent = h.inverse().adjoint_matrix(); // Ad_{H_{λ(i)}^i}
         block(&mut l, i, i, &Matrix6::identity());
-        match model.parent(i) {
+        match model.parents()[i] {
             Some(p) => {
                 block(&mut a, i, p, &ad_parent);
                 // L_ij = Ad_{H_λ^i} L_{λ j} for every j supporting λ(i): Ad_{H_j^i}.
                 for jj in 0..=p {
-                    if model.supports(jj, p) {
+                    if model.supports_unchecked(jj, p) {
                         let b = ad_parent * get_block(&l, p, jj);
                         block(&mut l, i, jj, &b);
                     }
@@ -166,32 +169,56 @@ pub fn closed_form<T: Real>(model: &Model<T>, q: &[T], v: &[T]) -> Result<Closed
 
 impl<T: Real> ClosedForm<T> {
     /// `W_ext`: the external wrenches stacked in body frames (seed 000).
-    pub fn stacked_wrenches(&self, fext: &ExternalWrenches<T>) -> DVector<T> {
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `fext` was made for another model.
+    pub fn stacked_wrenches(&self, fext: &ExternalWrenches<T>) -> Result<DVector<T>> {
         let n = self.pose_in_world.len();
+        if fext.len() != n {
+            return Err(Error::InvalidArgument(format!(
+                "the external wrenches were made for {} bodies, the closed form for {n}",
+                fext.len()
+            )));
+        }
         let mut w = DVector::zeros(6 * n);
         for i in 0..n {
             w.fixed_rows_mut::<6>(6 * i)
                 .copy_from(&fext.on_body_at(&self.pose_in_world[i], i));
         }
-        w
+        Ok(w)
     }
 
     /// `τ = M θ̈ + C θ̇ + g − Jᵀ W_ext` (seed 000), with the velocity `θ̇` the form was built at.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `qdd` does not have one value per joint or `fext` was made for another model; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞ in `qdd`.
     ///
     /// ```
     /// use screwdyn::{builtin, dynamics::{closed_form, rnea}, Workspace};
     /// let m = builtin::planar2();
     /// let (q, v, a) = ([0.3, -0.7], [1.0, 2.0], [0.5, -0.25]);
-    /// let tau = closed_form(&m, &q, &v).unwrap().inverse_dynamics(&a, None);
+    /// let tau = closed_form(&m, &q, &v).unwrap().inverse_dynamics(&a, None).unwrap();
     /// let mut ws = Workspace::new(&m);
     /// assert!((rnea(&m, &mut ws, &q, &v, &a).unwrap() - tau).amax() < 1e-12);
     /// ```
-    pub fn inverse_dynamics(&self, qdd: &[T], fext: Option<&ExternalWrenches<T>>) -> DVector<T> {
+    pub fn inverse_dynamics(
+        &self,
+        qdd: &[T],
+        fext: Option<&ExternalWrenches<T>>,
+    ) -> Result<DVector<T>> {
+        let n = self.qdot.len();
+        if qdd.len() != n {
+            return Err(Error::InvalidArgument(format!(
+                "qdd has {} values, the closed form was built for {n} joints",
+                qdd.len()
+            )));
+        }
+        crate::model::check_finite(qdd, "qdd")?;
         let a = DVector::from_column_slice(qdd);
         let mut tau = &self.m * a + &self.c * &self.qdot + &self.g;
         if let Some(f) = fext {
-            tau -= self.j.transpose() * self.stacked_wrenches(f);
+            tau -= self.j.transpose() * self.stacked_wrenches(f)?;
         }
-        tau
+        Ok(tau)
     }
 }

@@ -26,6 +26,9 @@ use nalgebra::DMatrix;
 /// `C_kj = s_kᵀ(𝔍ᶜ_j ṡ_j + Bᶜ_j s_j)` for `k` supporting `j` and
 /// `C_jk = (𝔍ᶜ_j s_j)ᵀ ṡ_k + (Bᶜ_jᵀ s_j)ᵀ s_k`: O(n²) on a tree.
 ///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
+///
 /// ```
 /// use screwdyn::{builtin, dynamics::coriolis_matrix, Workspace};
 /// let m = builtin::planar2();
@@ -50,33 +53,38 @@ pub fn coriolis_matrix<'w, T: Real>(
         let x = &ws.pose_in_world[i];
         let s = x.act_twist(&model.joints()[i].screw);
         let vs = x.act_twist(&ws.twist[i]);
-        ws.cor_s[i] = s;
-        ws.cor_sdot[i] = ad(&vs, &s);
+        ws.screw_in_world[i] = s;
+        ws.screw_rate_in_world[i] = ad(&vs, &s);
         let inertia = model.bodies()[i].inertia.transformed(x);
         let im = inertia.matrix();
         let adv = ad_matrix(&vs);
-        ws.cor_b[i] = (bar_matrix(&inertia.apply(&vs)) - im * adv - adv.transpose() * im) * half;
-        ws.cor_inertia[i] = im;
+        ws.composite_coriolis_factor[i] =
+            (bar_matrix(&inertia.apply(&vs)) - im * adv - adv.transpose() * im) * half;
+        ws.composite_inertia_matrix[i] = im;
     }
     for i in (0..n).rev() {
-        if let Some(p) = model.parent(i) {
-            let (ci, bi) = (ws.cor_inertia[i], ws.cor_b[i]);
-            ws.cor_inertia[p] += ci;
-            ws.cor_b[p] += bi;
+        if let Some(p) = model.parents()[i] {
+            let (ci, bi) = (
+                ws.composite_inertia_matrix[i],
+                ws.composite_coriolis_factor[i],
+            );
+            ws.composite_inertia_matrix[p] += ci;
+            ws.composite_coriolis_factor[p] += bi;
         }
     }
     ws.coriolis_matrix.fill(T::zero());
     for j in 0..n {
-        let (sj, sdj) = (ws.cor_s[j], ws.cor_sdot[j]);
-        let f = ws.cor_inertia[j] * sdj + ws.cor_b[j] * sj;
-        let g = ws.cor_inertia[j] * sj;
-        let h = ws.cor_b[j].tr_mul(&sj);
+        let (sj, sdj) = (ws.screw_in_world[j], ws.screw_rate_in_world[j]);
+        let f = ws.composite_inertia_matrix[j] * sdj + ws.composite_coriolis_factor[j] * sj;
+        let g = ws.composite_inertia_matrix[j] * sj;
+        let h = ws.composite_coriolis_factor[j].tr_mul(&sj);
         ws.coriolis_matrix[(j, j)] = sj.dot(&f);
         let mut k = j;
-        while let Some(p) = model.parent(k) {
+        while let Some(p) = model.parents()[k] {
             k = p;
-            ws.coriolis_matrix[(k, j)] = ws.cor_s[k].dot(&f);
-            ws.coriolis_matrix[(j, k)] = g.dot(&ws.cor_sdot[k]) + h.dot(&ws.cor_s[k]);
+            ws.coriolis_matrix[(k, j)] = ws.screw_in_world[k].dot(&f);
+            ws.coriolis_matrix[(j, k)] =
+                g.dot(&ws.screw_rate_in_world[k]) + h.dot(&ws.screw_in_world[k]);
         }
     }
     Ok(&ws.coriolis_matrix)

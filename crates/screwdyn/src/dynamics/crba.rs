@@ -1,118 +1,13 @@
 //! The joint-space mass matrix by the composite-rigid-body algorithm (O(n²) on a tree), and its
 //! inverse.
 
-use crate::error::{Error, Result};
+use super::cholesky::{cholesky_in_place, cholesky_solve_in_place, singular_error};
+use crate::error::Result;
 use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::Real;
-use crate::spatial::{hat, Se3, SpatialInertia, Twist, Wrench};
 use crate::workspace::Workspace;
-use nalgebra::{DMatrix, Matrix3, Vector3, Vector6};
-
-/// A spatial inertia stored by the parameters it is linear in — mass `m`, first moment `h = m c`
-/// and rotational inertia `I_o` about the frame origin — so that the inertias of several bodies
-/// add exactly (composite bodies of the CRBA). `𝔍 = [I_o [h]; [h]ᵀ m·1]`.
-///
-/// ```
-/// use nalgebra::{Matrix3, Vector3};
-/// use screwdyn::{dynamics::CompositeInertia, spatial::{Se3, SpatialInertia}};
-/// let a = SpatialInertia::new(2.0, Vector3::new(0.1, 0.0, 0.3), Matrix3::identity() * 0.2);
-/// let h = Se3::from_rpy(0.1, 0.2, 0.3).with_translation(Vector3::new(1.0, 2.0, 3.0));
-/// let c = CompositeInertia::from(&a).transformed(&h);
-/// assert!((c.matrix() - a.transformed(&h).matrix()).amax() < 1e-12);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CompositeInertia<T: Real = f64> {
-    /// `m`.
-    pub mass: T,
-    /// `h = m c`.
-    pub first_moment: Vector3<T>,
-    /// `I_o = I_c + m([c]ᵀ[c])`: rotational inertia about the frame origin.
-    pub inertia_origin: Matrix3<T>,
-}
-
-impl<T: Real> From<&SpatialInertia<T>> for CompositeInertia<T> {
-    fn from(i: &SpatialInertia<T>) -> Self {
-        CompositeInertia {
-            mass: i.mass,
-            first_moment: i.com * i.mass,
-            inertia_origin: i.inertia_about_origin(),
-        }
-    }
-}
-
-impl<T: Real> CompositeInertia<T> {
-    /// Nothing.
-    pub fn zero() -> Self {
-        CompositeInertia {
-            mass: T::zero(),
-            first_moment: Vector3::zeros(),
-            inertia_origin: Matrix3::zeros(),
-        }
-    }
-
-    /// The sum of two inertias given in the same frame.
-    #[inline]
-    pub fn add(&mut self, o: &CompositeInertia<T>) {
-        self.mass += o.mass;
-        self.first_moment += o.first_moment;
-        self.inertia_origin += o.inertia_origin;
-    }
-
-    /// This inertia, given in frame `b`, written in frame `a`, where `h = H_b^a`:
-    /// `Ad_{H_a^b}ᵀ 𝔍 Ad_{H_a^b}`.
-    #[inline]
-    pub fn transformed(&self, h: &Se3<T>) -> Self {
-        // With h' = R h: I_o' = R I_o Rᵀ − [h'][p] − [p][h'] − m [p][p], and
-        // [a][b] = b aᵀ − (a·b) 1, so the three translation terms are the symmetric
-        // 2(h'·p) 1 − p h'ᵀ − h' pᵀ + m (|p|² 1 − p pᵀ) (no 3×3 products).
-        let r = &h.rotation;
-        let p = &h.translation;
-        let rh = r * self.first_moment;
-        let ri = r * self.inertia_origin;
-        let m = self.mass;
-        let diag = (rh.dot(p) * crate::scalar::real(2.0)) + p.dot(p) * m;
-        let mut io = Matrix3::zeros();
-        for a in 0..3 {
-            for b in a..3 {
-                // (R I Rᵀ)_ab = Σ_k (R I)_ak R_bk
-                let rir = ri[(a, 0)] * r[(b, 0)] + ri[(a, 1)] * r[(b, 1)] + ri[(a, 2)] * r[(b, 2)];
-                let t = rir - p[a] * rh[b] - rh[a] * p[b] - p[a] * p[b] * m;
-                io[(a, b)] = t;
-                io[(b, a)] = t;
-            }
-            io[(a, a)] += diag;
-        }
-        CompositeInertia {
-            mass: m,
-            first_moment: rh + p * m,
-            inertia_origin: io,
-        }
-    }
-
-    /// `𝔍 V = (I_o ω + h × v, m v − h × ω)`.
-    #[inline]
-    pub fn apply(&self, v: &Twist<T>) -> Wrench<T> {
-        let w = Vector3::new(v[0], v[1], v[2]);
-        let l = Vector3::new(v[3], v[4], v[5]);
-        let a = self.inertia_origin * w + self.first_moment.cross(&l);
-        let f = l * self.mass - self.first_moment.cross(&w);
-        Vector6::new(a.x, a.y, a.z, f.x, f.y, f.z)
-    }
-
-    /// The 6×6 matrix `𝔍`.
-    pub fn matrix(&self) -> nalgebra::Matrix6<T> {
-        let mut m = nalgebra::Matrix6::zeros();
-        let hh = hat(&self.first_moment);
-        m.fixed_view_mut::<3, 3>(0, 0)
-            .copy_from(&self.inertia_origin);
-        m.fixed_view_mut::<3, 3>(0, 3).copy_from(&hh);
-        m.fixed_view_mut::<3, 3>(3, 0).copy_from(&hh.transpose());
-        m.fixed_view_mut::<3, 3>(3, 3)
-            .copy_from(&(Matrix3::identity() * self.mass));
-        m
-    }
-}
+use nalgebra::DMatrix;
 
 /// The mass matrix `M(q)` by the composite-rigid-body algorithm: composite inertias
 /// `𝔍ᶜ_i = 𝔍_i + Σ_children 𝔍ᶜ_c` (backward), then `M_ij = S_iᵀ 𝔍ᶜ_j S_j` for every `i`
@@ -124,6 +19,9 @@ impl<T: Real> CompositeInertia<T> {
 /// `Ad_{H_i^0} S_i^{i,λ(i)}`, so each off-diagonal entry is a single 6-vector dot product (no
 /// per-ancestor change of frame). Also fills `ws.screw_in_world`.
 /// Returns `ws.mass_matrix` (both triangles filled).
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
 ///
 /// ```
 /// use screwdyn::{builtin, dynamics::crba, Workspace};
@@ -144,6 +42,9 @@ pub fn crba<'w, T: Real>(
 }
 
 /// Alias of [`crba`]: the joint-space mass matrix `M(q)`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
 pub fn mass_matrix<'w, T: Real>(
     model: &Model<T>,
     ws: &'w mut Workspace<T>,
@@ -173,89 +74,27 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
     // Bodies on different branches do not couple: those entries stay zero (on a chain every
     // entry is written below).
     let mm = &mut ws.mass_matrix;
-    assert!(
-        mm.nrows() == n && mm.ncols() == n,
-        "workspace made for another model"
-    );
     if !model.is_chain {
         mm.as_mut_slice().fill(T::zero());
     }
     for i in 0..n {
         let f = ci[i].apply(&s[i]);
-        // SAFETY: i < n and every ancestor k < i, and `mm` is n × n (asserted above).
-        unsafe { *mm.get_unchecked_mut((i, i)) = s[i].dot(&f) };
+        mm[(i, i)] = s[i].dot(&f);
         let mut k = i;
         while let Some(p) = parents[k] {
             k = p;
-            debug_assert!(k < i);
             let mij = s[k].dot(&f);
-            unsafe {
-                *mm.get_unchecked_mut((k, i)) = mij;
-                *mm.get_unchecked_mut((i, k)) = mij;
-            }
+            mm[(k, i)] = mij;
+            mm[(i, k)] = mij;
         }
     }
-}
-
-/// In-place Cholesky factorisation `M = L Lᵀ` of the symmetric matrix in `a` (lower triangle
-/// overwritten with `L`). `Err(pivot index)` when `M` is not positive definite.
-pub(crate) fn cholesky_in_place<T: Real>(a: &mut DMatrix<T>) -> std::result::Result<(), usize> {
-    let n = a.nrows();
-    let scale = (0..n).fold(T::zero(), |s, i| s.max(a[(i, i)].abs()));
-    let tiny = scale * T::default_epsilon() * crate::scalar::real(64.0);
-    for j in 0..n {
-        let mut d = a[(j, j)];
-        for k in 0..j {
-            d -= a[(j, k)] * a[(j, k)];
-        }
-        if d.partial_cmp(&tiny) != Some(std::cmp::Ordering::Greater) {
-            return Err(j);
-        }
-        let d = d.sqrt();
-        a[(j, j)] = d;
-        for i in j + 1..n {
-            let mut s = a[(i, j)];
-            for k in 0..j {
-                s -= a[(i, k)] * a[(j, k)];
-            }
-            a[(i, j)] = s / d;
-        }
-    }
-    Ok(())
-}
-
-/// Solves `L Lᵀ x = b` in place, with `L` in the lower triangle of `l`.
-pub(crate) fn cholesky_solve_in_place<T: Real>(
-    l: &DMatrix<T>,
-    mut b: nalgebra::DVectorViewMut<'_, T>,
-) {
-    let n = l.nrows();
-    for i in 0..n {
-        let mut s = b[i];
-        for k in 0..i {
-            s -= l[(i, k)] * b[k];
-        }
-        b[i] = s / l[(i, i)];
-    }
-    for i in (0..n).rev() {
-        let mut s = b[i];
-        for k in i + 1..n {
-            s -= l[(k, i)] * b[k];
-        }
-        b[i] = s / l[(i, i)];
-    }
-}
-
-pub(crate) fn singular_error<T: Real>(model: &Model<T>, j: usize) -> Error {
-    Error::Numerical(format!(
-        "the mass matrix is singular or not positive definite at joint '{}' (is the chain \
-         beyond it massless?)",
-        model.joints()[j].name
-    ))
 }
 
 /// `M(q)⁻¹` by CRBA and a Cholesky factorisation. Returns `ws.mass_matrix_inverse`;
 /// `Error::Numerical` when `M` is singular (e.g. a massless chain).
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞. [`Error::Numerical`](crate::Error::Numerical) when `M` is singular, naming the joint.
 ///
 /// ```
 /// use screwdyn::{builtin, dynamics::mass_matrix_inverse, Workspace};

@@ -10,6 +10,9 @@ use nalgebra::Vector3;
 
 /// Kinetic energy as the sum over links, `E_kin = ½ Σ_i V_iᵀ 𝔍^{i,i} V_i` (seed 001).
 ///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
+///
 /// ```
 /// use screwdyn::{builtin, dynamics::kinetic_energy, Workspace};
 /// let m = builtin::pendulum();
@@ -39,6 +42,9 @@ pub(crate) fn kinetic_energy_given_twists<T: Real>(model: &Model<T>, ws: &Worksp
 
 /// Kinetic energy from the mass matrix, `½ q̇ᵀ M(q) q̇` (seed 001, seed 003).
 ///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
+///
 /// ```
 /// use screwdyn::{builtin, dynamics::{kinetic_energy, kinetic_energy_mass_matrix}, Workspace};
 /// let m = builtin::planar2();
@@ -66,6 +72,9 @@ pub fn kinetic_energy_mass_matrix<T: Real>(
 
 /// Potential energy of gravity, `P = −Σ_i m_i g⁰ · p_{c,i}⁰` (seed 004: `P = m g l sin θ` terms),
 /// zero with every centre of mass at the base origin.
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
 ///
 /// ```
 /// use screwdyn::{builtin, dynamics::potential_energy, Workspace};
@@ -95,6 +104,9 @@ pub(crate) fn potential_energy_given_poses<T: Real>(model: &Model<T>, ws: &Works
 }
 
 /// Total mechanical energy `E_kin + P`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
 pub fn total_energy<T: Real>(
     model: &Model<T>,
     ws: &mut Workspace<T>,
@@ -108,6 +120,9 @@ pub fn total_energy<T: Real>(
 
 /// Mechanical power delivered by the joints, `τ · q̇` (seed 001: `Wᵀ V = τ q̇`); with no gravity
 /// it equals `dE_kin/dt`.
+///
+/// # Errors
+/// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a bad `tau` or `v`.
 pub fn power<T: Real>(model: &Model<T>, tau: &[T], v: &[T]) -> Result<T> {
     model.check_vector(tau, "tau")?;
     model.check_vector(v, "v")?;
@@ -116,6 +131,9 @@ pub fn power<T: Real>(model: &Model<T>, tau: &[T], v: &[T]) -> Result<T> {
 
 /// The centre of mass of the moving bodies in the base frame, `Σ m_i p_{c,i}⁰ / Σ m_i`;
 /// `Error::Numerical` when the robot has no mass.
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
 ///
 /// ```
 /// use screwdyn::{builtin, dynamics::center_of_mass, Workspace};

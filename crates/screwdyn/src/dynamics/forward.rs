@@ -1,8 +1,9 @@
 //! Forward dynamics three ways: ABA, CRBA + Cholesky, and the Walker–Orin simulator method of
 //! seed 004 §6.4.
 
-use super::aba::aba_with;
-use super::crba::{cholesky_in_place, cholesky_solve_in_place, crba_given_poses, singular_error};
+use super::aba::articulated_body;
+use super::cholesky::{cholesky_in_place, cholesky_solve_in_place, singular_error};
+use super::crba::crba_given_poses;
 use super::rnea::{base_acceleration, rnea_passes};
 use super::wrenches::ExternalWrenches;
 use crate::error::{Error, Result};
@@ -40,31 +41,30 @@ impl std::str::FromStr for ForwardMethod {
     }
 }
 
-/// Forward dynamics `q̈ = M(q)⁻¹ (τ − C(q, q̇) q̇ − g(q))` by the chosen method (all three agree to
-/// round-off). Returns `ws.qdd`.
+/// Forward dynamics `q̈ = M(q)⁻¹ (τ − C(q, q̇) q̇ − g(q) + Σ J_iᵀ W_ext,i)` by the chosen method
+/// (all three agree to round-off), with optional external wrenches (seed 004 §6.4:
+/// `b = C q̇ + G + Kᵀ f_ext`). Returns `ws.qdd`.
+///
+/// Naming rule of the library: the functions named after the quantity
+/// ([`inverse_dynamics`](super::inverse_dynamics), `forward_dynamics`) take the external
+/// wrenches; the algorithms' acronyms ([`rnea`](super::rnea), [`aba`](super::aba),
+/// [`crba`](super::crba)) are the wrench-free short forms.
+///
+/// # Errors
+/// [`Error::DimensionMismatch`]/[`Error::NonFinite`] for bad `q`, `v`, `tau`;
+/// [`Error::InvalidArgument`] for a workspace or wrenches made for another model;
+/// [`Error::Numerical`] when the mass matrix is singular, naming the joint.
 ///
 /// ```
 /// use screwdyn::{builtin, dynamics::{forward_dynamics, ForwardMethod}, Workspace};
 /// let m = builtin::planar2();
 /// let mut ws = Workspace::new(&m);
 /// let (q, v, tau) = ([0.3, 0.9], [0.5, -1.0], [2.0, 1.0]);
-/// let a = forward_dynamics(&m, &mut ws, &q, &v, &tau, ForwardMethod::Aba).unwrap().clone();
-/// let b = forward_dynamics(&m, &mut ws, &q, &v, &tau, ForwardMethod::WalkerOrin).unwrap().clone();
+/// let a = forward_dynamics(&m, &mut ws, &q, &v, &tau, None, ForwardMethod::Aba).unwrap().clone();
+/// let b = forward_dynamics(&m, &mut ws, &q, &v, &tau, None, ForwardMethod::WalkerOrin).unwrap().clone();
 /// assert!((a - b).amax() < 1e-12);
 /// ```
 pub fn forward_dynamics<'w, T: Real>(
-    model: &Model<T>,
-    ws: &'w mut Workspace<T>,
-    q: &[T],
-    v: &[T],
-    tau: &[T],
-    method: ForwardMethod,
-) -> Result<&'w DVector<T>> {
-    forward_dynamics_with(model, ws, q, v, tau, None, method)
-}
-
-/// [`forward_dynamics`] with external wrenches (seed 004 §6.4: `b = C q̇ + G + Kᵀ f_ext`).
-pub fn forward_dynamics_with<'w, T: Real>(
     model: &Model<T>,
     ws: &'w mut Workspace<T>,
     q: &[T],
@@ -74,7 +74,7 @@ pub fn forward_dynamics_with<'w, T: Real>(
     method: ForwardMethod,
 ) -> Result<&'w DVector<T>> {
     match method {
-        ForwardMethod::Aba => aba_with(model, ws, q, v, tau, fext),
+        ForwardMethod::Aba => articulated_body(model, ws, q, v, tau, fext),
         ForwardMethod::Crba => forward_dynamics_crba(model, ws, q, v, tau, fext),
         ForwardMethod::WalkerOrin => forward_dynamics_walker_orin(model, ws, q, v, tau, fext),
     }
@@ -126,6 +126,9 @@ fn solve<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, tau: &[T]) -> Result<
 
 /// Forward dynamics by CRBA (`M`), RNEA with `q̈ = 0` (`b`) and a Cholesky solve of
 /// `M q̈ = τ − b`. Returns `ws.qdd`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞. [`Error::Numerical`](crate::Error::Numerical) when `M` is singular, naming the joint.
 pub fn forward_dynamics_crba<'w, T: Real>(
     model: &Model<T>,
     ws: &'w mut Workspace<T>,
@@ -143,6 +146,9 @@ pub fn forward_dynamics_crba<'w, T: Real>(
 /// Seed 004 §6.4, the Walker–Orin simulator: ① `b` = SUB1(q, q̇, q̈ = 0, f_ext) (RNEA);
 /// ② column `j` of `H(q)` = SUB2(q, q̈ = e_j) (RNEA without velocity, gravity or external
 /// wrenches); ③ solve `H q̈ = τ − b`. Returns `ws.qdd` (and leaves `M` in `ws.mass_matrix`).
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞. [`Error::Numerical`](crate::Error::Numerical) when `M` is singular, naming the joint.
 pub fn forward_dynamics_walker_orin<'w, T: Real>(
     model: &Model<T>,
     ws: &'w mut Workspace<T>,

@@ -25,8 +25,25 @@ pub struct LagrangeCoefficients<T: Real = f64> {
 
 impl<T: Real> LagrangeCoefficients<T> {
     /// `D_ijk` with 0-based `i, j, k`.
-    pub fn d(&self, i: usize, j: usize, k: usize) -> T {
-        self.d_ijk[i][(j, k)]
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when an index is not below `n`.
+    ///
+    /// ```
+    /// use screwdyn::{builtin, dynamics::lagrange_coefficients};
+    /// let c = lagrange_coefficients(&builtin::planar2(), &[0.0, 0.5]).unwrap();
+    /// // Seed 004: D_112 = −m2 L1 L2 s2 (all ones here).
+    /// assert!((c.d(0, 0, 1).unwrap() + 0.5_f64.sin()).abs() < 1e-12);
+    /// assert!(c.d(0, 0, 2).is_err());
+    /// ```
+    pub fn d(&self, i: usize, j: usize, k: usize) -> Result<T> {
+        let n = self.d_ijk.len();
+        if i >= n || j >= n || k >= n {
+            return Err(Error::InvalidArgument(format!(
+                "D_ijk index ({i}, {j}, {k}) is out of range for {n} joints"
+            )));
+        }
+        Ok(self.d_ijk[i][(j, k)])
     }
 }
 
@@ -35,6 +52,9 @@ impl<T: Real> LagrangeCoefficients<T> {
 /// joint `j` (zero otherwise), and the base-frame inertia of body `i` has
 /// `∂𝔍_i/∂q_k = −(ad_{s_k}ᵀ 𝔍_i + 𝔍_i ad_{s_k})` when `k` supports `i`; differentiate
 /// `M = Σ_i J_iᵀ 𝔍_i J_i` (seed 001) term by term. O(n⁴); allocates.
+///
+/// # Errors
+/// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a bad `q`.
 ///
 /// ```
 /// use screwdyn::{builtin, dynamics::mass_matrix_derivatives};
@@ -64,15 +84,15 @@ pub fn mass_matrix_derivatives<T: Real>(model: &Model<T>, q: &[T]) -> Result<Vec
         let adk = ad_matrix(&s[k]);
         let mut dm = DMatrix::zeros(n, n);
         for (i, inertia_i) in inertia.iter().enumerate() {
-            if !model.supports(k, i) {
+            if !model.supports_unchecked(k, i) {
                 continue;
             }
             let mut j_i = DMatrix::zeros(6, n);
             let mut dj_i = DMatrix::zeros(6, n);
             for j in 0..n {
-                if model.supports(j, i) {
+                if model.supports_unchecked(j, i) {
                     j_i.set_column(j, &s[j]);
-                    if j != k && model.supports(k, j) {
+                    if j != k && model.supports_unchecked(k, j) {
                         dj_i.set_column(j, &ad(&s[k], &s[j]));
                     }
                 }
@@ -91,15 +111,18 @@ pub fn mass_matrix_derivatives<T: Real>(model: &Model<T>, q: &[T]) -> Result<Vec
 /// Seed 004's `D_ij`, `D_ijk` and `D_i` at `q`, with `D_ijk` the Christoffel symbols of the
 /// first kind from the analytic `∂M/∂q` of [`mass_matrix_derivatives`].
 ///
+/// # Errors
+/// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a bad `q`.
+///
 /// ```
 /// use screwdyn::{builtin, dynamics::lagrange_coefficients};
 /// let m = builtin::planar2(); // m1 = m2 = l1 = l2 = 1
 /// let q2 = 0.8_f64;
 /// let d = lagrange_coefficients(&m, &[0.3, q2]).unwrap();
 /// // Seed 004: D122 = D112 = −m2 l1 l2 sin θ2, D211 = m2 l1 l2 sin θ2, D111 = D222 = 0.
-/// assert!((d.d(0, 1, 1) + q2.sin()).abs() < 1e-12);
-/// assert!((d.d(0, 0, 1) + q2.sin()).abs() < 1e-12);
-/// assert!((d.d(1, 0, 0) - q2.sin()).abs() < 1e-12);
+/// assert!((d.d(0, 1, 1).unwrap() + q2.sin()).abs() < 1e-12);
+/// assert!((d.d(0, 0, 1).unwrap() + q2.sin()).abs() < 1e-12);
+/// assert!((d.d(1, 0, 0).unwrap() - q2.sin()).abs() < 1e-12);
 /// ```
 pub fn lagrange_coefficients<T: Real>(
     model: &Model<T>,
@@ -125,6 +148,9 @@ pub fn lagrange_coefficients<T: Real>(
 /// others are locked (`q̈ = 0`), at rest without gravity: the Schur complement
 /// `M_ii − M_iF M_FF⁻¹ M_Fi` (seed 004: `D11 − D12²/D22` for the two-joint arm). `free[joint]`
 /// is ignored. Allocates.
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) for a joint index out of range or a set that does not include it; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch)/[`Error::NonFinite`](crate::Error::NonFinite) for a bad `q`; [`Error::Numerical`](crate::Error::Numerical) for a singular block of `M`.
 ///
 /// ```
 /// use screwdyn::{builtin, dynamics::effective_inertia, Workspace};
@@ -172,6 +198,9 @@ pub fn effective_inertia<T: Real>(
 }
 
 /// Effective inertia at `joint` with every other joint locked: `D_ii` (seed 004, case ①).
+///
+/// # Errors
+/// As [`effective_inertia`].
 pub fn effective_inertia_locked<T: Real>(
     model: &Model<T>,
     ws: &mut Workspace<T>,
@@ -184,6 +213,9 @@ pub fn effective_inertia_locked<T: Real>(
 
 /// Effective inertia at `joint` with every other joint free: `1 / (M⁻¹)_ii`, the Schur
 /// complement of seed 004's case ② (`D11 − D12²/D22` for two joints).
+///
+/// # Errors
+/// As [`effective_inertia`].
 pub fn effective_inertia_free<T: Real>(
     model: &Model<T>,
     ws: &mut Workspace<T>,

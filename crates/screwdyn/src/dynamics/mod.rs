@@ -12,12 +12,13 @@
 //! let (q, v, a) = ([0.3, 0.5], [1.0, -0.5], [0.2, 0.1]);
 //! let tau = dynamics::rnea(&m, &mut ws, &q, &v, &a).unwrap().clone();
 //! // τ = M q̈ + C q̇ + g, and forward dynamics inverts it.
-//! let qdd = dynamics::forward_dynamics(&m, &mut ws, &q, &v, tau.as_slice(),
+//! let qdd = dynamics::forward_dynamics(&m, &mut ws, &q, &v, tau.as_slice(), None,
 //!                                      dynamics::ForwardMethod::Aba).unwrap();
 //! assert!((qdd[0] - a[0]).abs() < 1e-12 && (qdd[1] - a[1]).abs() < 1e-12);
 //! ```
 
 mod aba;
+mod cholesky;
 mod closed_form;
 mod coriolis;
 mod crba;
@@ -25,23 +26,24 @@ pub(crate) mod energy;
 mod forward;
 mod lagrange;
 mod rnea;
+mod trace;
 mod wrenches;
 
-pub use aba::{aba, aba_with};
+pub use aba::aba;
 pub use closed_form::{closed_form, ClosedForm};
 pub use coriolis::coriolis_matrix;
-pub use crba::{crba, mass_matrix, mass_matrix_inverse, CompositeInertia};
+pub use crba::{crba, mass_matrix, mass_matrix_inverse};
 pub use energy::{
     center_of_mass, kinetic_energy, kinetic_energy_mass_matrix, potential_energy, power,
     total_energy,
 };
 pub use forward::{
-    forward_dynamics, forward_dynamics_crba, forward_dynamics_walker_orin, forward_dynamics_with,
-    ForwardMethod,
+    forward_dynamics, forward_dynamics_crba, forward_dynamics_walker_orin, ForwardMethod,
 };
 pub use lagrange::{
     effective_inertia, effective_inertia_free, effective_inertia_locked, lagrange_coefficients,
     mass_matrix_derivatives, LagrangeCoefficients,
 };
 pub use rnea::{base_acceleration, gravity_torque, inverse_dynamics, nonlinear_effects, rnea};
+pub use trace::{rnea_trace, BackwardStep, ForwardStep, RneaTrace};
 pub use wrenches::ExternalWrenches;

@@ -51,7 +51,7 @@ pub(crate) fn rnea_passes<T: Real>(
         let inertia = &bodies[i].inertia;
         let mut w = inertia.apply(&vdi) - ad_transpose(&vi, &inertia.apply(&vi));
         if let Some(f) = fext {
-            w -= f.on_body(ws, i);
+            w -= f.on_body_at(&ws.pose_in_world[i], i);
         }
         ws.twist[i] = vi;
         ws.twist_dot[i] = vdi;
@@ -75,6 +75,9 @@ pub(crate) fn rnea_passes<T: Real>(
 /// `V̇_i = Ad V̇_{λ(i)} − ad_{S_i q̇_i}(Ad V_{λ(i)}) + S_i q̈_i`.
 /// Backward pass: `W_i = 𝔍_i V̇_i − ad_{V_i}ᵀ 𝔍_i V_i + Σ_children Ad_{H_i^c}ᵀ W_c`, `τ_i = S_iᵀ W_i`.
 ///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
+///
 /// ```
 /// use screwdyn::{builtin, dynamics::rnea, Workspace};
 /// let m = builtin::planar2(); // point masses, gravity −9.81 ŷ
@@ -95,6 +98,9 @@ pub fn rnea<'w, T: Real>(
 
 /// [`rnea`] with external wrenches: `τ = M q̈ + C q̇ + g − Σ_i J_iᵀ W_ext,i (+ J_eᵀ W_tip)`
 /// (seed 000, "Adding External Wrenches"). Returns `ws.tau`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
 ///
 /// ```
 /// use nalgebra::Vector6;
@@ -136,6 +142,9 @@ pub fn inverse_dynamics<'w, T: Real>(
 /// Gravity torques `g(q)`: RNEA with `q̇ = q̈ = 0` (seed 000,
 /// `g(θ) = Sᵀ Lᵀ 𝔍 L V̇_base`). Returns `ws.gravity_torque`.
 ///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
+///
 /// ```
 /// use screwdyn::{builtin, dynamics::gravity_torque, Workspace};
 /// let m = builtin::pendulum();
@@ -164,9 +173,12 @@ pub fn gravity_torque<'w, T: Real>(
 
 /// Nonlinear effects `C(q, q̇) q̇ + g(q)`: RNEA with `q̈ = 0`. Returns `ws.nonlinear_effects`.
 ///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
+///
 /// ```
 /// use screwdyn::{builtin, dynamics::nonlinear_effects, Workspace};
-/// let m = builtin::planar2().with_gravity(nalgebra::Vector3::zeros());
+/// let m = builtin::planar2().with_gravity(nalgebra::Vector3::zeros()).unwrap();
 /// let mut ws = Workspace::new(&m);
 /// let (q2, qd1) = (0.4_f64, 1.5_f64);
 /// let h = nonlinear_effects(&m, &mut ws, &[0.0, q2], &[qd1, 0.0]).unwrap();

@@ -21,7 +21,7 @@ use crate::workspace::Workspace;
 /// ```
 /// use nalgebra::Vector6;
 /// use screwdyn::{builtin, dynamics::{inverse_dynamics, ExternalWrenches}, Workspace};
-/// let m = builtin::planar2().with_gravity(nalgebra::Vector3::zeros());
+/// let m = builtin::planar2().with_gravity(nalgebra::Vector3::zeros()).unwrap();
 /// let mut ws = Workspace::new(&m);
 /// // The tip pushes on the environment with 1 N along its local y axis (the link-2 frame).
 /// let mut ext = ExternalWrenches::new(&m);
@@ -61,6 +61,16 @@ impl<T: Real> ExternalWrenches<T> {
         }
     }
 
+    /// The number of bodies this set was made for.
+    pub fn len(&self) -> usize {
+        self.local.len()
+    }
+
+    /// Whether it was made for a model without moving bodies.
+    pub fn is_empty(&self) -> bool {
+        self.local.is_empty()
+    }
+
     /// Removes every wrench (keeps the storage).
     pub fn clear(&mut self) {
         self.local.iter_mut().for_each(|w| w.fill(T::zero()));
@@ -70,7 +80,7 @@ impl<T: Real> ExternalWrenches<T> {
 
     fn check_body(&self, body: usize) -> Result<()> {
         if body >= self.local.len() {
-            return Err(Error::InvalidModel(format!(
+            return Err(Error::InvalidArgument(format!(
                 "external wrench on body {body}, but the model has {} moving bodies",
                 self.local.len()
             )));
@@ -79,6 +89,9 @@ impl<T: Real> ExternalWrenches<T> {
     }
 
     /// Adds `W_ext^{i,i}`: a wrench of the environment on body `body`, in the body frame.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when the model has no body `body`; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞ in `w`.
     pub fn add_local(&mut self, body: usize, w: Wrench<T>) -> Result<()> {
         self.check_body(body)?;
         check_wrench(&w, "the external wrench")?;
@@ -88,6 +101,9 @@ impl<T: Real> ExternalWrenches<T> {
 
     /// Adds a wrench of the environment on body `body`, in the base frame {0} (moment about the
     /// base origin); converted at call time with `Ad_{H_i^0}ᵀ`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when the model has no body `body`; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞ in `w`.
     pub fn add_world(&mut self, body: usize, w: Wrench<T>) -> Result<()> {
         self.check_body(body)?;
         check_wrench(&w, "the external wrench")?;
@@ -99,15 +115,14 @@ impl<T: Real> ExternalWrenches<T> {
     /// Adds a tip wrench `W_tip^{e,e}`: the wrench that frame `frame` applies to the environment,
     /// written in that frame (seed 000: `τ = M q̈ + C q̇ + J_eᵀ W_tip`). A frame on the fixed base
     /// is rejected.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when the model has no frame `frame`, the frame is fixed to the base, or the set was made for another model; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞ in `w`.
     pub fn add_tip(&mut self, model: &Model<T>, frame: usize, w: Wrench<T>) -> Result<()> {
-        let f = model.frames().get(frame).ok_or_else(|| {
-            Error::InvalidModel(format!(
-                "tip wrench at frame {frame}, but the model has {} frames",
-                model.frames().len()
-            ))
-        })?;
+        self.check(model)?;
+        let f = model.frame(frame)?;
         let Some(body) = f.body else {
-            return Err(Error::InvalidModel(format!(
+            return Err(Error::InvalidArgument(format!(
                 "tip wrench at frame '{}', which is fixed to the base and cannot act on the robot",
                 f.name
             )));
@@ -119,9 +134,12 @@ impl<T: Real> ExternalWrenches<T> {
     }
 
     /// Checks that this set was made for a model with `model.nbodies()` bodies.
-    pub(crate) fn check(&self, model: &Model<T>) -> Result<()> {
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming both sizes.
+    pub fn check(&self, model: &Model<T>) -> Result<()> {
         if self.local.len() != model.nbodies() {
-            return Err(Error::InvalidModel(format!(
+            return Err(Error::InvalidArgument(format!(
                 "the external wrenches were made for a model with {} bodies, this one has {}",
                 self.local.len(),
                 model.nbodies()
@@ -130,16 +148,38 @@ impl<T: Real> ExternalWrenches<T> {
         Ok(())
     }
 
-    /// `W_ext^{i,i}`: the total wrench on body `i` in its frame, given `ws.pose_in_world`.
-    #[inline]
-    pub fn on_body(&self, ws: &Workspace<T>, i: usize) -> Wrench<T> {
-        self.on_body_at(&ws.pose_in_world[i], i)
+    /// `W_ext^{i,i}`: the total wrench on body `i` in its frame, given `ws.pose_in_world` (from
+    /// the last forward-kinematics call).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when there is no body `i` or `ws` was made for another model.
+    ///
+    /// ```
+    /// use nalgebra::Vector6;
+    /// use screwdyn::{builtin, dynamics::ExternalWrenches, Workspace};
+    /// let m = builtin::planar2();
+    /// let ws = Workspace::new(&m);
+    /// let mut ext = ExternalWrenches::new(&m);
+    /// ext.add_local(1, Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0)).unwrap();
+    /// assert_eq!(ext.on_body(&ws, 1).unwrap()[2], 1.0);
+    /// assert!(ext.on_body(&ws, 2).is_err());
+    /// ```
+    pub fn on_body(&self, ws: &Workspace<T>, i: usize) -> Result<Wrench<T>> {
+        self.check_body(i)?;
+        if ws.pose_in_world.len() != self.local.len() {
+            return Err(Error::InvalidArgument(format!(
+                "the workspace has {} bodies, the external wrenches {}",
+                ws.pose_in_world.len(),
+                self.local.len()
+            )));
+        }
+        Ok(self.on_body_at(&ws.pose_in_world[i], i))
     }
 
     /// `W_ext^{0,i}`: the total wrench on body `i` written in the base frame (moment about the
     /// base origin), given the pose `H_i^0` of body `i`; `Ad_{H_0^i}ᵀ W_ext^{i,i}`.
     #[inline]
-    pub fn in_world_at(&self, pose_in_world: &Se3<T>, i: usize) -> Wrench<T> {
+    pub(crate) fn in_world_at(&self, pose_in_world: &Se3<T>, i: usize) -> Wrench<T> {
         let local = pose_in_world.inv_act_transpose_wrench(&self.local[i]);
         if self.any_world {
             local + self.world[i]
@@ -150,7 +190,7 @@ impl<T: Real> ExternalWrenches<T> {
 
     /// `W_ext^{i,i}` given the pose `H_i^0` of body `i`.
     #[inline]
-    pub fn on_body_at(&self, pose_in_world: &Se3<T>, i: usize) -> Wrench<T> {
+    pub(crate) fn on_body_at(&self, pose_in_world: &Se3<T>, i: usize) -> Wrench<T> {
         if self.any_world {
             self.local[i] + pose_in_world.act_transpose_wrench(&self.world[i])
         } else {

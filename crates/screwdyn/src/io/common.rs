@@ -60,6 +60,9 @@ pub(crate) struct PoseSpec {
 
 impl PoseSpec {
     /// The pose, or a phrase saying what is wrong.
+    ///
+    /// # Errors
+    /// A phrase saying which value is malformed (the loader adds file and line).
     pub fn to_se3(&self) -> std::result::Result<Se3, String> {
         let n = self.rpy.is_some() as u8
             + self.quaternion.is_some() as u8
@@ -129,6 +132,9 @@ pub(crate) fn inertia_matrix(i: [f64; 6]) -> Matrix3<f64> {
 }
 
 impl InertiaSpec {
+    ///
+    /// # Errors
+    /// A phrase saying which value is malformed (the loader adds file and line).
     pub fn to_inertia(&self) -> std::result::Result<SpatialInertia, String> {
         if let Some(rows) = self.spatial_inertia {
             if self.mass.is_some() || self.com.is_some() || self.inertia.is_some() {
@@ -224,18 +230,4 @@ impl LimitSpec {
 pub(crate) fn gravity(g: Option<[f64; 3]>) -> Vector3<f64> {
     g.map(Vector3::from)
         .unwrap_or_else(|| Vector3::new(0.0, 0.0, -9.81))
-}
-
-/// Checks a link inertia before the builder does, so that the message names the file.
-pub(crate) fn check_inertia(
-    i: &SpatialInertia,
-    what: &str,
-    file: &str,
-    allow_nonphysical: bool,
-) -> Result<()> {
-    if allow_nonphysical {
-        return Ok(());
-    }
-    i.check_physical()
-        .map_err(|why| Error::InvalidModel(format!("{file}: the inertia of {what} {why}")))
 }

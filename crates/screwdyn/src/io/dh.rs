@@ -131,6 +131,9 @@ pub fn modified_dh_transform(a_prev: f64, alpha_prev: f64, d: f64, theta: f64) -
 }
 
 /// Parses a standard or modified DH table (see the module documentation for the keys).
+///
+/// # Errors
+/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
 pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let f: DhFile = common::from_toml(text, file)?;
     let modified = match f.format.as_str() {
@@ -150,7 +153,7 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
     let base = f.base.clone().unwrap_or_else(|| "base".into());
     b.base_name(&base)
         .gravity(common::gravity(f.gravity))
-        .allow_nonphysical(options.allow_nonphysical);
+        .strict(options.strict);
     if f.row.is_empty() {
         return Err(Error::Parse(format!("{file}: the DH table has no [[row]]")));
     }
@@ -202,12 +205,7 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
             Vector3::from(row.com.unwrap_or([0.0; 3])),
             common::inertia_matrix(row.inertia.unwrap_or([0.0; 6])),
         );
-        common::check_inertia(
-            &inertia,
-            &format!("DH row {i} (link '{lname}')"),
-            &at,
-            options.allow_nonphysical,
-        )?;
+        b.locate(&lname, at.clone());
         let parent = row.parent.clone().unwrap_or(previous);
         b.link(&lname, &parent, j, home, inertia);
         previous = lname;

@@ -44,13 +44,16 @@ use serde::Deserialize;
 /// Options shared by every loader.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct LoadOptions {
-    /// Accept inertias that are not physically consistent (not symmetric positive
-    /// semi-definite, triangle inequality broken) and massless moving leaf bodies. Off by
-    /// default: such a file is an error.
-    pub allow_nonphysical: bool,
+    /// Make physical-consistency problems (inertias not positive semi-definite or breaking
+    /// the triangle inequality, massless moving leaves) errors. Off by default: such a file
+    /// loads, and [`Model::physical_problems`] lists its problems, as Pinocchio would load it.
+    pub strict: bool,
 }
 
 /// Loads a model from `builtin:<name>`, a `.urdf` file or a `.toml` file, with default options.
+///
+/// # Errors
+/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
 ///
 /// ```
 /// let e = screwdyn::io::load_model("robot.xyz").unwrap_err().to_string();
@@ -61,6 +64,9 @@ pub fn load_model(path_or_builtin: &str) -> Result<Model> {
 }
 
 /// Loads a model from `builtin:<name>`, a `.urdf` file or a `.toml` file.
+///
+/// # Errors
+/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
 pub fn load_model_with(path_or_builtin: &str, options: &LoadOptions) -> Result<Model> {
     if let Some(name) = path_or_builtin.strip_prefix("builtin:") {
         return crate::builtin::load(name);
@@ -79,6 +85,9 @@ pub fn load_model_with(path_or_builtin: &str, options: &LoadOptions) -> Result<M
 
 /// Loads a model from the text of a description; `file` names it in messages and chooses the
 /// format by its extension (`.urdf`/`.xml` or `.toml`).
+///
+/// # Errors
+/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
 pub fn load_str(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let lower = file.to_ascii_lowercase();
     if lower.ends_with(".urdf") || lower.ends_with(".xml") {
@@ -90,6 +99,9 @@ pub fn load_str(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
 
 /// Loads a TOML description (any of the formats `dh`, `modified-dh`, `poe`, `screwdyn`, chosen by
 /// its top-level `format` key).
+///
+/// # Errors
+/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
 pub fn load_toml_str(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     #[derive(Deserialize)]
     struct Head {

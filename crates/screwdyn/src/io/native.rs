@@ -119,14 +119,16 @@ pub(crate) fn default_name(file: &str) -> String {
 }
 
 /// Parses a native screwdyn TOML description (see the module documentation for the keys).
+///
+/// # Errors
+/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
 pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let f: NativeFile = common::from_toml(text, file)?;
     let mut b = ModelBuilder::new(&f.name.clone().unwrap_or_else(|| default_name(file)));
     if let Some(base) = &f.base {
         b.base_name(base);
     }
-    b.gravity(common::gravity(f.gravity))
-        .allow_nonphysical(options.allow_nonphysical);
+    b.gravity(common::gravity(f.gravity)).strict(options.strict);
     for spanned in &f.body {
         let body = spanned.get_ref();
         let at = common::at_line(file, text, spanned);
@@ -144,12 +146,7 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
         }
         .to_inertia()
         .map_err(bad)?;
-        common::check_inertia(
-            &inertia,
-            &format!("link '{}'", body.name),
-            &at,
-            options.allow_nonphysical,
-        )?;
+        b.locate(&body.name, at.clone());
         let jname = body
             .joint
             .clone()

@@ -59,12 +59,15 @@ pub struct PoeExtras {
     pub velocity: Option<Vec<f64>>,
     /// Effort limits per joint.
     pub effort: Option<Vec<f64>>,
-    /// Accept non-physical inertias.
-    pub allow_nonphysical: bool,
+    /// Make physical-consistency problems errors (see [`ModelBuilder::strict`]).
+    pub strict: bool,
 }
 
 /// Builds a model from Modern Robotics' `M`, `Slist`, `Mlist`, `Glist` (gravity
 /// `(0, 0, −9.81)`; use [`Model::with_gravity`] to change it).
+///
+/// # Errors
+/// [`Error::InvalidModel`] when the lists disagree in length, a screw or matrix is malformed, or a name repeats.
 pub fn from_poe(
     name: &str,
     m: Option<&Se3>,
@@ -78,6 +81,9 @@ pub fn from_poe(
 
 /// [`from_poe`] returning the [`ModelBuilder`], to add frames, names and gravity; `what` prefixes
 /// messages (e.g. the file name).
+///
+/// # Errors
+/// As [`from_poe`].
 pub fn poe_builder(
     name: &str,
     m: Option<&Se3>,
@@ -129,8 +135,7 @@ pub fn poe_builder(
     }
     let mut b = ModelBuilder::new(name);
     let base = extras.base.clone().unwrap_or_else(|| "base".into());
-    b.base_name(&base)
-        .allow_nonphysical(extras.allow_nonphysical);
+    b.base_name(&base).strict(extras.strict);
     let mut m_i = Se3::identity();
     for i in 0..n {
         m_i = m_i.compose(&mlist[i]);
@@ -249,6 +254,9 @@ fn se3_rows(rows: &[[f64; 4]; 4], what: &str, file: &str) -> Result<Se3> {
 }
 
 /// Parses a PoE TOML description (see the module documentation for the keys).
+///
+/// # Errors
+/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
 pub fn parse_poe(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let f: PoeFile = common::from_toml(text, file)?;
     let n = f.Slist.len();
@@ -298,23 +306,8 @@ pub fn parse_poe(text: &str, file: &str, options: &LoadOptions) -> Result<Model>
         limits,
         velocity: f.velocity.clone(),
         effort: f.effort.clone(),
-        allow_nonphysical: options.allow_nonphysical,
+        strict: options.strict,
     };
-    for (k, g) in glist.iter().enumerate() {
-        if let Ok(i) = SpatialInertia::from_matrix(g) {
-            let lname = extras
-                .links
-                .as_ref()
-                .and_then(|l| l.get(k).cloned())
-                .unwrap_or_else(|| format!("link{}", k + 1));
-            common::check_inertia(
-                &i,
-                &format!("Glist entry {} (link '{lname}')", k + 1),
-                file,
-                options.allow_nonphysical,
-            )?;
-        }
-    }
     let name = f
         .name
         .clone()

@@ -62,13 +62,15 @@ struct UJoint {
 }
 
 struct Ctx<'a> {
-    doc: &'a Document<'a>,
     file: &'a str,
+    /// Byte offset of the start of every line, for line numbers in O(log n).
+    line_starts: Vec<usize>,
 }
 
 impl Ctx<'_> {
     fn line(&self, n: Node) -> u32 {
-        self.doc.text_pos_at(n.range().start).row
+        let at = n.range().start;
+        self.line_starts.partition_point(|&s| s <= at) as u32
     }
     fn parse_err(&self, n: Node, msg: String) -> Error {
         Error::Parse(format!("{}:{}: {msg}", self.file, self.line(n)))
@@ -267,12 +269,20 @@ fn parse_joint(ctx: &Ctx, n: Node) -> Result<UJoint> {
 }
 
 /// Parses URDF text into a [`Model`]; `file` names the source in messages (`file:line: …`).
+///
+/// # Errors
+/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
 pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let doc = Document::parse(text).map_err(|e| {
         let p = e.pos();
         Error::Parse(format!("{file}:{}:{}: XML syntax error: {e}", p.row, p.col))
     })?;
-    let ctx = Ctx { doc: &doc, file };
+    let ctx = Ctx {
+        file,
+        line_starts: std::iter::once(0)
+            .chain(text.match_indices('\n').map(|(k, _)| k + 1))
+            .collect(),
+    };
     let root = doc.root_element();
     if !root.has_tag_name("robot") {
         return Err(ctx.parse_err(
@@ -288,7 +298,7 @@ pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model
         .map(str::to_string)
         .unwrap_or_else(|| super::native::default_name(file));
     let mut b = ModelBuilder::new(&robot_name);
-    b.allow_nonphysical(options.allow_nonphysical);
+    b.strict(options.strict);
     let mut links: Vec<ULink> = Vec::new();
     let mut joints: Vec<UJoint> = Vec::new();
     let mut link_at: HashMap<String, usize> = HashMap::new();
@@ -394,53 +404,9 @@ pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model
             ));
         }
     };
-    // Inertias, checked at the <inertial> element.
+    // Physical-consistency findings name the <inertial> element (the builder makes them).
     for l in &links {
-        if l.inertia.mass < 0.0 {
-            return Err(ctx.model_err(
-                l.inertial_line,
-                format!("link '{}' has negative mass {}", l.name, l.inertia.mass),
-            ));
-        }
-        if !options.allow_nonphysical {
-            if let Err(why) = l.inertia.check_physical() {
-                return Err(ctx.model_err(
-                    l.inertial_line,
-                    format!("the inertia of link '{}' {why}", l.name),
-                ));
-            }
-        }
-    }
-    // A moving leaf body (its fixed subtree holds no moving joint) must have mass.
-    if !options.allow_nonphysical {
-        let mut kids: HashMap<&str, Vec<&UJoint>> = HashMap::new();
-        for j in &joints {
-            kids.entry(j.parent.as_str()).or_default().push(j);
-        }
-        for j in joints.iter().filter(|j| j.kind != "fixed") {
-            let (mut mass, mut moving_below) = (0.0, false);
-            let mut stack = vec![j.child.as_str()];
-            while let Some(l) = stack.pop() {
-                mass += links[link_at[l]].inertia.mass;
-                for c in kids.get(l).into_iter().flatten() {
-                    if c.kind == "fixed" {
-                        stack.push(&c.child);
-                    } else {
-                        moving_below = true;
-                    }
-                }
-            }
-            if !moving_below && mass <= 0.0 {
-                let l = &links[link_at[j.child.as_str()]];
-                return Err(ctx.model_err(
-                    l.line,
-                    format!(
-                        "link '{}' is moved by joint '{}' and carries nothing else, but has mass {mass}: give it a positive mass",
-                        l.name, j.name
-                    ),
-                ));
-            }
-        }
+        b.locate(&l.name, format!("{}:{}", ctx.file, l.inertial_line));
     }
     b.base_name(&root_link.name).base_inertia(root_link.inertia);
     for j in &joints {
@@ -537,6 +503,9 @@ fn xml_escape(s: &str) -> String {
 /// revolute joint without position limits is written as `continuous`; infinite limits are
 /// left out. Gravity is not part of URDF and is not written. Helical joints cannot be written
 /// (URDF has none): that is an error.
+///
+/// # Errors
+/// [`Error::InvalidModel`] for a joint URDF cannot express (a helical joint, or an axis that does not pass through the child origin).
 pub fn to_urdf_string(model: &Model) -> Result<String> {
     let mut out = String::new();
     let mut links = String::new();
@@ -586,7 +555,7 @@ pub fn to_urdf_string(model: &Model) -> Result<String> {
         None => base.name.clone(),
     };
     for (i, (j, body)) in model.joints().iter().zip(model.bodies()).enumerate() {
-        let parent = body_link(model.parent(i));
+        let parent = body_link(model.parents()[i]);
         let (w, v) = (ang(&j.screw), lin(&j.screw));
         let (kind, axis, offset) = match j.kind {
             JointKind::Helical { .. } => {

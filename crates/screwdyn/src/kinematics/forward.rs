@@ -2,7 +2,7 @@
 //! product-of-exponentials formula (seed 001).
 
 use crate::error::Result;
-use crate::model::Model;
+use crate::model::{Frame, Model};
 use crate::scalar::Real;
 use crate::spatial::Se3;
 use crate::workspace::Workspace;
@@ -10,6 +10,11 @@ use crate::workspace::Workspace;
 /// Poses of all bodies by the recursion `H_i^{λ(i)}(q_i) = H_i^{λ(i)}(0) e^{[S_i^{i,λ(i)}] q_i}`,
 /// `H_i^0 = H_{λ(i)}^0 H_i^{λ(i)}` (seed 000, forward iterations). Writes `ws.pose_in_parent`
 /// and `ws.pose_in_world`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another
+/// model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or
+/// [`Error::NonFinite`](crate::Error::NonFinite) for a bad `q`.
 ///
 /// ```
 /// use screwdyn::{builtin, kinematics::forward_kinematics, Workspace};
@@ -22,8 +27,9 @@ use crate::workspace::Workspace;
 /// assert!((p.y - (q1.sin() + (q1 + q2).sin())).abs() < 1e-15);
 /// ```
 pub fn forward_kinematics<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) -> Result<()> {
+    ws.check(model)?;
     model.check_vector(q, "q")?;
-    // `check_vector` made `q.len() == n`; the workspace was made for this model.
+    // `check_vector` made `q.len() == n`; `check` that the workspace was made for this model.
     let n = model.nq();
     let (joints, motions, parents) = (model.joints(), model.motions(), model.parents());
     let (pip, piw) = (&mut ws.pose_in_parent[..n], &mut ws.pose_in_world[..n]);
@@ -38,10 +44,30 @@ pub fn forward_kinematics<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &
     Ok(())
 }
 
-/// The pose `H_f^0` of frame `f`, from the body poses of the last
+/// The pose `H_f^0 = H_b^0 H_f^b` of frame `f` on body `b`, from the body poses of the last
 /// [`forward_kinematics`] call.
-pub fn frame_pose<T: Real>(model: &Model<T>, ws: &Workspace<T>, frame: usize) -> Se3<T> {
-    let f = &model.frames()[frame];
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when the model has no frame
+/// `frame` or `ws` was made for another model.
+///
+/// ```
+/// use screwdyn::{builtin, kinematics::{forward_kinematics, frame_pose}, Workspace};
+/// let m = builtin::planar2();
+/// let mut ws = Workspace::new(&m);
+/// forward_kinematics(&m, &mut ws, &[0.0, 0.0]).unwrap();
+/// assert_eq!(frame_pose(&m, &ws, m.frame_id("link2").unwrap()).unwrap().translation.x, 2.0);
+/// assert!(frame_pose(&m, &ws, 99).is_err());
+/// ```
+pub fn frame_pose<T: Real>(model: &Model<T>, ws: &Workspace<T>, frame: usize) -> Result<Se3<T>> {
+    ws.check(model)?;
+    let f = model.frame(frame)?;
+    Ok(frame_pose_unchecked(ws, f))
+}
+
+/// [`frame_pose`] for a frame of the model `ws` was checked against.
+#[inline]
+pub(crate) fn frame_pose_unchecked<T: Real>(ws: &Workspace<T>, f: &Frame<T>) -> Se3<T> {
     match f.body {
         Some(b) => ws.pose_in_world[b].compose(&f.placement),
         None => f.placement,
@@ -52,6 +78,9 @@ pub fn frame_pose<T: Real>(model: &Model<T>, ws: &Workspace<T>, frame: usize) ->
 /// `H_i^0(q) = e^{[S_1^{0}] q_1} ⋯ e^{[S_i^{0}] q_i} H_i^0(0)`, the product running over the
 /// joints supporting body `i`, with `S_j^0 = Ad_{H_j^0(0)} S_j^{j,λ(j)}` the screw axes in the
 /// base frame at home. An independent formula, used to check the recursion; it allocates.
+///
+/// # Errors
+/// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a bad `q`.
 ///
 /// ```
 /// use screwdyn::{builtin, kinematics::{forward_kinematics, forward_kinematics_poe}, Workspace};
@@ -69,7 +98,7 @@ pub fn forward_kinematics_poe<T: Real>(model: &Model<T>, q: &[T]) -> Result<Vec<
     let mut home = vec![Se3::identity(); n];
     for i in 0..n {
         let h = model.joints()[i].home;
-        home[i] = match model.parent(i) {
+        home[i] = match model.parents()[i] {
             Some(p) => home[p].compose(&h),
             None => h,
         };
@@ -77,13 +106,13 @@ pub fn forward_kinematics_poe<T: Real>(model: &Model<T>, q: &[T]) -> Result<Vec<
     let space_screw: Vec<_> = (0..n)
         .map(|i| home[i].act_twist(&model.joints()[i].screw))
         .collect();
-    Ok((0..n)
-        .map(|i| {
-            let mut h = Se3::identity();
-            for j in model.support(i) {
-                h = h.compose(&Se3::exp_screw(&space_screw[j], q[j]));
-            }
-            h.compose(&home[i])
-        })
-        .collect())
+    let mut poses = Vec::with_capacity(n);
+    for (i, home_i) in home.iter().enumerate() {
+        let mut h = Se3::identity();
+        for j in model.support(i)? {
+            h = h.compose(&Se3::exp_screw(&space_screw[j], q[j]));
+        }
+        poses.push(h.compose(home_i));
+    }
+    Ok(poses)
 }

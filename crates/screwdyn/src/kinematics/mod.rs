@@ -8,9 +8,9 @@
 //! let mut ws = Workspace::new(&m);
 //! compute_joint_jacobians(&m, &mut ws, &[0.0, std::f64::consts::FRAC_PI_2]).unwrap();
 //! let tip = m.frame_id("link2").unwrap();
-//! assert!((frame_pose(&m, &ws, tip).translation - nalgebra::Vector3::new(1.0, 1.0, 0.0)).norm() < 1e-15);
+//! assert!((frame_pose(&m, &ws, tip).unwrap().translation - nalgebra::Vector3::new(1.0, 1.0, 0.0)).norm() < 1e-15);
 //! let mut j = Matrix6xX::zeros(m.nq());
-//! frame_jacobian(&m, &ws, tip, Reference::World, &mut j);
+//! frame_jacobian(&m, &ws, tip, Reference::World, &mut j).unwrap();
 //! assert_eq!(j[(2, 0)], 1.0); // both joints turn about z
 //! ```
 

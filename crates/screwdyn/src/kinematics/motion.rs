@@ -11,6 +11,9 @@ use crate::workspace::Workspace;
 /// Forward kinematics and body twists: `V_i^{i,0} = Ad_{H_{λ(i)}^i} V_{λ(i)} + S_i q̇_i`
 /// (seed 001, parent-child twist relation). Writes `ws.twist`.
 ///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
+///
 /// ```
 /// use screwdyn::{builtin, Workspace, kinematics::forward_velocity};
 /// let m = builtin::planar2();
@@ -24,10 +27,10 @@ pub fn forward_velocity<T: Real>(
     q: &[T],
     v: &[T],
 ) -> Result<()> {
-    model.check_vector(v, "v")?;
     forward_kinematics(model, ws, q)?;
+    model.check_vector(v, "v")?;
     for (i, m) in model.motions().iter().enumerate() {
-        let mut vi = match model.parent(i) {
+        let mut vi = match model.parents()[i] {
             Some(p) => ws.pose_in_parent[i].inv_act_twist(&ws.twist[p]),
             None => Twist::zeros(),
         };
@@ -40,6 +43,9 @@ pub fn forward_velocity<T: Real>(
 /// Forward kinematics, twists and accelerations of every body with the base at rest:
 /// `V̇_i = Ad_{H_{λ(i)}^i} V̇_{λ(i)} − ad_{S_i q̇_i}(Ad_{H_{λ(i)}^i} V_{λ(i)}) + S_i q̈_i`
 /// (seed 002, "Analytic expression of V̇"). Writes `ws.twist` and `ws.twist_dot`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
 ///
 /// ```
 /// use screwdyn::{builtin, Workspace, kinematics::forward_acceleration};
@@ -58,30 +64,28 @@ pub fn forward_acceleration<T: Real>(
     v: &[T],
     a: &[T],
 ) -> Result<()> {
-    model.check_vector(a, "a")?;
     forward_velocity(model, ws, q, v)?;
-    propagate_acceleration(model, ws, v, Some(a), &Twist::zeros());
+    model.check_vector(a, "a")?;
+    propagate_acceleration(model, ws, v, Some(a));
     Ok(())
 }
 
 /// The acceleration half of the forward pass, given `ws.pose_in_parent` and `ws.twist`, with
-/// base acceleration `base` (zero for kinematics, `(0, −g)` for dynamics); `a = None` means
-/// `q̈ = 0`.
+/// the base at rest; `a = None` means `q̈ = 0`.
 fn propagate_acceleration<T: Real>(
     model: &Model<T>,
     ws: &mut Workspace<T>,
     v: &[T],
     a: Option<&[T]>,
-    base: &Twist<T>,
 ) {
     for (i, m) in model.motions().iter().enumerate() {
         let h = &ws.pose_in_parent[i];
-        let (v_par, vd_par) = match model.parent(i) {
+        let (v_par, vd_par) = match model.parents()[i] {
             Some(p) => (
                 h.inv_act_twist(&ws.twist[p]),
                 h.inv_act_twist(&ws.twist_dot[p]),
             ),
-            None => (Twist::zeros(), h.inv_act_twist(base)),
+            None => (Twist::zeros(), Twist::zeros()),
         };
         let mut vdi = vd_par - m.ad_scaled(v[i], &v_par);
         if let Some(a) = a {
@@ -93,6 +97,9 @@ fn propagate_acceleration<T: Real>(
 
 /// `J̇(q, q̇) q̇` of frame `f` in `reference`: the frame's acceleration when `q̈ = 0`
 /// (overwrites the workspace's twists and accelerations).
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞. [`Error::InvalidArgument`](crate::Error::InvalidArgument) when the model has no frame `frame`.
 ///
 /// ```
 /// use screwdyn::{builtin, Workspace, kinematics::{frame_jdot_qdot, Reference}};
@@ -111,7 +118,8 @@ pub fn frame_jdot_qdot<T: Real>(
     frame: usize,
     reference: Reference,
 ) -> Result<Twist<T>> {
+    model.frame(frame)?;
     forward_velocity(model, ws, q, v)?;
-    propagate_acceleration(model, ws, v, None, &Twist::zeros());
-    Ok(frame_acceleration(model, ws, frame, reference))
+    propagate_acceleration(model, ws, v, None);
+    frame_acceleration(model, ws, frame, reference)
 }

@@ -1,6 +1,7 @@
 //! [`ModelBuilder`]: declare links by name the way seed 000's MATLAB does
 //! (`H_0_1_home`, `S_0_0_1`, `I_1`), then `build()` an immutable [`Model`].
 
+use super::findings::{PhysicalFinding, Problem};
 use super::joint::{Joint, JointKind, JointLimits, Mimic};
 use super::model::{Body, Frame, FrameKind, Model};
 use crate::error::{Error, Result};
@@ -168,8 +169,9 @@ pub struct ModelBuilder<T: Real = f64> {
     links: Vec<LinkDecl<T>>,
     frames: Vec<FrameDecl<T>>,
     gravity: Vector3<T>,
-    allow_nonphysical: bool,
+    strict: bool,
     meshes: Vec<(String, String)>,
+    locations: HashMap<String, String>,
 }
 
 impl<T: Real> ModelBuilder<T> {
@@ -182,8 +184,9 @@ impl<T: Real> ModelBuilder<T> {
             links: Vec::new(),
             frames: Vec::new(),
             gravity: Vector3::new(T::zero(), T::zero(), real(-9.81)),
-            allow_nonphysical: false,
+            strict: false,
             meshes: Vec::new(),
+            locations: HashMap::new(),
         }
     }
     /// Renames the root link (default `base`).
@@ -201,9 +204,15 @@ impl<T: Real> ModelBuilder<T> {
         self.gravity = g;
         self
     }
-    /// Accept inertias that fail the physical-consistency check (and massless leaf bodies).
-    pub fn allow_nonphysical(&mut self, allow: bool) -> &mut Self {
-        self.allow_nonphysical = allow;
+    /// Makes physical-consistency problems (see [`Model::physical_problems`]) errors of
+    /// [`build`](ModelBuilder::build) instead of findings.
+    pub fn strict(&mut self, strict: bool) -> &mut Self {
+        self.strict = strict;
+        self
+    }
+    /// Records where link `link` was declared (e.g. `robot.urdf:42`), for messages.
+    pub fn locate(&mut self, link: &str, location: String) -> &mut Self {
+        self.locations.insert(link.into(), location);
         self
     }
     /// Declares link `name`, attached to link `parent` by `joint`, with home pose
@@ -242,45 +251,99 @@ impl<T: Real> ModelBuilder<T> {
 
     /// Resolves the tree (depth-first order from the root, children in declaration order),
     /// merges fixed joints, converts screw axes to the child frame and checks everything.
+    /// Physical-consistency problems of the inertias are not errors: they are listed by
+    /// [`Model::physical_problems`] (unless [`ModelBuilder::strict`] is set).
+    ///
+    /// # Errors
+    /// [`Error::InvalidModel`] for a malformed declaration (empty or duplicate names, a missing
+    /// parent, a cycle, a NaN or infinite number, limits with lower > upper, a negative
+    /// effort, velocity, damping or friction, a screw axis that does not fit the joint kind),
+    /// and in strict mode for the first physical-consistency problem.
     pub fn build(&self) -> Result<Model<T>> {
+        self.check_declarations()?;
+        let order = self.depth_first_order()?;
+        let mut model = self.assemble(&order)?;
+        self.attach_frames(&mut model)?;
+        model.children = vec![Vec::new(); model.bodies.len()];
+        for (i, p) in model.parents.iter().enumerate() {
+            if let Some(p) = p {
+                model.children[*p].push(i);
+            }
+        }
+        model.findings = self.findings(&model);
+        if self.strict && !model.findings.is_empty() {
+            let all: Vec<String> = model.findings.iter().map(|f| f.to_string()).collect();
+            return Err(Error::InvalidModel(format!(
+                "the model is not physically consistent: {}",
+                all.join("; ")
+            )));
+        }
+        Ok(model.with_motions())
+    }
+
+    /// Names, numbers and limits of every declaration, before the tree is resolved.
+    fn check_declarations(&self) -> Result<()> {
         let bad = |s: String| Err(Error::InvalidModel(s));
-        // Unique names.
-        let mut link_index: HashMap<&str, usize> = HashMap::new();
+        check_name("root link", &self.base)?;
+        if !self.gravity.iter().all(|g| g.is_finite()) {
+            return bad("gravity has a non-finite component".into());
+        }
+        let mut links: HashMap<&str, usize> = HashMap::new();
+        let mut joint_names: HashMap<&str, ()> = HashMap::new();
         for (k, l) in self.links.iter().enumerate() {
+            check_name("link", &l.name)?;
+            check_name("joint", &l.joint.name)?;
             if l.name == self.base {
                 return bad(format!(
                     "link '{}' is declared with a parent joint '{}' but is the root link",
                     l.name, l.joint.name
                 ));
             }
-            if let Some(&prev) = link_index.get(l.name.as_str()) {
-                let (a, b) = (&self.links[prev], l);
-                return bad(if a.parent != b.parent {
+            if let Some(&prev) = links.get(l.name.as_str()) {
+                let a = &self.links[prev];
+                return bad(if a.parent != l.parent {
                     format!(
                         "link '{}' has two parents: '{}' (joint '{}') and '{}' (joint '{}')",
-                        l.name, a.parent, a.joint.name, b.parent, b.joint.name
+                        l.name, a.parent, a.joint.name, l.parent, l.joint.name
                     )
                 } else {
                     format!("two links are named '{}'", l.name)
                 });
             }
-            link_index.insert(&l.name, k);
-        }
-        let mut joint_names: HashMap<&str, ()> = HashMap::new();
-        for l in &self.links {
+            links.insert(&l.name, k);
             if joint_names.insert(&l.joint.name, ()).is_some() {
                 return bad(format!("two joints are named '{}'", l.joint.name));
             }
+            if !is_finite_pose(&l.home) {
+                return bad(format!(
+                    "joint '{}' has a non-finite home pose H_c^p(0)",
+                    l.joint.name
+                ));
+            }
+            if l.inertia.physical_problem() == Some(crate::spatial::InertiaProblem::NonFinite) {
+                return bad(format!("link '{}' has a non-finite inertia", l.name));
+            }
+            l.joint.check_values()?;
         }
         for l in &self.links {
-            if l.parent != self.base && !link_index.contains_key(l.parent.as_str()) {
+            if l.parent != self.base && !links.contains_key(l.parent.as_str()) {
                 return bad(format!(
                     "joint '{}' names parent link '{}', which does not exist",
                     l.joint.name, l.parent
                 ));
             }
         }
-        // Children lists in declaration order, then depth-first traversal from the root.
+        for f in &self.frames {
+            check_name("frame", &f.name)?;
+            if !is_finite_pose(&f.placement) {
+                return bad(format!("frame '{}' has a non-finite placement", f.name));
+            }
+        }
+        Ok(())
+    }
+
+    /// Link indices in depth-first order from the root, children in declaration order.
+    fn depth_first_order(&self) -> Result<Vec<usize>> {
         let mut kids: HashMap<&str, Vec<usize>> = HashMap::new();
         for (k, l) in self.links.iter().enumerate() {
             kids.entry(l.parent.as_str()).or_default().push(k);
@@ -305,135 +368,154 @@ impl<T: Real> ModelBuilder<T> {
                 .filter(|&k| !seen[k])
                 .map(|k| self.links[k].name.as_str())
                 .collect();
-            return bad(format!(
+            return Err(Error::InvalidModel(format!(
                 "links {} form a cycle and are not connected to the root link '{}'",
                 lost.join(", "),
                 self.base
-            ));
+            )));
         }
+        Ok(order)
+    }
 
+    /// Joints, bodies and link frames in `order`: a moving joint makes a body, a fixed joint
+    /// merges its link into the body it hangs from (inertias combined, the frame kept).
+    fn assemble(&self, order: &[usize]) -> Result<Model<T>> {
+        let mut m = Model {
+            name: self.name.clone(),
+            joints: Vec::new(),
+            bodies: Vec::new(),
+            parents: Vec::new(),
+            children: Vec::new(),
+            frames: vec![Frame {
+                name: self.base.clone(),
+                body: None,
+                placement: Se3::identity(),
+                kind: FrameKind::Base,
+            }],
+            gravity: self.gravity,
+            base: Body {
+                name: self.base.clone(),
+                inertia: self.base_inertia,
+            },
+            meshes: self.meshes.clone(),
+            motions: Vec::new(),
+            inertia_scale: T::zero(),
+            body_composite: Vec::new(),
+            is_chain: false,
+            body_frames: Vec::new(),
+            findings: Vec::new(),
+            frame_index: HashMap::new(),
+        };
         // Where each link lives: (moving body or base, placement of the link frame in it).
         let mut attach: HashMap<&str, (Option<usize>, Se3<T>)> = HashMap::new();
         attach.insert(&self.base, (None, Se3::identity()));
-        let mut joints = Vec::new();
-        let mut bodies: Vec<Body<T>> = Vec::new();
-        let mut parents = Vec::new();
-        let mut base = Body {
-            name: self.base.clone(),
-            inertia: self.base_inertia,
-        };
-        let mut frames = vec![Frame {
-            name: self.base.clone(),
-            body: None,
-            placement: Se3::identity(),
-            kind: FrameKind::Base,
-        }];
-        for &k in &order {
+        for &k in order {
             let l = &self.links[k];
             let (anc, parent_placement) = attach[l.parent.as_str()];
             let home = parent_placement.compose(&l.home);
-            match l.joint.kind {
+            let kind = match l.joint.kind {
                 SpecKind::Fixed => {
                     let inertia = l.inertia.transformed(&home);
-                    match anc {
-                        Some(b) => {
-                            bodies[b].inertia = bodies[b].inertia.combined(&inertia);
-                        }
-                        None => base.inertia = base.inertia.combined(&inertia),
-                    }
+                    let into = match anc {
+                        Some(b) => &mut m.bodies[b].inertia,
+                        None => &mut m.base.inertia,
+                    };
+                    *into = into.combined(&inertia);
                     attach.insert(&l.name, (anc, home));
-                    frames.push(Frame {
-                        name: l.name.clone(),
-                        body: anc,
-                        placement: home,
-                        kind: FrameKind::FixedLink,
-                    });
+                    FrameKind::FixedLink
                 }
                 SpecKind::Moving(kind) => {
-                    let screw = self.child_screw(l, kind)?;
-                    let i = bodies.len();
-                    joints.push(Joint {
+                    m.joints.push(Joint {
                         name: l.joint.name.clone(),
                         kind,
-                        screw,
+                        screw: self.child_screw(l, kind)?,
                         home,
                         limits: l.joint.limits,
                         damping: l.joint.damping,
                         friction: l.joint.friction,
                         mimic: l.joint.mimic.clone(),
                     });
-                    bodies.push(Body {
+                    m.bodies.push(Body {
                         name: l.name.clone(),
                         inertia: l.inertia,
                     });
-                    parents.push(anc);
-                    attach.insert(&l.name, (Some(i), Se3::identity()));
-                    frames.push(Frame {
-                        name: l.name.clone(),
-                        body: Some(i),
-                        placement: Se3::identity(),
-                        kind: FrameKind::Body,
-                    });
+                    m.parents.push(anc);
+                    attach.insert(&l.name, (Some(m.bodies.len() - 1), Se3::identity()));
+                    FrameKind::Body
                 }
-            }
-        }
-        for f in &self.frames {
-            let Some(&(anc, at)) = attach.get(f.link.as_str()) else {
-                return bad(format!(
-                    "frame '{}' is attached to link '{}', which does not exist",
-                    f.name, f.link
-                ));
             };
-            if frames.iter().any(|g| g.name == f.name) {
-                return bad(format!("two frames are named '{}'", f.name));
-            }
-            frames.push(Frame {
-                name: f.name.clone(),
-                body: anc,
-                placement: at.compose(&f.placement),
-                kind: FrameKind::Extra,
+            let (body, placement) = attach[l.name.as_str()];
+            m.frames.push(Frame {
+                name: l.name.clone(),
+                body,
+                placement,
+                kind,
             });
         }
-        let mut children = vec![Vec::new(); bodies.len()];
-        for (i, p) in parents.iter().enumerate() {
-            if let Some(p) = p {
-                children[*p].push(i);
+        Ok(m)
+    }
+
+    /// The extra named frames, placed on the body their link was merged into.
+    fn attach_frames(&self, m: &mut Model<T>) -> Result<()> {
+        let mut index: HashMap<String, usize> = m
+            .frames
+            .iter()
+            .enumerate()
+            .map(|(k, f)| (f.name.clone(), k))
+            .collect();
+        for f in &self.frames {
+            let Some(&link) = index.get(f.link.as_str()) else {
+                return Err(Error::InvalidModel(format!(
+                    "frame '{}' is attached to link '{}', which does not exist",
+                    f.name, f.link
+                )));
+            };
+            if index.contains_key(f.name.as_str()) {
+                return Err(Error::InvalidModel(format!(
+                    "two frames are named '{}'",
+                    f.name
+                )));
+            }
+            let at = &m.frames[link];
+            let frame = Frame {
+                name: f.name.clone(),
+                body: at.body,
+                placement: at.placement.compose(&f.placement),
+                kind: FrameKind::Extra,
+            };
+            index.insert(f.name.clone(), m.frames.len());
+            m.frames.push(frame);
+        }
+        m.frame_index = index;
+        Ok(())
+    }
+
+    /// The physical-consistency problems: every declared link's own inertia (the root link's
+    /// is ignored: a fixed base never moves), and moving leaf bodies without mass.
+    fn findings(&self, m: &Model<T>) -> Vec<PhysicalFinding> {
+        let mut out = Vec::new();
+        let location = |link: &str| self.locations.get(link).cloned();
+        for l in &self.links {
+            if let Some(problem) = l.inertia.physical_problem() {
+                out.push(PhysicalFinding {
+                    link: l.name.clone(),
+                    location: location(&l.name),
+                    problem: Problem::Inertia(problem),
+                });
             }
         }
-        if !self.allow_nonphysical {
-            for l in &self.links {
-                if let Err(why) = l.inertia.check_physical() {
-                    return bad(format!("the inertia of link '{}' {}", l.name, why));
-                }
-            }
-            for (i, b) in bodies.iter().enumerate() {
-                if children[i].is_empty() && b.inertia.mass <= T::zero() {
-                    return bad(format!(
-                        "link '{}' is a moving leaf body with mass {:?}: its joint '{}' would have no inertia",
-                        b.name, b.inertia.mass, joints[i].name
-                    ));
-                }
+        for (i, b) in m.bodies.iter().enumerate() {
+            if m.children[i].is_empty() && b.inertia.mass == T::zero() {
+                out.push(PhysicalFinding {
+                    link: b.name.clone(),
+                    location: location(&b.name),
+                    problem: Problem::MasslessLeaf {
+                        joint: m.joints[i].name.clone(),
+                    },
+                });
             }
         }
-        if !self.gravity.iter().all(|g| g.is_finite()) {
-            return bad("gravity has a non-finite component".into());
-        }
-        Ok(Model {
-            name: self.name.clone(),
-            joints,
-            bodies,
-            parents,
-            children,
-            frames,
-            gravity: self.gravity,
-            base,
-            meshes: self.meshes.clone(),
-            motions: Vec::new(),
-            inertia_scale: T::zero(),
-            body_composite: Vec::new(),
-            is_chain: false,
-        }
-        .with_motions())
+        out
     }
 
     fn child_screw(&self, l: &LinkDecl<T>, kind: JointKind<T>) -> Result<Twist<T>> {
@@ -489,5 +571,69 @@ impl<T: Real> ModelBuilder<T> {
             }
         }
         Ok(s)
+    }
+}
+
+/// A name is non-empty and has no control characters (line breaks, tabs…).
+fn check_name(what: &str, name: &str) -> Result<()> {
+    if name.trim().is_empty() {
+        return Err(Error::InvalidModel(format!("a {what} has an empty name")));
+    }
+    if name.chars().any(char::is_control) {
+        return Err(Error::InvalidModel(format!(
+            "the {what} name {name:?} contains a control character"
+        )));
+    }
+    Ok(())
+}
+
+fn is_finite_pose<T: Real>(h: &Se3<T>) -> bool {
+    h.rotation
+        .iter()
+        .chain(h.translation.iter())
+        .all(|x| x.is_finite())
+}
+
+impl<T: Real> JointSpec<T> {
+    /// Limits, damping, friction and pitch are numbers in range.
+    fn check_values(&self) -> Result<()> {
+        let bad = |what: String| {
+            Err(Error::InvalidModel(format!(
+                "joint '{}': {what}",
+                self.name
+            )))
+        };
+        let l = &self.limits;
+        let nan = |x: T| x.partial_cmp(&x).is_none();
+        if nan(l.lower) || nan(l.upper) {
+            return bad("a position limit is NaN".into());
+        }
+        if l.lower > l.upper {
+            return bad(format!(
+                "the lower position limit {:?} is above the upper limit {:?}",
+                l.lower, l.upper
+            ));
+        }
+        for (what, x) in [
+            ("velocity limit", l.velocity),
+            ("effort limit", l.effort),
+            ("damping", self.damping),
+            ("friction", self.friction),
+        ] {
+            if nan(x) || x < T::zero() {
+                return bad(format!("the {what} must be non-negative, got {x:?}"));
+            }
+        }
+        for (what, x) in [("damping", self.damping), ("friction", self.friction)] {
+            if !x.is_finite() {
+                return bad(format!("the {what} must be finite, got {x:?}"));
+            }
+        }
+        if let SpecKind::Moving(JointKind::Helical { pitch }) = self.kind {
+            if !pitch.is_finite() {
+                return bad(format!("the helical pitch must be finite, got {pitch:?}"));
+            }
+        }
+        Ok(())
     }
 }

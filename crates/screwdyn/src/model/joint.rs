@@ -1,7 +1,7 @@
 //! Joints: kind, screw axis `S_i^{i,λ(i)}`, home pose `H_i^{λ(i)}(0)`, limits, damping, friction.
 
 use crate::scalar::Real;
-use crate::spatial::{ang, lin, Se3, Twist};
+use crate::spatial::{Se3, Twist};
 
 /// The kind of a moving joint. Every joint moves by its screw axis (seed 001, "Modeling Ideal
 /// Joints"); the kind says how to read it and which limits apply.
@@ -103,10 +103,5 @@ impl<T: Real> Joint<T> {
     #[inline]
     pub fn pose_in_parent(&self, q: T) -> Se3<T> {
         self.home.compose(&Se3::exp_screw(&self.screw, q))
-    }
-
-    /// The pitch `h = ω · v` of the screw axis (0 for revolute, meaningless for prismatic).
-    pub fn pitch(&self) -> T {
-        ang(&self.screw).dot(&lin(&self.screw))
     }
 }

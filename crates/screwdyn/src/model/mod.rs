@@ -7,17 +7,20 @@
 //! ```
 //! let m = screwdyn::builtin::planar2();
 //! assert_eq!(m.nq(), 2);
-//! assert_eq!(m.parent(1), Some(0));
+//! assert_eq!(m.parent(1).unwrap(), Some(0));
 //! assert_eq!(m.joint_names(), vec!["joint1", "joint2"]);
 //! ```
 
 mod builder;
+mod findings;
 mod joint;
 #[allow(clippy::module_inception)]
 mod model;
+pub(crate) use model::check_finite;
 mod motion;
 
 pub use builder::{JointSpec, ModelBuilder};
+pub use findings::{PhysicalFinding, Problem};
 pub use joint::{Joint, JointKind, JointLimits, Mimic};
 pub use model::{Body, Frame, FrameKind, Model};
 pub use motion::JointMotion;

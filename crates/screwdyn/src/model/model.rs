@@ -1,11 +1,13 @@
 //! The immutable [`Model`].
 
+use super::findings::PhysicalFinding;
 use super::joint::Joint;
 use super::motion::JointMotion;
 use crate::error::{Error, Result};
 use crate::scalar::Real;
 use crate::spatial::{Se3, SpatialInertia};
 use nalgebra::Vector3;
+use std::collections::HashMap;
 
 /// A rigid body (a link, with any fixed children merged in).
 #[derive(Clone, Debug, PartialEq)]
@@ -63,9 +65,27 @@ pub struct Model<T: Real = f64> {
     /// Derived: the largest entry of any body's 6×6 spatial inertia (ABA's singularity scale).
     pub(crate) inertia_scale: T,
     /// Derived: each body's inertia in the parameters CRBA sums (`m`, `m c`, `I_o`).
-    pub(crate) body_composite: Vec<crate::dynamics::CompositeInertia<T>>,
+    pub(crate) body_composite: Vec<crate::spatial::CompositeInertia<T>>,
     /// Derived: the tree is a single chain (`λ(i) = i − 1`).
     pub(crate) is_chain: bool,
+    /// Derived: the index of each body's frame in `frames`.
+    pub(crate) body_frames: Vec<usize>,
+    /// Frame name → index in `frames`.
+    pub(crate) frame_index: HashMap<String, usize>,
+    /// Physical-consistency problems found when the model was built.
+    pub(crate) findings: Vec<PhysicalFinding>,
+}
+
+/// `Err(NonFinite)` naming `what` and the position of the first NaN or infinite value.
+pub(crate) fn check_finite<T: Real>(x: &[T], what: &str) -> Result<()> {
+    match x.iter().position(|v| !v.is_finite()) {
+        Some(i) => Err(Error::NonFinite {
+            what: what.into(),
+            index: i,
+            value: format!("{:?}", x[i]),
+        }),
+        None => Ok(()),
+    }
 }
 
 fn list(names: impl Iterator<Item = String>) -> String {
@@ -78,6 +98,13 @@ fn list(names: impl Iterator<Item = String>) -> String {
 }
 
 impl<T: Real> Model<T> {
+    /// The physical-consistency problems found when the model was built (an empty list for a
+    /// consistent model): each names the link, where it was declared and what is wrong. They
+    /// do not stop any algorithm; forward dynamics refuses only a mass matrix that is really
+    /// singular.
+    pub fn physical_problems(&self) -> &[PhysicalFinding] {
+        &self.findings
+    }
     /// The robot's name.
     pub fn name(&self) -> &str {
         &self.name
@@ -114,13 +141,19 @@ impl<T: Real> Model<T> {
         self.body_composite = self
             .bodies
             .iter()
-            .map(|b| crate::dynamics::CompositeInertia::from(&b.inertia))
+            .map(|b| crate::spatial::CompositeInertia::from(&b.inertia))
             .collect();
         self.is_chain = self
             .parents
             .iter()
             .enumerate()
             .all(|(i, p)| *p == i.checked_sub(1));
+        self.body_frames = vec![0; self.bodies.len()];
+        for (k, f) in self.frames.iter().enumerate() {
+            if let (FrameKind::Body, Some(b)) = (f.kind, f.body) {
+                self.body_frames[b] = k;
+            }
+        }
         self.inertia_scale = self
             .bodies
             .iter()
@@ -138,17 +171,71 @@ impl<T: Real> Model<T> {
         &self.bodies
     }
     /// `λ(i)`: the parent body of body `i` (`None` for the base).
-    #[inline]
-    pub fn parent(&self, i: usize) -> Option<usize> {
-        self.parents[i]
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the model has no body `i`.
+    ///
+    /// ```
+    /// let m = screwdyn::builtin::planar2();
+    /// assert_eq!(m.parent(1).unwrap(), Some(0));
+    /// assert!(m.parent(2).is_err());
+    /// ```
+    pub fn parent(&self, i: usize) -> Result<Option<usize>> {
+        self.check_body(i)?;
+        Ok(self.parents[i])
     }
     /// The parent array `λ`.
     pub fn parents(&self) -> &[Option<usize>] {
         &self.parents
     }
     /// The child bodies of body `i`.
-    pub fn children(&self, i: usize) -> &[usize] {
-        &self.children[i]
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the model has no body `i`.
+    pub fn children(&self, i: usize) -> Result<&[usize]> {
+        self.check_body(i)?;
+        Ok(&self.children[i])
+    }
+    /// Body `i`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the model has no body `i`.
+    pub fn body(&self, i: usize) -> Result<&Body<T>> {
+        self.check_body(i)?;
+        Ok(&self.bodies[i])
+    }
+    /// Frame `f`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the model has no frame `f`.
+    ///
+    /// ```
+    /// let m = screwdyn::builtin::planar2();
+    /// assert_eq!(m.frame(m.frame_id("link1").unwrap()).unwrap().name, "link1");
+    /// assert!(m.frame(100).unwrap_err().to_string().contains("frame 100"));
+    /// ```
+    pub fn frame(&self, f: usize) -> Result<&Frame<T>> {
+        self.frames.get(f).ok_or_else(|| {
+            Error::InvalidArgument(format!(
+                "frame {f} is out of range: the model '{}' has {} frames",
+                self.name,
+                self.frames.len()
+            ))
+        })
+    }
+    /// Checks that `i` is a body index of this model.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming the index and the number of bodies.
+    pub fn check_body(&self, i: usize) -> Result<()> {
+        if i >= self.bodies.len() {
+            return Err(Error::InvalidArgument(format!(
+                "body {i} is out of range: the model '{}' has {} moving bodies",
+                self.name,
+                self.bodies.len()
+            )));
+        }
+        Ok(())
     }
     /// Every named frame: the base, each body, merged fixed links and extra frames.
     pub fn frames(&self) -> &[Frame<T>] {
@@ -166,14 +253,28 @@ impl<T: Real> Model<T> {
     pub fn meshes(&self) -> &[(String, String)] {
         &self.meshes
     }
-    /// A copy of the model with another gravity vector.
-    pub fn with_gravity(&self, g: Vector3<T>) -> Self {
+    /// A copy of the model with another gravity vector `g⁰` (m/s², base frame).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] when a component is NaN or infinite.
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// let m = screwdyn::builtin::planar2().with_gravity(Vector3::zeros()).unwrap();
+    /// assert_eq!(m.gravity(), Vector3::zeros());
+    /// assert!(m.with_gravity(Vector3::new(0.0, f64::NAN, 0.0)).is_err());
+    /// ```
+    pub fn with_gravity(&self, g: Vector3<T>) -> Result<Self> {
+        check_finite(g.as_slice(), "gravity")?;
         let mut m = self.clone();
         m.gravity = g;
-        m
+        Ok(m)
     }
     /// A copy of the model with these viscous damping and Coulomb friction coefficients, one
     /// per joint (non-negative and finite).
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch)/[`Error::NonFinite`](crate::Error::NonFinite) for a vector of the wrong length or with NaN/∞; [`Error::InvalidArgument`](crate::Error::InvalidArgument) for a negative value.
     ///
     /// ```
     /// let m = screwdyn::builtin::planar2().with_joint_friction(&[0.5, 0.2], &[0.0, 0.1]).unwrap();
@@ -186,7 +287,7 @@ impl<T: Real> Model<T> {
         let mut m = self.clone();
         for (i, j) in m.joints.iter_mut().enumerate() {
             if damping[i] < T::zero() || friction[i] < T::zero() {
-                return Err(Error::InvalidModel(format!(
+                return Err(Error::InvalidArgument(format!(
                     "joint '{}': damping and friction must be non-negative (got {:?} and {:?})",
                     j.name, damping[i], friction[i]
                 )));
@@ -201,7 +302,16 @@ impl<T: Real> Model<T> {
         self.joints.iter().map(|j| j.name.as_str()).collect()
     }
     /// The bodies from the root down to `i` (the support of body `i`, `i` last).
-    pub fn support(&self, i: usize) -> Vec<usize> {
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the model has no body `i`.
+    ///
+    /// ```
+    /// let m = screwdyn::builtin::planar2();
+    /// assert_eq!(m.support(1).unwrap(), vec![0, 1]);
+    /// ```
+    pub fn support(&self, i: usize) -> Result<Vec<usize>> {
+        self.check_body(i)?;
         let mut s = vec![i];
         let mut k = i;
         while let Some(p) = self.parents[k] {
@@ -209,11 +319,25 @@ impl<T: Real> Model<T> {
             k = p;
         }
         s.reverse();
-        s
+        Ok(s)
     }
     /// Whether body `j` is body `i` or one of its ancestors.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the model has no body `i` or `j`.
+    ///
+    /// ```
+    /// let m = screwdyn::builtin::planar2();
+    /// assert!(m.supports(0, 1).unwrap() && !m.supports(1, 0).unwrap());
+    /// ```
+    pub fn supports(&self, j: usize, i: usize) -> Result<bool> {
+        self.check_body(i)?;
+        self.check_body(j)?;
+        Ok(self.supports_unchecked(j, i))
+    }
+    /// [`Model::supports`] for indices known to be in range.
     #[inline]
-    pub fn supports(&self, j: usize, i: usize) -> bool {
+    pub(crate) fn supports_unchecked(&self, j: usize, i: usize) -> bool {
         let mut k = Some(i);
         while let Some(b) = k {
             if b == j {
@@ -235,6 +359,9 @@ impl<T: Real> Model<T> {
 
     /// The index of the frame called `name`.
     ///
+    /// # Errors
+    /// [`Error::UnknownName`](crate::Error::UnknownName) listing the known names.
+    ///
     /// ```
     /// let m = screwdyn::builtin::planar2();
     /// assert!(m.frame_id("link2").is_ok());
@@ -242,9 +369,9 @@ impl<T: Real> Model<T> {
     /// assert!(e.contains("no frame named 'hand'"));
     /// ```
     pub fn frame_id(&self, name: &str) -> Result<usize> {
-        self.frames
-            .iter()
-            .position(|f| f.name == name)
+        self.frame_index
+            .get(name)
+            .copied()
             .ok_or_else(|| Error::UnknownName {
                 kind: "frame",
                 name: name.into(),
@@ -252,6 +379,9 @@ impl<T: Real> Model<T> {
             })
     }
     /// The index of the moving body (link) called `name`.
+    ///
+    /// # Errors
+    /// [`Error::UnknownName`](crate::Error::UnknownName) listing the known names.
     pub fn body_id(&self, name: &str) -> Result<usize> {
         self.bodies
             .iter()
@@ -263,6 +393,9 @@ impl<T: Real> Model<T> {
             })
     }
     /// The index of the joint called `name`.
+    ///
+    /// # Errors
+    /// [`Error::UnknownName`](crate::Error::UnknownName) listing the known names.
     pub fn joint_id(&self, name: &str) -> Result<usize> {
         self.joints
             .iter()
@@ -274,14 +407,23 @@ impl<T: Real> Model<T> {
             })
     }
     /// The frame of body `i` (every body has one, named after its link).
-    pub fn body_frame(&self, i: usize) -> usize {
-        self.frames
-            .iter()
-            .position(|f| f.kind == FrameKind::Body && f.body == Some(i))
-            .expect("every body has a frame")
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the model has no body `i`.
+    ///
+    /// ```
+    /// let m = screwdyn::builtin::planar2();
+    /// assert_eq!(m.frames()[m.body_frame(1).unwrap()].name, "link2");
+    /// ```
+    pub fn body_frame(&self, i: usize) -> Result<usize> {
+        self.check_body(i)?;
+        Ok(self.body_frames[i])
     }
 
     /// Checks that a joint-space vector has `nq` finite entries; `what` names it in the error.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) naming the joints, or [`Error::NonFinite`](crate::Error::NonFinite) naming the position.
     ///
     /// ```
     /// let m = screwdyn::builtin::planar2();
@@ -297,14 +439,7 @@ impl<T: Real> Model<T> {
                 names: self.joint_names().join(", "),
             });
         }
-        if let Some((i, v)) = x.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Err(Error::NonFinite {
-                what: what.into(),
-                index: i,
-                value: format!("{v:?}"),
-            });
-        }
-        Ok(())
+        check_finite(x, what)
     }
 }
 
@@ -375,6 +510,9 @@ impl Model<f64> {
             inertia_scale: U::zero(),
             body_composite: Vec::new(),
             is_chain: false,
+            body_frames: Vec::new(),
+            frame_index: self.frame_index.clone(),
+            findings: self.findings.clone(),
         }
         .with_motions()
     }

@@ -12,7 +12,7 @@
 
 use crate::scalar::Real;
 use crate::spatial::{ad, ang, lin, Se3, Twist, Wrench};
-use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
+use nalgebra::{Matrix3, Vector3, Vector6};
 
 /// A joint's screw axis in the child frame, specialised by shape.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -147,26 +147,6 @@ impl<T: Real> JointMotion<T> {
         }
     }
 
-    /// `S x`.
-    #[inline]
-    pub fn scaled(&self, x: T) -> Twist<T> {
-        match *self {
-            JointMotion::RevoluteAxis { axis, sign } => {
-                let mut s = Twist::zeros();
-                s[axis] = sign * x;
-                s
-            }
-            JointMotion::PrismaticAxis { axis, sign } => {
-                let mut s = Twist::zeros();
-                s[3 + axis] = sign * x;
-                s
-            }
-            JointMotion::General { screw } | JointMotion::RevoluteOffsetAxis { screw, .. } => {
-                screw * x
-            }
-        }
-    }
-
     /// `v + S x`, in place.
     #[inline]
     pub fn add_scaled(&self, v: &mut Twist<T>, x: T) {
@@ -251,18 +231,6 @@ impl<T: Real> JointMotion<T> {
             JointMotion::General { screw } => h.act_twist(&screw),
         }
     }
-
-    /// `𝔍 S` for a 6×6 (articulated) inertia `𝔍`: one column for axis joints.
-    #[inline]
-    pub fn inertia_column(&self, m: &Matrix6<T>) -> Wrench<T> {
-        match *self {
-            JointMotion::RevoluteAxis { axis, sign } => m.column(axis) * sign,
-            JointMotion::PrismaticAxis { axis, sign } => m.column(3 + axis) * sign,
-            JointMotion::General { screw } | JointMotion::RevoluteOffsetAxis { screw, .. } => {
-                m * screw
-            }
-        }
-    }
 }
 
 /// `R Rot_k(θ)`: only the two columns `(i, j)` other than `k` change; returns them too.
@@ -325,7 +293,6 @@ mod tests {
         let h = Se3::from_rpy(-0.7, 0.4, -2.6).with_translation(Vector3::new(-1.0, 0.5, 0.3));
         let v = Vector6::new(0.3, -0.1, 0.7, 1.5, -0.4, 0.2);
         let w = Vector6::new(-0.2, 0.9, 0.4, 3.0, 1.0, -2.0);
-        let m = Matrix6::from_fn(|r, c| ((r * 6 + c) as f64).sin());
         for (s, kind) in screws.iter().zip(kinds) {
             let jm = JointMotion::classify(s);
             assert!(format!("{jm:?}").starts_with(kind), "{s:?} gave {jm:?}");
@@ -337,7 +304,6 @@ mod tests {
                     (fast.to_matrix() - general.to_matrix()).amax() < 1e-14,
                     "{kind} q={q}"
                 );
-                assert!((jm.scaled(q) - s * q).amax() < 1e-15);
                 let mut x = v;
                 jm.add_scaled(&mut x, q);
                 assert!((x - (v + s * q)).amax() < 1e-15);
@@ -345,7 +311,6 @@ mod tests {
             }
             assert!((jm.dot(&w) - s.dot(&w)).abs() < 1e-14);
             assert!((jm.act(&h) - h.act_twist(s)).amax() < 1e-14, "{kind}");
-            assert!((jm.inertia_column(&m) - m * s).amax() < 1e-14);
         }
     }
 }

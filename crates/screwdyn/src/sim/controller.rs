@@ -2,7 +2,7 @@
 //! compensation, and computed-torque control; the [`Controller`] trait for your own.
 
 use super::trajectory::Trajectory;
-use crate::dynamics::{gravity_torque, inverse_dynamics};
+use crate::dynamics::{crba, gravity_torque, inverse_dynamics};
 use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::workspace::Workspace;
@@ -45,9 +45,21 @@ pub struct ConstantTorque(pub Vec<f64>);
 
 impl Controller for ConstantTorque {
     fn torque(&mut self, _t: f64, _q: &[f64], _v: &[f64], tau: &mut [f64]) -> Result<()> {
+        check_output_len("the constant torque", self.0.len(), tau)?;
         tau.copy_from_slice(&self.0);
         Ok(())
     }
+}
+
+/// `Err(InvalidArgument)` when a controller holding `len` torques is asked for `tau.len()`.
+fn check_output_len(what: &str, len: usize, tau: &[f64]) -> Result<()> {
+    if len != tau.len() {
+        return Err(Error::InvalidArgument(format!(
+            "{what} has {len} values, but the robot has {} joints",
+            tau.len()
+        )));
+    }
+    Ok(())
 }
 
 /// Torques sampled at increasing times, linearly interpolated, held constant outside.
@@ -67,16 +79,37 @@ pub struct TorqueSeries {
 
 impl TorqueSeries {
     /// From sample times (strictly increasing) and one torque vector per time.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) for no samples, rows of different lengths or times that do not increase strictly; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞.
     pub fn new(times: Vec<f64>, values: Vec<Vec<f64>>) -> Result<Self> {
         if times.is_empty() || times.len() != values.len() {
-            return Err(Error::InvalidModel(format!(
+            return Err(Error::InvalidArgument(format!(
                 "a torque series needs one torque vector per time (got {} times, {} vectors)",
                 times.len(),
                 values.len()
             )));
         }
+        if let Some(k) = values.iter().position(|v| v.len() != values[0].len()) {
+            return Err(Error::InvalidArgument(format!(
+                "torque series row {} has {} values, the first has {}",
+                k + 1,
+                values[k].len(),
+                values[0].len()
+            )));
+        }
+        if let Some(k) = times.iter().position(|t| !t.is_finite()) {
+            return Err(Error::NonFinite {
+                what: "the torque series times".into(),
+                index: k,
+                value: format!("{:?}", times[k]),
+            });
+        }
+        for (k, row) in values.iter().enumerate() {
+            crate::model::check_finite(row, &format!("torque series row {}", k + 1))?;
+        }
         if let Some(k) = times.windows(2).position(|w| w[1] <= w[0]) {
-            return Err(Error::InvalidModel(format!(
+            return Err(Error::InvalidArgument(format!(
                 "torque series times must increase strictly (row {} has t = {} after t = {})",
                 k + 2,
                 times[k + 1],
@@ -89,6 +122,7 @@ impl TorqueSeries {
 
 impl Controller for TorqueSeries {
     fn torque(&mut self, t: f64, _q: &[f64], _v: &[f64], tau: &mut [f64]) -> Result<()> {
+        check_output_len("the torque series", self.values[0].len(), tau)?;
         let n = self.times.len();
         let k = self.times.partition_point(|&tk| tk <= t);
         if k == 0 {
@@ -116,8 +150,40 @@ pub struct PdGravity {
     kd: Vec<f64>,
 }
 
+/// The natural frequency (rad/s) of the default gains: each joint, seen alone with its own
+/// inertia, responds like `ë + 2ζω ė + ω² e = 0` with `ω = 10` rad/s and `ζ = 1`.
+pub const DEFAULT_NATURAL_FREQUENCY: f64 = 10.0;
+
 impl PdGravity {
+    /// Default gains for a PD controller around `target`: critically damped at
+    /// [`DEFAULT_NATURAL_FREQUENCY`] on each joint's own inertia `M_ii(target)`,
+    /// `K_p = ω² M_ii`, `K_d = 2ω M_ii` (100 and 20 times `M_ii`).
+    ///
+    /// # Errors
+    /// As [`crba`](crate::dynamics::crba) for a bad `target`.
+    ///
+    /// ```
+    /// use screwdyn::{builtin, sim::PdGravity};
+    /// let m = builtin::planar2();
+    /// let (kp, kd) = PdGravity::default_gains(&m, &[0.0, 0.0]).unwrap();
+    /// // Seed 004: M_11 = 5, M_22 = 1 at θ2 = 0 (unit masses and lengths).
+    /// assert_eq!((kp, kd), (vec![500.0, 100.0], vec![100.0, 20.0]));
+    /// ```
+    pub fn default_gains(model: &Model, target: &[f64]) -> Result<(Vec<f64>, Vec<f64>)> {
+        let mut ws = Workspace::new(model);
+        let mm = crba(model, &mut ws, target)?;
+        let w = DEFAULT_NATURAL_FREQUENCY;
+        let diag = (0..model.nq()).map(|i| mm[(i, i)]);
+        Ok((
+            diag.clone().map(|d| w * w * d).collect(),
+            diag.map(|d| 2.0 * w * d).collect(),
+        ))
+    }
+
     /// Gains per joint; `model` is the controller's model (it may differ from the plant).
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch)/[`Error::NonFinite`](crate::Error::NonFinite) for a target or gain vector of the wrong length or with NaN/∞.
     pub fn new(model: Model, target: Vec<f64>, kp: Vec<f64>, kd: Vec<f64>) -> Result<Self> {
         model.check_vector(&target, "the PD target")?;
         model.check_vector(&kp, "kp")?;
@@ -135,6 +201,8 @@ impl PdGravity {
 
 impl Controller for PdGravity {
     fn torque(&mut self, _t: f64, q: &[f64], v: &[f64], tau: &mut [f64]) -> Result<()> {
+        self.model.check_vector(v, "v")?;
+        check_output_len("PD control", self.target.len(), tau)?;
         let g = gravity_torque(&self.model, &mut self.ws, q)?;
         for i in 0..tau.len() {
             tau[i] = self.kp[i] * (self.target[i] - q[i]) - self.kd[i] * v[i] + g[i];
@@ -161,6 +229,9 @@ pub struct ComputedTorque {
 
 impl ComputedTorque {
     /// Tracks `reference` with gains `kp`, `kd`, using the controller's own `model`.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch)/[`Error::NonFinite`](crate::Error::NonFinite) for a bad gain vector; [`Error::InvalidArgument`](crate::Error::InvalidArgument) when the reference has another number of joints.
     pub fn new(
         model: Model,
         reference: Box<dyn Trajectory>,
@@ -170,7 +241,7 @@ impl ComputedTorque {
         model.check_vector(&kp, "kp")?;
         model.check_vector(&kd, "kd")?;
         if reference.nq() != model.nq() {
-            return Err(Error::InvalidModel(format!(
+            return Err(Error::InvalidArgument(format!(
                 "the reference trajectory has {} joints, the model has {}",
                 reference.nq(),
                 model.nq()
@@ -192,10 +263,28 @@ impl ComputedTorque {
     }
 }
 
+impl ComputedTorque {
+    /// Default gains: `K_p = ω²`, `K_d = 2ω` per joint with ω =
+    /// [`DEFAULT_NATURAL_FREQUENCY`], so the tracking error of each joint is critically damped
+    /// (`ë + 20 ė + 100 e = 0`).
+    ///
+    /// ```
+    /// let (kp, kd) = screwdyn::sim::ComputedTorque::default_gains(2);
+    /// assert_eq!((kp, kd), (vec![100.0; 2], vec![20.0; 2]));
+    /// ```
+    pub fn default_gains(nq: usize) -> (Vec<f64>, Vec<f64>) {
+        let w = DEFAULT_NATURAL_FREQUENCY;
+        (vec![w * w; nq], vec![2.0 * w; nq])
+    }
+}
+
 impl Controller for ComputedTorque {
     fn torque(&mut self, t: f64, q: &[f64], v: &[f64], tau: &mut [f64]) -> Result<()> {
         self.reference
-            .sample(t, &mut self.qd, &mut self.vd, &mut self.ad);
+            .sample(t, &mut self.qd, &mut self.vd, &mut self.ad)?;
+        self.model.check_vector(q, "q")?;
+        self.model.check_vector(v, "v")?;
+        check_output_len("computed-torque control", self.cmd.len(), tau)?;
         for i in 0..q.len() {
             self.cmd[i] =
                 self.ad[i] + self.kd[i] * (self.vd[i] - v[i]) + self.kp[i] * (self.qd[i] - q[i]);

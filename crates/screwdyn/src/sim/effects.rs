@@ -84,6 +84,9 @@ impl EffectGains {
     /// The gains of `effects` for `model`, scaled by the joint inertias `I_i = 1/(M⁻¹)_ii` at
     /// `q0`, for a step of `dt`. Errors name the bad setting.
     ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) for a time constant, damping ratio or smoothing speed that is not finite and positive (non-negative for the ratio); errors of [`mass_matrix_inverse`](crate::dynamics::mass_matrix_inverse) at `q0`.
+    ///
     /// ```
     /// use screwdyn::sim::{EffectGains, JointEffects};
     /// // The 1 kg, 1 m pendulum moves I = m l² = 1 kg·m²: k = I/T², d = 2ζI/T.
@@ -110,7 +113,7 @@ impl EffectGains {
             None
         };
         if let Some((what, x, must)) = problem {
-            return Err(Error::InvalidModel(format!(
+            return Err(Error::InvalidArgument(format!(
                 "the joint effects' {what} is {x}; it must be finite and {must}"
             )));
         }
@@ -158,6 +161,9 @@ impl JointEffects {
 
     /// Writes the total joint torque for commanded `cmd` at state `(q, v)` into `tau`, with the
     /// per-joint constants `gains` ([`EffectGains::new`]).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when a slice or the gains do not have one entry per joint.
     pub fn apply(
         &self,
         model: &Model,
@@ -166,7 +172,20 @@ impl JointEffects {
         v: &[f64],
         cmd: &[f64],
         tau: &mut [f64],
-    ) {
+    ) -> Result<()> {
+        let n = model.nq();
+        let lens = [q.len(), v.len(), cmd.len(), tau.len()];
+        let gains_n = [
+            gains.stop_stiffness.len(),
+            gains.stop_damping.len(),
+            gains.friction_smoothing.len(),
+        ];
+        if lens.iter().chain(&gains_n).any(|&l| l != n) {
+            return Err(Error::InvalidArgument(format!(
+                "joint effects on {n} joints were given q, q̇, the command and τ of {:?} values and gains for {:?}",
+                lens, gains_n
+            )));
+        }
         for (i, j) in model.joints().iter().enumerate() {
             let mut t = cmd[i];
             if self.saturate {
@@ -188,5 +207,6 @@ impl JointEffects {
             }
             tau[i] = t;
         }
+        Ok(())
     }
 }

@@ -109,8 +109,26 @@ const B4: [f64; 7] = [
 
 impl Stepper {
     /// Buffers for `n` coordinates.
-    pub fn new(integrator: Integrator, n: usize) -> Self {
-        Stepper {
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for Dormand–Prince tolerances that are NaN, infinite,
+    /// negative or both zero.
+    ///
+    /// ```
+    /// use screwdyn::sim::{Integrator, Stepper};
+    /// assert!(Stepper::new(Integrator::Rk4, 2).is_ok());
+    /// assert!(Stepper::new(Integrator::DormandPrince { rtol: f64::NAN, atol: 1e-9 }, 2).is_err());
+    /// ```
+    pub fn new(integrator: Integrator, n: usize) -> Result<Self> {
+        if let Integrator::DormandPrince { rtol, atol } = integrator {
+            let ok = |x: f64| x.is_finite() && x >= 0.0;
+            if !(ok(rtol) && ok(atol) && rtol + atol > 0.0) {
+                return Err(Error::InvalidArgument(format!(
+                    "Dormand–Prince tolerances must be finite, non-negative and not both zero (got rtol = {rtol}, atol = {atol})"
+                )));
+            }
+        }
+        Ok(Stepper {
             integrator,
             // Stage derivatives: for the first-order system x = (q, v), ẋ = (v, q̈):
             // k[s] holds q̇ (first n) and q̈ (last n) of stage s.
@@ -121,11 +139,15 @@ impl Stepper {
             v5: vec![0.0; n],
             h_adaptive: 0.0,
             steps: (0, 0),
-        }
+        })
     }
 
     /// Advances `(q, v)` from `t` to `t + dt` (one step, or adaptive sub-steps for
     /// Dormand–Prince).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when `q` or `v` do not have the stepper's length, or `t`, `dt`
+    /// are not finite (`dt` positive); any error of `f`.
     pub fn advance(
         &mut self,
         f: &mut AccelFn,
@@ -134,6 +156,19 @@ impl Stepper {
         q: &mut [f64],
         v: &mut [f64],
     ) -> Result<()> {
+        let n = self.qs.len();
+        if q.len() != n || v.len() != n {
+            return Err(Error::InvalidArgument(format!(
+                "the stepper was made for {n} joints, but q has {} and q̇ {} values",
+                q.len(),
+                v.len()
+            )));
+        }
+        if !(dt > 0.0 && dt.is_finite() && t.is_finite()) {
+            return Err(Error::InvalidArgument(format!(
+                "a step needs a finite time and a positive finite step (got t = {t}, dt = {dt})"
+            )));
+        }
         match self.integrator {
             Integrator::SymplecticEuler => {
                 let n = q.len();

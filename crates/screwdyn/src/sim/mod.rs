@@ -22,10 +22,16 @@ mod trajectory;
 
 pub use controller::{
     ComputedTorque, ConstantTorque, Controller, PdGravity, TorqueSeries, ZeroTorque,
+    DEFAULT_NATURAL_FREQUENCY,
 };
 pub use effects::{EffectGains, JointEffects};
 pub use integrate::{AccelFn, Integrator, Stepper};
-pub use profile::{torque_profile, TorqueProfile, Violation};
-pub use record::Recording;
-pub use simulate::{simulate, Disturbance, SimOptions};
+pub use profile::{
+    torque_profile, torque_profile_limited, TorqueProfile, Violation, ViolationSummary,
+    MAX_PROFILE_SAMPLES,
+};
+pub use record::{
+    csv_field, sample_columns, CsvSampleWriter, JsonSampleWriter, Recording, Sample, SampleSink,
+};
+pub use simulate::{simulate, simulate_into, step_plan, Disturbance, RunSummary, SimOptions};
 pub use trajectory::{Quintic, Trajectory, Trapezoid, Waypoints};

@@ -2,7 +2,7 @@
 //! every sample over the joint's effort limit — seed 003's question "how much torque is needed
 //! to accelerate the manipulator from rest to constant velocity, and then back to stop?".
 
-use super::record::Recording;
+use super::record::{Recording, Sample, SampleSink};
 use super::trajectory::Trajectory;
 use crate::dynamics::{inverse_dynamics, kinetic_energy, potential_energy};
 use crate::error::{Error, Result};
@@ -22,6 +22,18 @@ pub struct Violation {
     pub limit: f64,
 }
 
+/// Per joint, the samples over the effort limit summarised: how many, when the first was,
+/// and the largest required `|τ|`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViolationSummary {
+    /// Number of samples over the limit.
+    pub count: usize,
+    /// Time of the first one (s).
+    pub first_time: f64,
+    /// The largest `|τ_i|` over the limit.
+    pub worst: f64,
+}
+
 /// The result of [`torque_profile`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct TorqueProfile {
@@ -29,15 +41,39 @@ pub struct TorqueProfile {
     pub samples: Recording,
     /// `max |τ_i|` per joint.
     pub peak: Vec<f64>,
+    /// The time of that peak (the first, on ties), per joint.
+    pub peak_time: Vec<f64>,
     /// `√(mean τ_i²)` per joint.
     pub rms: Vec<f64>,
     /// Effort limit per joint (∞ if none).
     pub effort_limit: Vec<f64>,
     /// Every sample whose `|τ_i|` exceeds the limit.
     pub violations: Vec<Violation>,
+    /// Per joint: the violations summarised (`None` where the joint stays within its limit).
+    pub violation_summary: Vec<Option<ViolationSummary>>,
 }
 
-/// Inverse dynamics (RNEA with gravity) at every `dt` along `trajectory`, end included.
+impl TorqueProfile {
+    /// The joints that exceed their effort limit somewhere, in joint order.
+    pub fn joints_over_limit(&self) -> Vec<usize> {
+        (0..self.peak.len())
+            .filter(|&i| self.violation_summary[i].is_some())
+            .collect()
+    }
+}
+
+/// The default largest number of samples [`torque_profile`] computes (10 million): a profile is
+/// held in memory, so a step or duration that asks for more is refused before anything is
+/// allocated; [`torque_profile_limited`] sets another bound.
+pub const MAX_PROFILE_SAMPLES: usize = 10_000_000;
+
+/// Inverse dynamics (RNEA with gravity, seed 000) at every `dt` along `trajectory`, end
+/// included, with peak, RMS and effort-limit statistics per joint — at most
+/// [`MAX_PROFILE_SAMPLES`] samples.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] when the trajectory's joints do not match the model, `dt` is not
+/// positive and finite, or the profile would have more than [`MAX_PROFILE_SAMPLES`] samples.
 ///
 /// ```
 /// use screwdyn::sim::{torque_profile, Trapezoid};
@@ -45,24 +81,46 @@ pub struct TorqueProfile {
 /// let traj = Trapezoid::new(&[0.0, 0.0], &[1.0, 0.5], &[1.0, 1.0], &[2.0, 2.0], true).unwrap();
 /// let p = torque_profile(&m, &traj, 0.01).unwrap();
 /// assert!(p.peak[0] >= p.rms[0] && p.violations.is_empty());
+/// assert!(torque_profile(&m, &traj, 1e-12).unwrap_err().to_string().contains("samples"));
 /// ```
 pub fn torque_profile(
     model: &Model,
     trajectory: &dyn Trajectory,
     dt: f64,
 ) -> Result<TorqueProfile> {
+    torque_profile_limited(model, trajectory, dt, MAX_PROFILE_SAMPLES)
+}
+
+/// [`torque_profile`] with at most `max_samples` samples.
+///
+/// # Errors
+/// As [`torque_profile`], with `max_samples` as the bound.
+pub fn torque_profile_limited(
+    model: &Model,
+    trajectory: &dyn Trajectory,
+    dt: f64,
+    max_samples: usize,
+) -> Result<TorqueProfile> {
     if trajectory.nq() != model.nq() {
-        return Err(Error::InvalidModel(format!(
+        return Err(Error::InvalidArgument(format!(
             "the trajectory has {} joints, the model has {}",
             trajectory.nq(),
             model.nq()
         )));
     }
     if !(dt > 0.0 && dt.is_finite()) {
-        return Err(Error::InvalidModel(format!(
-            "the sampling step must be positive (got {dt})"
+        return Err(Error::InvalidArgument(format!(
+            "the sampling step must be positive and finite (got {dt})"
         )));
     }
+    let wanted = (trajectory.duration() / dt).ceil() + 1.0;
+    if wanted.is_nan() || wanted > max_samples as f64 {
+        return Err(Error::InvalidArgument(format!(
+            "a profile of {:.6} s every {dt} s has {wanted:.0} samples, more than the limit of {max_samples} (use a larger step or raise the limit)",
+            trajectory.duration()
+        )));
+    }
+    let steps = wanted as usize - 1;
     let n = model.nq();
     let mut ws = Workspace::new(model);
     let (mut q, mut v, mut a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
@@ -70,38 +128,59 @@ pub fn torque_profile(
         model.joint_names().into_iter().map(String::from).collect(),
         vec![],
     );
-    let steps = (trajectory.duration() / dt).ceil() as usize;
     let effort_limit: Vec<f64> = model.joints().iter().map(|j| j.limits.effort).collect();
-    let (mut peak, mut sumsq) = (vec![0.0_f64; n], vec![0.0; n]);
+    let (mut peak, mut peak_time, mut sumsq) = (vec![0.0_f64; n], vec![0.0; n], vec![0.0; n]);
     let mut violations = Vec::new();
+    let mut summary: Vec<Option<ViolationSummary>> = vec![None; n];
     for k in 0..=steps {
         let t = (k as f64 * dt).min(trajectory.duration());
-        trajectory.sample(t, &mut q, &mut v, &mut a);
+        trajectory.sample(t, &mut q, &mut v, &mut a)?;
         let tau = inverse_dynamics(model, &mut ws, &q, &v, &a, None)?
             .as_slice()
             .to_vec();
         for i in 0..n {
-            peak[i] = peak[i].max(tau[i].abs());
+            let mag = tau[i].abs();
+            if mag > peak[i] {
+                (peak[i], peak_time[i]) = (mag, t);
+            }
             sumsq[i] += tau[i] * tau[i];
-            if tau[i].abs() > effort_limit[i] {
+            if mag > effort_limit[i] {
                 violations.push(Violation {
                     joint: i,
                     t,
                     tau: tau[i],
                     limit: effort_limit[i],
                 });
+                let s = summary[i].get_or_insert(ViolationSummary {
+                    count: 0,
+                    first_time: t,
+                    worst: 0.0,
+                });
+                s.count += 1;
+                s.worst = s.worst.max(mag);
             }
         }
         let ke = kinetic_energy(model, &mut ws, &q, &v)?;
         let pe = potential_energy(model, &mut ws, &q)?;
-        rec.push(t, &q, &v, &a, &tau, (ke, pe), vec![]);
+        rec.push(&Sample {
+            t,
+            q: &q,
+            v: &v,
+            a: &a,
+            tau: &tau,
+            kinetic_energy: ke,
+            potential_energy: pe,
+            poses: &[],
+        })?;
     }
     let count = (steps + 1) as f64;
     Ok(TorqueProfile {
         samples: rec,
         peak,
+        peak_time,
         rms: sumsq.iter().map(|s| (s / count).sqrt()).collect(),
         effort_limit,
         violations,
+        violation_summary: summary,
     })
 }

@@ -4,13 +4,13 @@
 use super::controller::Controller;
 use super::effects::{EffectGains, JointEffects};
 use super::integrate::{Integrator, Stepper};
-use super::record::Recording;
+use super::record::{Recording, Sample, SampleSink};
 use crate::dynamics::energy::{kinetic_energy_given_twists, potential_energy_given_poses};
-use crate::dynamics::{forward_dynamics_with, ExternalWrenches, ForwardMethod};
+use crate::dynamics::{forward_dynamics, ExternalWrenches, ForwardMethod};
 use crate::error::{Error, Result};
 use crate::kinematics::{forward_velocity, frame_pose};
 use crate::model::Model;
-use crate::spatial::Wrench;
+use crate::spatial::{Se3, Wrench};
 use crate::workspace::Workspace;
 
 /// An external wrench on a body during `[start, end)` (seconds), in the body frame or the
@@ -86,7 +86,7 @@ impl Plant<'_> {
             )));
         }
         self.effects
-            .apply(self.model, &self.gains, q, v, &self.cmd, &mut self.tau);
+            .apply(self.model, &self.gains, q, v, &self.cmd, &mut self.tau)?;
         let active = |d: &&Disturbance| t >= d.start && t < d.end;
         let fext = if self.disturbances.iter().any(|d| active(&d)) {
             self.fext.clear();
@@ -101,15 +101,20 @@ impl Plant<'_> {
         } else {
             None
         };
-        let a =
-            forward_dynamics_with(self.model, &mut self.ws, q, v, &self.tau, fext, self.method)?;
+        let a = forward_dynamics(self.model, &mut self.ws, q, v, &self.tau, fext, self.method)?;
         qdd.copy_from_slice(a.as_slice());
         if let Some(i) = qdd.iter().position(|x| !x.is_finite()) {
+            let cause = if self.effects.total_torque_is_commanded() {
+                "a fixed step too large for the robot's fastest motion, or a controller with \
+                 gains too high for the step, does this"
+            } else {
+                "a fixed step too large for stiff joint effects — limit stops, damping or \
+                 smoothed Coulomb friction on a light link — does this"
+            };
             return Err(Error::Numerical(format!(
                 "the acceleration of joint '{}' became non-finite at t = {t:.6} s: the \
-                 simulation diverged (a fixed step too large for stiff joint effects — limit \
-                 stops, damping or smoothed Coulomb friction on a light link — does this; try a \
-                 smaller step or the adaptive Dormand–Prince integrator)",
+                 simulation diverged ({cause}; try a smaller step or the adaptive \
+                 Dormand–Prince integrator)",
                 self.model.joints()[i].name
             )));
         }
@@ -118,7 +123,11 @@ impl Plant<'_> {
 }
 
 /// Simulates `model` from `(q0, v0)` for `opts.duration` seconds under `controller` and
-/// `disturbances`; `progress` is called with the completed fraction (0…1) now and then.
+/// `disturbances`, and returns the whole run in memory (see [`simulate_into`] to stream the
+/// samples instead); `progress` is called with the completed fraction (0…1) now and then.
+///
+/// # Errors
+/// As [`simulate_into`].
 ///
 /// ```
 /// use screwdyn::sim::{simulate, SimOptions, ZeroTorque};
@@ -139,25 +148,86 @@ pub fn simulate(
     opts: &SimOptions,
     progress: &mut dyn FnMut(f64),
 ) -> Result<Recording> {
-    model.check_vector(q0, "q0")?;
-    model.check_vector(v0, "v0")?;
-    let valid =
-        opts.dt > 0.0 && opts.dt.is_finite() && opts.duration >= 0.0 && opts.duration.is_finite();
-    if !valid {
-        return Err(Error::InvalidModel(format!(
-            "the step must be positive and the duration non-negative (got dt = {}, duration = {})",
-            opts.dt, opts.duration
-        )));
+    let mut rec = Recording::default();
+    simulate_into(
+        model,
+        q0,
+        v0,
+        controller,
+        disturbances,
+        opts,
+        &mut rec,
+        progress,
+    )?;
+    Ok(rec)
+}
+
+/// What a run did: the number of integration steps, of recorded samples, and the final time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunSummary {
+    /// Integration steps taken (the last one may be shorter than `dt`).
+    pub steps: usize,
+    /// Samples sent to the sink.
+    pub samples: usize,
+    /// The time reached (s): `duration` exactly.
+    pub end_time: f64,
+}
+
+/// The step times of a run of `duration` seconds with step `dt`: `ceil(duration / dt)` steps,
+/// all of length `dt` but the last, which ends exactly at `duration`.
+///
+/// ```
+/// let (n, last) = screwdyn::sim::step_plan(1.0, 0.3);
+/// assert_eq!(n, 4);
+/// assert!((last - 0.1).abs() < 1e-12);
+/// assert_eq!(screwdyn::sim::step_plan(1.0, 5.0), (1, 1.0));
+/// assert_eq!(screwdyn::sim::step_plan(0.0, 1e-3), (0, 0.0));
+/// ```
+pub fn step_plan(duration: f64, dt: f64) -> (usize, f64) {
+    if duration <= 0.0 {
+        return (0, 0.0);
     }
-    for d in disturbances {
-        if d.body >= model.nbodies() {
-            return Err(Error::InvalidModel(format!(
-                "a disturbance names body {} of {}",
-                d.body,
-                model.nbodies()
-            )));
-        }
-    }
+    let ratio = duration / dt;
+    // A ratio within round-off of an integer takes that many full steps.
+    let n = (ratio - 1e-9 * ratio.max(1.0)).ceil().max(1.0) as usize;
+    (n, duration - (n - 1) as f64 * dt)
+}
+
+/// Simulates `model` (seed 004 §6.4) and sends each recorded sample to `sink` as soon as it is
+/// recorded, so a run of any length needs constant memory: the state at `t = 0`, then every
+/// `opts.record_every` steps and at the end. The run ends exactly at `opts.duration` (a last,
+/// shorter step where `dt` does not divide it, see [`step_plan`]). When the run fails part-way
+/// (divergence, a sink that cannot write), every sample before the failure has already reached
+/// the sink.
+///
+/// # Errors
+/// [`Error::DimensionMismatch`]/[`Error::NonFinite`] for bad `q0`, `v0`;
+/// [`Error::InvalidArgument`] for a bad step, duration, recorded frame, disturbance body or
+/// joint-effect setting; [`Error::Numerical`] when the run diverges; any error of the
+/// controller or the sink.
+///
+/// ```
+/// use screwdyn::sim::{simulate_into, CsvSampleWriter, SimOptions, ZeroTorque};
+/// let m = screwdyn::builtin::pendulum();
+/// let opts = SimOptions { duration: 0.25, dt: 0.1, ..Default::default() };
+/// let mut csv = CsvSampleWriter::new(Vec::new());
+/// let run = simulate_into(&m, &[0.1], &[0.0], &mut ZeroTorque, &[], &opts, &mut csv, &mut |_| {}).unwrap();
+/// assert_eq!((run.steps, run.samples, run.end_time), (3, 4, 0.25));
+/// let text = String::from_utf8(csv.into_inner()).unwrap();
+/// assert!(text.lines().last().unwrap().starts_with("0.25,"));
+/// ```
+#[allow(clippy::too_many_arguments)]
+pub fn simulate_into(
+    model: &Model,
+    q0: &[f64],
+    v0: &[f64],
+    controller: &mut dyn Controller,
+    disturbances: &[Disturbance],
+    opts: &SimOptions,
+    sink: &mut dyn SampleSink,
+    progress: &mut dyn FnMut(f64),
+) -> Result<RunSummary> {
+    check_inputs(model, q0, v0, disturbances, opts)?;
     let n = model.nq();
     let mut plant = Plant {
         model,
@@ -171,63 +241,127 @@ pub fn simulate(
         effects: opts.effects,
         gains: EffectGains::new(&opts.effects, model, q0, opts.dt)?,
     };
-    let mut stepper = Stepper::new(opts.integrator, n);
-    let mut rec_ws = Workspace::new(model);
-    let joints = model.joint_names().into_iter().map(String::from).collect();
-    let frames = opts
-        .frames
-        .iter()
-        .map(|&f| model.frames()[f].name.clone())
-        .collect();
-    let mut rec = Recording::new(joints, frames);
+    let mut stepper = Stepper::new(opts.integrator, n)?;
+    let mut recorder = Recorder::new(model, &opts.frames)?;
+    let joints: Vec<String> = model.joint_names().into_iter().map(String::from).collect();
+    sink.begin(&joints, &recorder.frame_names)?;
     let (mut q, mut v, mut a) = (q0.to_vec(), v0.to_vec(), vec![0.0; n]);
-    let steps = (opts.duration / opts.dt).round() as usize;
+    let (steps, last_dt) = step_plan(opts.duration, opts.dt);
     let every = opts.record_every.max(1);
-    let mut record = |t: f64,
-                      q: &[f64],
-                      v: &[f64],
-                      plant: &mut Plant,
-                      a: &mut [f64],
-                      rec: &mut Recording|
-     -> Result<()> {
-        plant.accel(t, q, v, a)?;
-        // One kinematic pass gives the energies and the frame poses.
-        forward_velocity(model, &mut rec_ws, q, v)?;
-        let ke = kinetic_energy_given_twists(model, &rec_ws);
-        let pe = potential_energy_given_poses(model, &rec_ws);
-        let poses = opts
-            .frames
-            .iter()
-            .map(|&f| frame_pose(model, &rec_ws, f))
-            .collect();
-        rec.push(t, q, v, a, &plant.tau, (ke, pe), poses);
-        Ok(())
-    };
-    record(0.0, &q, &v, &mut plant, &mut a, &mut rec)?;
+    recorder.record(0.0, &q, &v, &mut plant, &mut a, sink)?;
     let report = (steps / 200).max(1);
+    let mut t = 0.0;
     for k in 0..steps {
-        let t = k as f64 * opts.dt;
+        let h = if k + 1 == steps { last_dt } else { opts.dt };
         stepper.advance(
             &mut |t, q, v, qdd| plant.accel(t, q, v, qdd),
             t,
-            opts.dt,
+            h,
             &mut q,
             &mut v,
         )?;
+        t = if k + 1 == steps {
+            opts.duration
+        } else {
+            (k + 1) as f64 * opts.dt
+        };
         if (k + 1) % every == 0 || k + 1 == steps {
-            record(
-                (k + 1) as f64 * opts.dt,
-                &q,
-                &v,
-                &mut plant,
-                &mut a,
-                &mut rec,
-            )?;
+            recorder.record(t, &q, &v, &mut plant, &mut a, sink)?;
         }
         if k % report == 0 {
             progress(k as f64 / steps as f64);
         }
     }
     progress(1.0);
-    Ok(rec)
+    Ok(RunSummary {
+        steps,
+        samples: recorder.samples,
+        end_time: t,
+    })
+}
+
+/// The checks [`simulate_into`] makes before it starts.
+fn check_inputs(
+    model: &Model,
+    q0: &[f64],
+    v0: &[f64],
+    disturbances: &[Disturbance],
+    opts: &SimOptions,
+) -> Result<()> {
+    model.check_vector(q0, "q0")?;
+    model.check_vector(v0, "v0")?;
+    let valid =
+        opts.dt > 0.0 && opts.dt.is_finite() && opts.duration >= 0.0 && opts.duration.is_finite();
+    if !valid {
+        return Err(Error::InvalidArgument(format!(
+            "the step must be positive and the duration non-negative (got dt = {}, duration = {})",
+            opts.dt, opts.duration
+        )));
+    }
+    for d in disturbances {
+        model.check_body(d.body)?;
+        crate::model::check_finite(d.wrench.as_slice(), "a disturbance wrench")?;
+        if d.start.is_nan() || d.end.is_nan() {
+            return Err(Error::InvalidArgument(
+                "a disturbance has a NaN start or end time".into(),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Turns the state at a sample time into a [`Sample`]: `q̈` and `τ` from the plant, the
+/// energies and the recorded frames' poses from one kinematic pass.
+struct Recorder<'m> {
+    model: &'m Model,
+    ws: Workspace,
+    frames: Vec<usize>,
+    frame_names: Vec<String>,
+    poses: Vec<Se3>,
+    samples: usize,
+}
+
+impl<'m> Recorder<'m> {
+    fn new(model: &'m Model, frames: &[usize]) -> Result<Self> {
+        let frame_names = frames
+            .iter()
+            .map(|&f| Ok(model.frame(f)?.name.clone()))
+            .collect::<Result<Vec<_>>>()?;
+        Ok(Recorder {
+            model,
+            ws: Workspace::new(model),
+            frames: frames.to_vec(),
+            frame_names,
+            poses: vec![Se3::identity(); frames.len()],
+            samples: 0,
+        })
+    }
+
+    fn record(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        plant: &mut Plant,
+        a: &mut [f64],
+        sink: &mut dyn SampleSink,
+    ) -> Result<()> {
+        plant.accel(t, q, v, a)?;
+        forward_velocity(self.model, &mut self.ws, q, v)?;
+        for (p, &f) in self.poses.iter_mut().zip(&self.frames) {
+            *p = frame_pose(self.model, &self.ws, f)?;
+        }
+        sink.push(&Sample {
+            t,
+            q,
+            v,
+            a,
+            tau: &plant.tau,
+            kinetic_energy: kinetic_energy_given_twists(self.model, &self.ws),
+            potential_energy: potential_energy_given_poses(self.model, &self.ws),
+            poses: &self.poses,
+        })?;
+        self.samples += 1;
+        Ok(())
+    }
 }

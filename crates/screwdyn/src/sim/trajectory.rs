@@ -11,13 +11,47 @@ pub trait Trajectory {
     fn nq(&self) -> usize;
     /// Duration in seconds.
     fn duration(&self) -> f64;
-    /// Writes position, velocity and acceleration at time `t` (clamped to `[0, duration]`).
-    fn sample(&self, t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]);
+    /// Writes position, velocity and acceleration at time `t` (clamped to `[0, duration]`)
+    /// into slices of length [`nq`](Trajectory::nq), which the caller guarantees; implement
+    /// this and call [`sample`](Trajectory::sample).
+    fn eval(&self, t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]);
+    /// Position, velocity and acceleration at time `t` (clamped to `[0, duration]`).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when a slice does not have [`nq`](Trajectory::nq) entries or
+    /// `t` is NaN.
+    ///
+    /// ```
+    /// use screwdyn::sim::{Quintic, Trajectory};
+    /// let t = Quintic::rest_to_rest(&[0.0, 0.0], &[1.0, 2.0], 1.0).unwrap();
+    /// let (mut q, mut qd, mut qdd) = ([0.0; 2], [0.0; 2], [0.0; 2]);
+    /// t.sample(1.0, &mut q, &mut qd, &mut qdd).unwrap();
+    /// assert_eq!(q, [1.0, 2.0]);
+    /// assert!(t.sample(0.5, &mut [0.0], &mut qd, &mut qdd).is_err());
+    /// ```
+    fn sample(&self, t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) -> Result<()> {
+        let n = self.nq();
+        if q.len() != n || qd.len() != n || qdd.len() != n {
+            return Err(Error::InvalidArgument(format!(
+                "a trajectory of {n} joints was sampled into buffers of {}, {} and {} values",
+                q.len(),
+                qd.len(),
+                qdd.len()
+            )));
+        }
+        if t.is_nan() {
+            return Err(Error::InvalidArgument(
+                "a trajectory was sampled at t = NaN".into(),
+            ));
+        }
+        self.eval(t, q, qd, qdd);
+        Ok(())
+    }
 }
 
 fn check_same_len(what: &str, a: &[f64], n: usize) -> Result<()> {
     if a.len() != n {
-        return Err(Error::InvalidModel(format!(
+        return Err(Error::InvalidArgument(format!(
             "{what} has {} values, expected {n}",
             a.len()
         )));
@@ -94,6 +128,9 @@ pub struct Trapezoid {
 
 impl Trapezoid {
     /// Profiles from `q0` to `qf` under per-joint limits `vmax`, `amax` (positive).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) for vectors of different lengths, non-positive limits or duration; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞.
     pub fn new(
         q0: &[f64],
         qf: &[f64],
@@ -108,7 +145,7 @@ impl Trapezoid {
         check_same_len("the start", q0, n)?;
         for i in 0..n {
             if vmax[i] <= 0.0 || amax[i] <= 0.0 {
-                return Err(Error::InvalidModel(format!(
+                return Err(Error::InvalidArgument(format!(
                     "joint {i}: velocity and acceleration limits must be positive (got {} and {})",
                     vmax[i], amax[i]
                 )));
@@ -165,7 +202,7 @@ impl Trajectory for Trapezoid {
     fn duration(&self) -> f64 {
         self.duration
     }
-    fn sample(&self, t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) {
+    fn eval(&self, t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) {
         for (i, r) in self.ramps.iter().enumerate() {
             (q[i], qd[i], qdd[i]) = r.sample(t);
         }
@@ -179,7 +216,7 @@ impl Trajectory for Trapezoid {
 /// use screwdyn::sim::{Quintic, Trajectory};
 /// let t = Quintic::rest_to_rest(&[0.0], &[1.0], 2.0).unwrap();
 /// let (mut q, mut qd, mut qdd) = ([0.0], [0.0], [0.0]);
-/// t.sample(1.0, &mut q, &mut qd, &mut qdd);
+/// t.sample(1.0, &mut q, &mut qd, &mut qdd).unwrap();
 /// assert!((q[0] - 0.5).abs() < 1e-15); // symmetric about the midpoint
 /// assert!((qd[0] - 15.0 / 16.0).abs() < 1e-14); // peak speed 15/8 · Δq/T
 /// ```
@@ -191,6 +228,9 @@ pub struct Quintic {
 
 impl Quintic {
     /// The general boundary-value quintic.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) for vectors of different lengths, non-positive limits or duration; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞.
     pub fn new(
         start: (&[f64], &[f64], &[f64]),
         end: (&[f64], &[f64], &[f64]),
@@ -208,7 +248,7 @@ impl Quintic {
             check_same_len(what, v, n)?;
         }
         if !(duration > 0.0 && duration.is_finite()) {
-            return Err(Error::InvalidModel(format!(
+            return Err(Error::InvalidArgument(format!(
                 "a quintic needs a positive duration (got {duration})"
             )));
         }
@@ -234,6 +274,9 @@ impl Quintic {
     }
 
     /// From rest at `q0` to rest at `qf` in `duration` seconds.
+    ///
+    /// # Errors
+    /// As [`Quintic::new`].
     pub fn rest_to_rest(q0: &[f64], qf: &[f64], duration: f64) -> Result<Self> {
         let z = vec![0.0; q0.len()];
         Quintic::new((q0, &z, &z), (qf, &z, &z), duration)
@@ -254,7 +297,7 @@ impl Trajectory for Quintic {
     fn duration(&self) -> f64 {
         self.duration
     }
-    fn sample(&self, t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) {
+    fn eval(&self, t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) {
         let tc = t.clamp(0.0, self.duration);
         for (i, c) in self.coeffs.iter().enumerate() {
             (q[i], qd[i], qdd[i]) = eval_quintic(c, tc);
@@ -274,7 +317,7 @@ impl Trajectory for Quintic {
 /// use screwdyn::sim::{Trajectory, Waypoints};
 /// let w = Waypoints::new(&[0.0, 1.0, 3.0], &[vec![0.0], vec![1.0], vec![0.0]]).unwrap();
 /// let (mut q, mut qd, mut qdd) = ([0.0], [0.0], [0.0]);
-/// w.sample(1.0, &mut q, &mut qd, &mut qdd);
+/// w.sample(1.0, &mut q, &mut qd, &mut qdd).unwrap();
 /// assert!((q[0] - 1.0).abs() < 1e-15);
 /// ```
 #[derive(Clone, Debug, PartialEq)]
@@ -285,9 +328,12 @@ pub struct Waypoints {
 
 impl Waypoints {
     /// Through `points[k]` at `times[k]` (strictly increasing, starting anywhere).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) for vectors of different lengths, non-positive limits or duration; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞.
     pub fn new(times: &[f64], points: &[Vec<f64>]) -> Result<Self> {
         if times.len() != points.len() || times.len() < 2 {
-            return Err(Error::InvalidModel(format!(
+            return Err(Error::InvalidArgument(format!(
                 "waypoints need at least two points with one time each (got {} times, {} points)",
                 times.len(),
                 points.len()
@@ -298,7 +344,7 @@ impl Waypoints {
             check_same_len(&format!("waypoint {k}"), p, n)?;
         }
         if times.windows(2).any(|w| w[1] <= w[0]) {
-            return Err(Error::InvalidModel(
+            return Err(Error::InvalidArgument(
                 "waypoint times must increase strictly".into(),
             ));
         }
@@ -342,13 +388,13 @@ impl Trajectory for Waypoints {
     fn duration(&self) -> f64 {
         self.times[self.times.len() - 1] - self.times[0]
     }
-    fn sample(&self, t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) {
+    fn eval(&self, t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) {
         let abs = self.times[0] + t;
         let k = self.times[1..]
             .iter()
             .position(|&tk| abs < tk)
             .unwrap_or(self.segments.len() - 1);
         let local = abs - self.times[k];
-        self.segments[k].sample(local, q, qd, qdd);
+        self.segments[k].eval(local, q, qd, qdd);
     }
 }

@@ -12,7 +12,42 @@
 
 use super::se3::Se3;
 use super::twist::{ang, lin, twist, Twist, Wrench};
+use crate::error::{Error, Result};
 use crate::scalar::{real, Real};
+
+/// Why a body's inertia is not physically consistent (see
+/// [`SpatialInertia::physical_problem`]); principal moments are sorted ascending.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum InertiaProblem {
+    /// A NaN or infinite entry.
+    NonFinite,
+    /// Mass below zero.
+    NegativeMass(f64),
+    /// The rotational inertia is not symmetric.
+    NotSymmetric,
+    /// A principal moment is negative.
+    NotPositiveSemiDefinite([f64; 3]),
+    /// Two principal moments add up to less than the third (no mass distribution has them).
+    TriangleInequality([f64; 3]),
+}
+
+impl std::fmt::Display for InertiaProblem {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            InertiaProblem::NonFinite => write!(f, "has a non-finite entry"),
+            InertiaProblem::NegativeMass(m) => write!(f, "has negative mass {m}"),
+            InertiaProblem::NotSymmetric => write!(f, "is not symmetric"),
+            InertiaProblem::NotPositiveSemiDefinite([a, b, c]) => write!(
+                f,
+                "is not positive semi-definite (principal moments {a:e}, {b:e}, {c:e})"
+            ),
+            InertiaProblem::TriangleInequality([a, b, c]) => write!(
+                f,
+                "breaks the triangle inequality (principal moments {a:e} + {b:e} < {c:e})"
+            ),
+        }
+    }
+}
 use nalgebra::{Matrix3, Matrix6, Vector3};
 
 /// Spatial inertia of one rigid body: mass, centre of mass and rotational inertia about the CoM,
@@ -106,20 +141,32 @@ impl<T: Real> SpatialInertia<T> {
 
     /// Recovers the ten parameters from a 6×6 spatial inertia; fails when it does not have the
     /// structure `[I m[c]; −m[c] m·1]` (within `1e-9` relative).
-    pub fn from_matrix(j: &Matrix6<T>) -> Result<Self, String> {
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] saying which block is malformed.
+    pub fn from_matrix(j: &Matrix6<T>) -> Result<Self> {
         let m = j[(3, 3)];
         let scale = j.amax().max(T::one());
         let tol = scale * real(1e-9);
         let lower = j.fixed_view::<3, 3>(3, 3).into_owned() - Matrix3::identity() * m;
         if lower.amax() > tol {
-            return Err("its lower-right block is not m times the identity".into());
+            return Err(Error::InvalidArgument(format!(
+                "the 6×6 spatial inertia is malformed: {}",
+                "its lower-right block is not m times the identity"
+            )));
         }
         if (j - j.transpose()).amax() > tol {
-            return Err("it is not symmetric".into());
+            return Err(Error::InvalidArgument(format!(
+                "the 6×6 spatial inertia is malformed: {}",
+                "it is not symmetric"
+            )));
         }
         let mc = j.fixed_view::<3, 3>(0, 3).into_owned();
         if (mc + mc.transpose()).amax() > tol {
-            return Err("its upper-right block is not skew-symmetric (m[c])".into());
+            return Err(Error::InvalidArgument(format!(
+                "the 6×6 spatial inertia is malformed: {}",
+                "its upper-right block is not skew-symmetric (m[c])"
+            )));
         }
         let com = if m > T::zero() {
             super::so3::vee(&mc) / m
@@ -183,50 +230,82 @@ impl<T: Real> SpatialInertia<T> {
     /// The inertia of two bodies rigidly joined (both given in the same frame).
     pub fn combined(&self, other: &SpatialInertia<T>) -> Self {
         let m = self.mass + other.mass;
+        let about_origin = self.inertia_about_origin() + other.inertia_about_origin();
         if m <= T::zero() {
-            return SpatialInertia::zero();
+            // Massless parts still carry rotational inertia (a motor rotor's reflected
+            // inertia, say): with no mass there is no centre of mass to shift it to, so it is
+            // kept about the frame origin.
+            return SpatialInertia::new(m, Vector3::zeros(), about_origin);
         }
         let com = (self.com * self.mass + other.com * other.mass) / m;
-        let about_origin = self.inertia_about_origin() + other.inertia_about_origin();
         SpatialInertia::from_inertia_about_origin(m, com, about_origin)
     }
 
     /// Checks physical consistency: finite, non-negative mass, symmetric `I_c` with non-negative
     /// principal moments satisfying the triangle inequality (`I₁ + I₂ ≥ I₃` for every ordering).
-    /// Returns the reason on failure, as a phrase to follow "the inertia".
-    pub fn check_physical(&self) -> Result<(), String> {
+    /// Tolerances scale with the body (see [`SpatialInertia::physical_problem`]).
+    ///
+    /// # Errors
+    /// [`Error::InvalidModel`] whose message reads "the inertia …" and says what is wrong.
+    pub fn check_physical(&self) -> Result<()> {
+        match self.physical_problem() {
+            None => Ok(()),
+            Some(p) => Err(Error::InvalidModel(format!("the inertia {p}"))),
+        }
+    }
+
+    /// The physical-consistency problem of this inertia, if any, with tolerances that scale
+    /// with the body: `ε · m · r²` where `r` is the larger of the centre-of-mass offset and the
+    /// radius of gyration `√(tr I_c / m)` (or `ε · tr I_c` for a massless body), `ε = 1e-9`.
+    /// Round-off in published files (principal moments of ±1e-20 on a body of 1e-6 kg·m²)
+    /// passes; a real violation of the triangle inequality does not.
+    ///
+    /// ```
+    /// use nalgebra::{Matrix3, Vector3};
+    /// use screwdyn::spatial::{InertiaProblem, SpatialInertia};
+    /// let rounded = SpatialInertia::new(0.05, Vector3::zeros(),
+    ///     Matrix3::from_diagonal(&Vector3::new(1e-5, 1e-5, -1.4e-20)));
+    /// assert_eq!(rounded.physical_problem(), None);
+    /// let mount = SpatialInertia::new(0.1, Vector3::zeros(),
+    ///     Matrix3::from_diagonal(&Vector3::new(0.001, 0.001, 0.01)));
+    /// assert!(matches!(mount.physical_problem(), Some(InertiaProblem::TriangleInequality(_))));
+    /// ```
+    pub fn physical_problem(&self) -> Option<InertiaProblem> {
+        let f = |x: T| -> f64 { x.to_subset().unwrap_or(f64::NAN) };
         let finite = self.mass.is_finite()
             && self.com.iter().all(|x| x.is_finite())
             && self.inertia_com.iter().all(|x| x.is_finite());
         if !finite {
-            return Err("has a non-finite entry".into());
+            return Some(InertiaProblem::NonFinite);
         }
         if self.mass < T::zero() {
-            return Err(format!("has negative mass {:?}", self.mass));
+            return Some(InertiaProblem::NegativeMass(f(self.mass)));
         }
         let i = &self.inertia_com;
-        let scale = i.amax().max(real(1e-12));
-        if (i - i.transpose()).amax() > scale * real(1e-9) {
-            return Err("is not symmetric".into());
+        let trace = i.trace().abs();
+        let r2 = if self.mass > T::zero() {
+            self.com.norm_squared().max(trace / self.mass)
+        } else {
+            T::zero()
+        };
+        let eps: T = real(1e-9);
+        let tol = eps * (self.mass * r2).max(trace);
+        if (i - i.transpose()).amax() > tol {
+            return Some(InertiaProblem::NotSymmetric);
         }
         let eig = i.symmetric_eigenvalues();
-        let tol = scale * real(1e-9);
+        let mut moments = [f(eig[0]), f(eig[1]), f(eig[2])];
+        moments.sort_by(|a, b| a.total_cmp(b));
         if eig.iter().any(|&e| e < -tol) {
-            return Err(format!(
-                "is not positive semi-definite (principal moments {:?}, {:?}, {:?})",
-                eig[0], eig[1], eig[2]
-            ));
+            return Some(InertiaProblem::NotPositiveSemiDefinite(moments));
         }
         for k in 0..3 {
             let (a, b, c) = (eig[k], eig[(k + 1) % 3], eig[(k + 2) % 3]);
             if a + b < c - tol {
-                return Err(format!(
-                    "breaks the triangle inequality (principal moments {:?} + {:?} < {:?})",
-                    a, b, c
-                ));
+                return Some(InertiaProblem::TriangleInequality(moments));
             }
         }
-        Ok(())
+        None
     }
 }
 

@@ -11,12 +11,14 @@
 //! assert!(ad(&v, &v).norm() == 0.0);
 //! ```
 
+mod composite_inertia;
 mod inertia;
 mod se3;
 mod so3;
 mod twist;
 
-pub use inertia::{parallel_axis_term, SpatialInertia};
+pub use composite_inertia::CompositeInertia;
+pub use inertia::{parallel_axis_term, InertiaProblem, SpatialInertia};
 pub use se3::Se3;
 pub use so3::{exp_so3, hat, log_so3, vee};
 pub use twist::{

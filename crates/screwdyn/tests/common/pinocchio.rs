@@ -212,7 +212,7 @@ pub fn build_model(fx: &Fixture) -> Model {
     let mut b = ModelBuilder::new(&fx.robot);
     b.base_name(BASE)
         .gravity(Vector3::from(fx.gravity))
-        .allow_nonphysical(false);
+        .strict(false);
     let link_of = |joint: Option<usize>| joint.map_or(BASE, |p| fx.joints[p].body_name.as_str());
     for j in &fx.joints {
         let spec = match j.kind.as_str() {
