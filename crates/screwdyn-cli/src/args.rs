@@ -451,7 +451,11 @@ pub struct ViewArgs {
     /// Cap on the run samples embedded (longer runs are strided to fit).
     #[arg(long, default_value_t = screwdyn_view::DEFAULT_MAX_SAMPLES)]
     pub max_samples: usize,
-    /// Accept inertias that are not physically consistent and massless leaf bodies.
+    /// Treat physical-consistency problems of the model (listed as warnings on stderr
+    /// otherwise) as errors.
     #[arg(long)]
+    pub strict: bool,
+    /// Accepted for compatibility: inconsistent inertias are warnings now, not errors.
+    #[arg(long, hide = true)]
     pub allow_nonphysical: bool,
 }

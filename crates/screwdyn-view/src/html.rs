@@ -55,20 +55,25 @@ fn escape(s: &str) -> String {
 
 /// The frames whose path a run draws: for each leaf body, its last fixed or extra frame (a
 /// tool point), else its own frame.
-fn end_effectors(model: &Model) -> Vec<usize> {
-    (0..model.nbodies())
-        .filter(|&i| model.children(i).is_empty())
-        .map(|i| {
-            model
-                .frames()
-                .iter()
-                .enumerate()
-                .filter(|(_, f)| f.body == Some(i) && f.kind != FrameKind::Body)
-                .map(|(k, _)| k)
-                .next_back()
-                .unwrap_or_else(|| model.body_frame(i))
-        })
-        .collect()
+fn end_effectors(model: &Model) -> Result<Vec<usize>> {
+    let mut out = Vec::new();
+    for i in 0..model.nbodies() {
+        if !model.children(i)?.is_empty() {
+            continue;
+        }
+        let tool = model
+            .frames()
+            .iter()
+            .enumerate()
+            .filter(|(_, f)| f.body == Some(i) && f.kind != FrameKind::Body)
+            .map(|(k, _)| k)
+            .next_back();
+        out.push(match tool {
+            Some(k) => k,
+            None => model.body_frame(i)?,
+        });
+    }
+    Ok(out)
 }
 
 /// Writes the page of `model` with `options` (see [`ViewOptions`]): the scene (URDF visuals
@@ -246,13 +251,13 @@ fn run_json(model: &Model, run: &crate::Run, ws: &mut Workspace) -> Result<Value
             names.join(", ")
         )));
     }
-    let ee = end_effectors(model);
+    let ee = end_effectors(model)?;
     let mut all_poses = Vec::with_capacity(n * nb * 12);
     let mut paths = vec![Vec::with_capacity(3 * n); ee.len()];
     for q in &run.q {
         all_poses.extend(body_poses(model, ws, q)?);
         for (k, f) in ee.iter().enumerate() {
-            paths[k].extend(kinematics::frame_pose(model, ws, *f).translation.iter());
+            paths[k].extend(kinematics::frame_pose(model, ws, *f)?.translation.iter());
         }
     }
     let flags: Vec<u8> = run.flags.iter().flatten().copied().collect();

@@ -69,7 +69,12 @@ impl Run {
     /// let m = screwdyn::builtin::planar2();
     /// let mut rec = screwdyn::sim::Recording::new(vec!["joint1".into(), "joint2".into()], vec![]);
     /// for k in 0..5 {
-    ///     rec.push(k as f64, &[0.1 * k as f64, 0.0], &[0.0; 2], &[0.0; 2], &[0.0; 2], (0.0, 0.0), vec![]);
+    ///     rec.t.push(k as f64);
+    ///     rec.q.push(vec![0.1 * k as f64, 0.0]);
+    ///     rec.tau.push(vec![0.0; 2]);
+    ///     rec.kinetic_energy.push(0.0);
+    ///     rec.potential_energy.push(0.0);
+    ///     rec.total_energy.push(0.0);
     /// }
     /// let run = screwdyn_view::Run::from_recording(&rec, &m, 3).unwrap();
     /// assert_eq!(run.t, vec![0.0, 2.0, 4.0]);

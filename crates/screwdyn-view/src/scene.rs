@@ -91,6 +91,10 @@ pub fn joint_direction(model: &Model, i: usize) -> Vector3<f64> {
     d.normalize()
 }
 
+/// A skeleton segment `(body, a, b)`: end points `a`, `b` in the frame of `body` (`None`: the
+/// base frame).
+pub type Segment = (Option<usize>, Vector3<f64>, Vector3<f64>);
+
 /// The skeleton's link segments `(body, a, b)`, end points in the body's frame (`None`: the
 /// base frame): from each body's joint anchor (see [`joint_anchor`]) to its own origin, to
 /// its children's joint anchors and to its fixed frames; from the base origin to the anchors
@@ -98,20 +102,21 @@ pub fn joint_direction(model: &Model, i: usize) -> Vector3<f64> {
 ///
 /// ```
 /// let m = screwdyn::builtin::planar2();
-/// let s = screwdyn_view::scene::skeleton_segments(&m);
+/// let s = screwdyn_view::scene::skeleton_segments(&m).unwrap();
 /// assert_eq!(s.len(), 2); // joint 1 → link 1's end, joint 2 → link 2's end
 /// ```
-pub fn skeleton_segments(model: &Model) -> Vec<(Option<usize>, Vector3<f64>, Vector3<f64>)> {
+///
+/// # Errors
+/// None for a valid model (the body ids it asks the model about are its own).
+pub fn skeleton_segments(model: &Model) -> Result<Vec<Segment>> {
     let mut out = Vec::new();
     let mut push = |b: Option<usize>, a: Vector3<f64>, c: Vector3<f64>| {
         if (a - c).norm() > 1e-9
-            && !out.iter().any(
-                |(ob, oa, oc): &(Option<usize>, Vector3<f64>, Vector3<f64>)| {
-                    *ob == b
-                        && (((oa - a).norm() < 1e-9 && (oc - c).norm() < 1e-9)
-                            || ((oa - c).norm() < 1e-9 && (oc - a).norm() < 1e-9))
-                },
-            )
+            && !out.iter().any(|(ob, oa, oc): &Segment| {
+                *ob == b
+                    && (((oa - a).norm() < 1e-9 && (oc - c).norm() < 1e-9)
+                        || ((oa - c).norm() < 1e-9 && (oc - a).norm() < 1e-9))
+            })
         {
             out.push((b, a, c));
         }
@@ -125,7 +130,7 @@ pub fn skeleton_segments(model: &Model) -> Vec<(Option<usize>, Vector3<f64>, Vec
         let b = Some(i);
         let a = start(b);
         push(b, a, Vector3::zeros());
-        for &c in model.children(i) {
+        for &c in model.children(i)? {
             let tip = model.joints()[c].home.act_point(&joint_anchor(model, c));
             push(b, a, tip);
         }
@@ -141,7 +146,7 @@ pub fn skeleton_segments(model: &Model) -> Vec<(Option<usize>, Vector3<f64>, Vec
             push(f.body, start(f.body), f.placement.translation);
         }
     }
-    out
+    Ok(out)
 }
 
 /// The robot's length scale: the largest distance of a frame from the base at home.
@@ -150,7 +155,7 @@ fn robot_size(model: &Model) -> Result<f64> {
     kinematics::forward_kinematics(model, &mut ws, &vec![0.0; model.nq()])?;
     let mut size: f64 = 0.1;
     for f in 0..model.frames().len() {
-        size = size.max(kinematics::frame_pose(model, &ws, f).translation.norm());
+        size = size.max(kinematics::frame_pose(model, &ws, f)?.translation.norm());
     }
     for i in 0..model.nbodies() {
         let p = ws.pose_in_world[i].act_point(&joint_anchor(model, i));
@@ -204,7 +209,7 @@ impl Scene {
             ..Default::default()
         };
         if visuals.is_empty() {
-            scene.add_skeleton(model);
+            scene.add_skeleton(model)?;
         } else {
             scene.add_visuals(model, visuals, urdf_dir, options)?;
         }
@@ -218,9 +223,9 @@ impl Scene {
         self.meshes.len() - 1
     }
 
-    fn add_skeleton(&mut self, model: &Model) {
+    fn add_skeleton(&mut self, model: &Model) -> Result<()> {
         let r = (0.03 * self.size) as f32;
-        for (body, a, b) in skeleton_segments(model) {
+        for (body, a, b) in skeleton_segments(model)? {
             let len = (b - a).norm() as f32;
             let m = self.add(mesh::capsule(r, len, 16));
             self.parts.push(Part {
@@ -242,6 +247,7 @@ impl Scene {
                 group: Group::Robot,
             });
         }
+        Ok(())
     }
 
     fn add_coms(&mut self, model: &Model) {

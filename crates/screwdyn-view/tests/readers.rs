@@ -222,6 +222,7 @@ fn planar2_skeleton_runs_through_the_joints() {
     for (q1, q2) in [(0.0, 0.0), (0.7, -1.2), (-2.0, 2.5)] {
         forward_kinematics(&m, &mut ws, &[q1, q2]).unwrap();
         let mut got: Vec<[Vector3<f64>; 2]> = skeleton_segments(&m)
+            .unwrap()
             .iter()
             .map(|(b, a, c)| {
                 let h = ws.pose_in_world[b.unwrap()];

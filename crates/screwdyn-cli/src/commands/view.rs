@@ -2,7 +2,6 @@
 
 use crate::args::ViewArgs;
 use crate::CliError;
-use screwdyn::io::LoadOptions;
 use screwdyn_view::{read_run, render_html, ViewOptions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -65,10 +64,7 @@ pub fn view(a: &ViewArgs) -> Result<(), CliError> {
             "--q cannot be combined with --run (the run gives the configurations)",
         ));
     }
-    let options = LoadOptions {
-        allow_nonphysical: a.allow_nonphysical,
-    };
-    let model = screwdyn::io::load_model_with(&a.model, &options)?;
+    let model = super::load_model(&a.model, a.strict)?;
     let q =
         a.q.as_deref()
             .map(|text| super::parse_vector(Some(text), "q", &model))
