@@ -32,4 +32,4 @@ mod workspace;
 pub use error::{Error, Result};
 pub use model::{Model, ModelBuilder};
 pub use scalar::{real, Real};
-pub use workspace::Workspace;
+pub use workspace::{Workspace, EAGER_SQUARE_BUFFERS};

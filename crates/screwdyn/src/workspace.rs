@@ -87,10 +87,34 @@ pub struct Workspace<T: Real = f64> {
     nbodies: usize,
 }
 
+/// Models with at most this many bodies get their four `n × n` buffers (`mass_matrix`,
+/// `mass_matrix_inverse`, `coriolis_matrix`, `cholesky`) when the workspace is made; larger ones
+/// get them on the first call of an algorithm that needs them (CRBA, `M⁻¹`, the Coriolis
+/// matrix, forward dynamics by CRBA or Walker–Orin), so that O(n) work on a long chain (forward
+/// kinematics, RNEA, ABA) needs O(n) memory.
+pub const EAGER_SQUARE_BUFFERS: usize = 256;
+
+/// A zero `n × n` matrix, or an error when its memory cannot be had.
+fn try_square<T: Real>(n: usize) -> Result<DMatrix<T>> {
+    let too_big = || {
+        Error::InvalidArgument(format!(
+            "a {n} × {n} matrix ({:.1} GB) cannot be allocated for a model of {n} joints",
+            (n as f64).powi(2) * std::mem::size_of::<T>() as f64 / 1e9
+        ))
+    };
+    let len = n.checked_mul(n).ok_or_else(too_big)?;
+    let mut data: Vec<T> = Vec::new();
+    data.try_reserve_exact(len).map_err(|_| too_big())?;
+    data.resize(len, T::zero());
+    Ok(DMatrix::from_vec(n, n, data))
+}
+
 impl<T: Real> Workspace<T> {
-    /// Allocates the buffers for `model`.
+    /// Allocates the buffers for `model` (the `n × n` ones only up to
+    /// [`EAGER_SQUARE_BUFFERS`] bodies).
     pub fn new(model: &Model<T>) -> Self {
         let n = model.nbodies();
+        let sq = if n <= EAGER_SQUARE_BUFFERS { n } else { 0 };
         Workspace {
             pose_in_parent: vec![Se3::identity(); n],
             pose_in_world: vec![Se3::identity(); n],
@@ -99,9 +123,9 @@ impl<T: Real> Workspace<T> {
             twist_dot: vec![Twist::zeros(); n],
             wrench: vec![Wrench::zeros(); n],
             tau: DVector::zeros(n),
-            mass_matrix: DMatrix::zeros(n, n),
-            mass_matrix_inverse: DMatrix::zeros(n, n),
-            coriolis_matrix: DMatrix::zeros(n, n),
+            mass_matrix: DMatrix::zeros(sq, sq),
+            mass_matrix_inverse: DMatrix::zeros(sq, sq),
+            coriolis_matrix: DMatrix::zeros(sq, sq),
             gravity_torque: DVector::zeros(n),
             nonlinear_effects: DVector::zeros(n),
             qdd: DVector::zeros(n),
@@ -114,7 +138,7 @@ impl<T: Real> Workspace<T> {
             articulated_force: vec![Wrench::zeros(); n],
             articulated_joint_inertia: DVector::zeros(n),
             articulated_joint_force: DVector::zeros(n),
-            cholesky: DMatrix::zeros(n, n),
+            cholesky: DMatrix::zeros(sq, sq),
             bias: DVector::zeros(n),
             screw_rate_in_world: vec![Twist::zeros(); n],
             composite_inertia_matrix: vec![Matrix6::zeros(); n],
@@ -145,6 +169,22 @@ impl<T: Real> Workspace<T> {
                 model.name(),
                 model.nbodies()
             )));
+        }
+        Ok(())
+    }
+
+    /// Makes sure the `n × n` buffers exist (see [`EAGER_SQUARE_BUFFERS`]); allocates only the
+    /// first time, for a large model.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the memory cannot be had.
+    pub(crate) fn ensure_square(&mut self) -> Result<()> {
+        let n = self.nbodies;
+        if self.mass_matrix.nrows() != n {
+            self.mass_matrix = try_square(n)?;
+            self.mass_matrix_inverse = try_square(n)?;
+            self.coriolis_matrix = try_square(n)?;
+            self.cholesky = try_square(n)?;
         }
         Ok(())
     }

@@ -388,3 +388,109 @@ fn files_that_cannot_be_read_or_have_no_known_format() {
     let e = load_model("builtin:nope").unwrap_err().to_string();
     assert!(e.contains("nope") && e.contains("planar2"), "{e}");
 }
+
+/// Issue 12.2: every bad value is refused where it is read, with file:line.
+#[test]
+fn bad_joint_values_are_refused_at_their_line() {
+    let with = |inner: &str| {
+        urdf(&[
+            "<link name=\"base\"/>".to_string(),
+            link("a"),
+            format!(
+                "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"a\"/>\n{inner}\n</joint>"
+            ),
+        ]
+        .join("\n"))
+    };
+    let cases: [(&str, &[&str]); 8] = [
+        (
+            "<limit lower=\"1\" upper=\"-1\" effort=\"1\" velocity=\"1\"/>",
+            &["lower = 1 above upper = -1"],
+        ),
+        (
+            "<limit lower=\"-1\" upper=\"1\" effort=\"-5\" velocity=\"1\"/>",
+            &["effort", "negative"],
+        ),
+        (
+            "<limit lower=\"-1\" upper=\"1\" effort=\"5\" velocity=\"-1\"/>",
+            &["velocity", "negative"],
+        ),
+        (
+            "<limit lower=\"-1\" upper=\"1\" effort=\"nan\" velocity=\"1\"/>",
+            &["'nan' is not a finite number"],
+        ),
+        ("<dynamics damping=\"-0.1\"/>", &["damping", "negative"]),
+        (
+            "<dynamics friction=\"NaN\"/>",
+            &["friction", "not a finite number"],
+        ),
+        ("<axis xyz=\"0 0 0\"/>", &["zero axis"]),
+        ("<mimic joint=\"ghost\"/>", &["mimics joint 'ghost'"]),
+    ];
+    for (inner, words) in cases {
+        let e = err(&with(inner), "m.urdf");
+        let line = if inner.starts_with("<mimic") {
+            "m.urdf:4:"
+        } else {
+            "m.urdf:5:"
+        };
+        check(&e, line, words);
+    }
+    // A huge axis normalises instead of overflowing to "[0,0,0]".
+    let m = load_str(
+        &with("<axis xyz=\"1e308 1e308 0\"/>"),
+        "m.urdf",
+        &LoadOptions::default(),
+    )
+    .unwrap();
+    let s = m.joints()[0].screw;
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    assert!((s[0] - h).abs() < 1e-15 && (s[1] - h).abs() < 1e-15 && s[2] == 0.0);
+    // Names: empty, or with a line break.
+    let e = err(&urdf("<link name=\"\"/>\n<link name=\"b\"/>"), "m.urdf");
+    check(&e, "m.urdf:2:", &["non-empty"]);
+    let e = err(
+        &urdf("<link name=\"base\"/>\n<link name=\"a&#10;b\"/>"),
+        "m.urdf",
+    );
+    check(&e, "m.urdf:3:", &["control characters"]);
+}
+
+#[test]
+fn a_huge_quaternion_is_normalised_and_a_zero_one_refused() {
+    let text = |q: &str| {
+        format!(
+            "format = \"screwdyn\"\n[[body]]\nname = \"a\"\nparent = \"base\"\ntype = \"revolute\"\nscrew_in_child = [0, 0, 1, 0, 0, 0]\nmass = 1\nhome = {{ quaternion = {q} }}\n"
+        )
+    };
+    // [w, x, y, z] = [1e308, 1e308, 0, 0] is (1, 1, 0, 0)/√2 once normalised: a quarter turn
+    // about x (w = cos 45°, x = sin 45°).
+    let m = load_str(
+        &text("[1e308, 1e308, 0, 0]"),
+        "q.toml",
+        &LoadOptions::default(),
+    )
+    .unwrap();
+    let r = m.joints()[0].home.rotation;
+    let rx = screwdyn::spatial::Se3::from_rpy(std::f64::consts::FRAC_PI_2, 0.0, 0.0).rotation;
+    assert!((r - rx).amax() < 1e-12, "{r}");
+    let e = err(&text("[0, 0, 0, 0]"), "q.toml");
+    check(&e, "q.toml:2:", &["quaternion"]);
+}
+
+#[cfg(unix)]
+#[test]
+fn a_fifo_given_as_a_model_is_refused_without_blocking() {
+    let dir = std::env::temp_dir().join(format!("screwdyn-fifo-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("robot.urdf");
+    let _ = std::fs::remove_file(&path);
+    let status = std::process::Command::new("mkfifo").arg(&path).status();
+    if !matches!(status, Ok(s) if s.success()) {
+        eprintln!("mkfifo is not available here; skipped");
+        return;
+    }
+    let e = screwdyn::io::load_model(path.to_str().unwrap()).unwrap_err();
+    assert!(e.to_string().contains("not a regular file"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

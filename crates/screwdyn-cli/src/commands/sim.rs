@@ -263,7 +263,8 @@ fn unused(flag: &str, given: bool, controller: &str) -> Result<(), CliError> {
     Ok(())
 }
 
-/// `screwdyn simulate MODEL ...`.
+/// `screwdyn simulate MODEL ...`: parse, run with the samples streamed to the output, plot,
+/// summarise.
 pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
     let output_kind = a
         .output
@@ -279,6 +280,37 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
         let f: Vec<f64> = m.joints().iter().map(|j| j.friction).collect();
         m = m.with_joint_friction(&b, &f)?;
     }
+    let opts = sim_options(a, &m)?;
+    let q0 = parse_vector(a.q0.as_deref(), "q0", &m)?;
+    let v0 = parse_vector(a.v0.as_deref(), "v0", &m)?;
+    let (name, mut controller) = controller(a, &m, &q0)?;
+    let disturbances = a
+        .disturbance
+        .iter()
+        .map(|d| parse_disturbance(&m, d))
+        .collect::<Result<Vec<_>, _>>()?;
+    let format = resolve(a.model.format);
+    let (summary, sinks) = run_streamed(
+        a,
+        &m,
+        &q0,
+        &v0,
+        controller.as_mut(),
+        &disturbances,
+        &opts,
+        output_kind.unwrap_or(format),
+    )?;
+    if let (Some(p), Some(d)) = (&a.plot, &sinks.plot) {
+        plot_run(&m, &d.rec, &name, p)?;
+    }
+    if a.output.is_none() && format != Format::Table {
+        return Ok(());
+    }
+    report_run(a, &m, &summary, &sinks, format)
+}
+
+/// The integrator, method, joint effects and recorded frames of `simulate`, checked.
+fn sim_options(a: &SimulateArgs, m: &Model) -> Result<SimOptions, CliError> {
     let integrator: Integrator = a
         .integrator
         .parse()
@@ -314,71 +346,6 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
     if a.record_every == 0 {
         return Err(CliError::input("--record-every must be at least 1"));
     }
-    let q0 = parse_vector(a.q0.as_deref(), "q0", &m)?;
-    let v0 = parse_vector(a.v0.as_deref(), "v0", &m)?;
-    let target = match &a.target {
-        Some(t) => parse_vector(Some(t), "target", &m)?,
-        None => q0.clone(),
-    };
-    let name = clap::ValueEnum::to_possible_value(&a.controller)
-        .map(|v| v.get_name().to_string())
-        .unwrap_or_default();
-    let c = a.controller;
-    if c != ControllerArg::Constant {
-        unused("--tau", a.tau.is_some(), &name)?;
-    }
-    if !matches!(c, ControllerArg::Pd | ControllerArg::ComputedTorque) {
-        unused("--target", a.target.is_some(), &name)?;
-        unused("--kp", a.kp.is_some(), &name)?;
-        unused("--kd", a.kd.is_some(), &name)?;
-    }
-    if c != ControllerArg::Series {
-        unused("--torque-csv", a.torque_csv.is_some(), &name)?;
-    }
-    let gains = |text: &Option<String>, flag: &str, default: Vec<f64>| match text {
-        Some(t) => parse_per_joint(t, flag, &m),
-        None => Ok(default),
-    };
-    let mut controller: Box<dyn Controller> = match c {
-        ControllerArg::Zero => Box::new(ZeroTorque),
-        ControllerArg::Constant => {
-            let Some(t) = &a.tau else {
-                return Err(CliError::input("--controller constant needs --tau"));
-            };
-            Box::new(ConstantTorque(parse_vector(Some(t), "tau", &m)?))
-        }
-        ControllerArg::Pd => {
-            let (kp0, kd0) = PdGravity::default_gains(&m, &target)?;
-            let kp = gains(&a.kp, "kp", kp0)?;
-            let kd = gains(&a.kd, "kd", kd0)?;
-            Box::new(PdGravity::new(m.clone(), target.clone(), kp, kd)?)
-        }
-        ControllerArg::ComputedTorque => {
-            if a.duration <= 0.0 {
-                return Err(CliError::input(
-                    "--controller computed-torque needs a positive --duration",
-                ));
-            }
-            let traj = Quintic::rest_to_rest(&q0, &target, a.duration)?;
-            let (kp0, kd0) = ComputedTorque::default_gains(m.nq());
-            let kp = gains(&a.kp, "kp", kp0)?;
-            let kd = gains(&a.kd, "kd", kd0)?;
-            Box::new(ComputedTorque::new(m.clone(), Box::new(traj), kp, kd)?)
-        }
-        ControllerArg::Series => {
-            let Some(p) = &a.torque_csv else {
-                return Err(CliError::input(
-                    "--controller series needs --torque-csv FILE",
-                ));
-            };
-            Box::new(read_torque_csv(&m, p)?)
-        }
-    };
-    let disturbances = a
-        .disturbance
-        .iter()
-        .map(|d| parse_disturbance(&m, d))
-        .collect::<Result<Vec<_>, _>>()?;
     let opts = SimOptions {
         duration: a.duration,
         dt: a.dt,
@@ -400,6 +367,89 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
             .map(|f| m.frame_id(f))
             .collect::<Result<Vec<_>, _>>()?,
     };
+    Ok(opts)
+}
+
+/// The controller chosen by `--controller` (and its name), with its gains and reference.
+fn controller(
+    a: &SimulateArgs,
+    m: &Model,
+    q0: &[f64],
+) -> Result<(String, Box<dyn Controller>), CliError> {
+    let target = match &a.target {
+        Some(t) => parse_vector(Some(t), "target", m)?,
+        None => q0.to_vec(),
+    };
+    let name = clap::ValueEnum::to_possible_value(&a.controller)
+        .map(|v| v.get_name().to_string())
+        .unwrap_or_default();
+    let c = a.controller;
+    if c != ControllerArg::Constant {
+        unused("--tau", a.tau.is_some(), &name)?;
+    }
+    if !matches!(c, ControllerArg::Pd | ControllerArg::ComputedTorque) {
+        unused("--target", a.target.is_some(), &name)?;
+        unused("--kp", a.kp.is_some(), &name)?;
+        unused("--kd", a.kd.is_some(), &name)?;
+    }
+    if c != ControllerArg::Series {
+        unused("--torque-csv", a.torque_csv.is_some(), &name)?;
+    }
+    let gains = |text: &Option<String>, flag: &str, default: Vec<f64>| match text {
+        Some(t) => parse_per_joint(t, flag, m),
+        None => Ok(default),
+    };
+    let controller: Box<dyn Controller> = match c {
+        ControllerArg::Zero => Box::new(ZeroTorque),
+        ControllerArg::Constant => {
+            let Some(t) = &a.tau else {
+                return Err(CliError::input("--controller constant needs --tau"));
+            };
+            Box::new(ConstantTorque(parse_vector(Some(t), "tau", m)?))
+        }
+        ControllerArg::Pd => {
+            let (kp0, kd0) = PdGravity::default_gains(m, &target)?;
+            let kp = gains(&a.kp, "kp", kp0)?;
+            let kd = gains(&a.kd, "kd", kd0)?;
+            Box::new(PdGravity::new(m.clone(), target.clone(), kp, kd)?)
+        }
+        ControllerArg::ComputedTorque => {
+            if a.duration <= 0.0 {
+                return Err(CliError::input(
+                    "--controller computed-torque needs a positive --duration",
+                ));
+            }
+            let traj = Quintic::rest_to_rest(q0, &target, a.duration)?;
+            let (kp0, kd0) = ComputedTorque::default_gains(m.nq());
+            let kp = gains(&a.kp, "kp", kp0)?;
+            let kd = gains(&a.kd, "kd", kd0)?;
+            Box::new(ComputedTorque::new(m.clone(), Box::new(traj), kp, kd)?)
+        }
+        ControllerArg::Series => {
+            let Some(p) = &a.torque_csv else {
+                return Err(CliError::input(
+                    "--controller series needs --torque-csv FILE",
+                ));
+            };
+            Box::new(read_torque_csv(m, p)?)
+        }
+    };
+    Ok((name, controller))
+}
+
+/// Runs the simulation with its samples streamed to `--output` (or stdout for JSON/CSV), a
+/// bounded copy kept for the plot; on a failure part-way the message says what was kept.
+#[allow(clippy::too_many_arguments)]
+fn run_streamed(
+    a: &SimulateArgs,
+    m: &Model,
+    q0: &[f64],
+    v0: &[f64],
+    controller: &mut dyn Controller,
+    disturbances: &[Disturbance],
+    opts: &SimOptions,
+    kind: Format,
+) -> Result<(sim::RunSummary, RunSinks), CliError> {
     let bar = std::io::stderr().is_terminal().then(|| {
         let b = indicatif::ProgressBar::new(1000);
         if let Ok(style) = indicatif::ProgressStyle::with_template(
@@ -426,7 +476,7 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
         None => None,
     };
     let mut sinks = RunSinks {
-        file: file.map(|out| RunWriter::new(output_kind.unwrap_or(format), out)),
+        file: file.map(|out| RunWriter::new(kind, out)),
         plot: a.plot.as_ref().map(|_| Decimated {
             rec: Recording::default(),
             stride: 1,
@@ -437,12 +487,12 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
         joints: Vec::new(),
     };
     let result = sim::simulate_into(
-        &m,
-        &q0,
-        &v0,
-        controller.as_mut(),
-        &disturbances,
-        &opts,
+        m,
+        q0,
+        v0,
+        controller,
+        disturbances,
+        opts,
         &mut sinks,
         &mut progress,
     );
@@ -468,50 +518,59 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
     if let Some(w) = written {
         w.map_err(|e| CliError::input(e.to_string()))?;
     }
-    if let (Some(p), Some(d)) = (&a.plot, &sinks.plot) {
-        let rec = &d.rec;
-        let panels = vec![
-            Panel {
-                title: "Joint positions".into(),
-                y_label: "q (rad)".into(),
-                series: joint_series(rec, &rec.q),
-                lines: vec![],
-            },
-            Panel {
-                title: "Joint velocities".into(),
-                y_label: "dq/dt (rad/s)".into(),
-                series: joint_series(rec, &rec.v),
-                lines: vec![],
-            },
-            Panel {
-                title: "Applied joint torques".into(),
-                y_label: "τ (N·m)".into(),
-                series: joint_series(rec, &rec.tau),
-                lines: vec![],
-            },
-            Panel {
-                title: "Energy".into(),
-                y_label: "E (J)".into(),
-                series: vec![
-                    scalar_series(rec, "kinetic", &rec.kinetic_energy),
-                    scalar_series(rec, "potential", &rec.potential_energy),
-                    scalar_series(rec, "total", &rec.total_energy),
-                ],
-                lines: vec![],
-            },
-        ];
-        let title = format!("{}: simulate, controller {name}", m.name());
-        plot_panels(p, &title, "t (s)", &panels)?;
-    }
-    if a.output.is_none() && format != Format::Table {
-        return Ok(());
-    }
+    Ok((summary, sinks))
+}
+
+/// The four panels of a run: positions, velocities, torques and energy.
+fn plot_run(m: &Model, rec: &Recording, controller: &str, p: &Path) -> Result<(), CliError> {
+    let panels = vec![
+        Panel {
+            title: "Joint positions".into(),
+            y_label: "q (rad)".into(),
+            series: joint_series(rec, &rec.q),
+            lines: vec![],
+        },
+        Panel {
+            title: "Joint velocities".into(),
+            y_label: "dq/dt (rad/s)".into(),
+            series: joint_series(rec, &rec.v),
+            lines: vec![],
+        },
+        Panel {
+            title: "Applied joint torques".into(),
+            y_label: "τ (N·m)".into(),
+            series: joint_series(rec, &rec.tau),
+            lines: vec![],
+        },
+        Panel {
+            title: "Energy".into(),
+            y_label: "E (J)".into(),
+            series: vec![
+                scalar_series(rec, "kinetic", &rec.kinetic_energy),
+                scalar_series(rec, "potential", &rec.potential_energy),
+                scalar_series(rec, "total", &rec.total_energy),
+            ],
+            lines: vec![],
+        },
+    ];
+    let title = format!("{}: simulate, controller {controller}", m.name());
+    plot_panels(p, &title, "t (s)", &panels).map(|_| ())
+}
+
+/// The summary of a run: first and last state, energies, what was written.
+fn report_run(
+    a: &SimulateArgs,
+    m: &Model,
+    summary: &sim::RunSummary,
+    sinks: &RunSinks,
+    format: Format,
+) -> Result<(), CliError> {
     let (first, last) = match (&sinks.first, &sinks.last) {
         (Some(f), l) if !l.is_empty() => (f.sample(0)?, l.sample(0)?),
         _ => return Err(CliError::internal("the run recorded no sample")),
     };
     // A summary of the run.
-    let j = names(&m);
+    let j = names(m);
     let energy = |s: &Sample| s.kinetic_energy + s.potential_energy;
     let mut r = Report::new();
     r.add("joints", Value::Names(j.clone()))
@@ -583,16 +642,43 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
             a.dt
         )));
     }
-    let (traj, what): (Box<dyn Trajectory>, String) = match a.trajectory {
+    let (traj, what) = trajectory(a, &m, &q0, &qf)?;
+    let p = sim::torque_profile(&m, traj.as_ref(), a.dt)?;
+    let rec = &p.samples;
+    if let (Some(path), Some(kind)) = (&a.output, output_kind) {
+        let file = std::fs::File::create(path)
+            .map_err(|e| CliError::input(format!("cannot write {} ({e})", path.display())))?;
+        let mut w = RunWriter::new(kind, Box::new(std::io::BufWriter::new(file)));
+        w.sink().begin(&rec.joints, &rec.frames)?;
+        for k in 0..rec.len() {
+            w.sink().push(&rec.sample(k)?)?;
+        }
+        w.finish()?;
+    }
+    let r = profile_report(a, &m, &p, traj.duration(), &what);
+    if let Some(path) = &a.plot {
+        plot_profile(a, &m, &p, traj.duration(), path)?;
+    }
+    crate::output::print(&[r], resolve(a.model.format), false)
+}
+
+/// The trajectory of `--trajectory` and a phrase describing it.
+fn trajectory(
+    a: &TorqueProfileArgs,
+    m: &Model,
+    q0: &[f64],
+    qf: &[f64],
+) -> Result<(Box<dyn Trajectory>, String), CliError> {
+    Ok(match a.trajectory {
         TrajectoryArg::Trapezoid => {
-            let vmax = parse_per_joint(&a.vmax, "vmax", &m)?;
-            let amax = parse_per_joint(&a.amax, "amax", &m)?;
+            let vmax = parse_per_joint(&a.vmax, "vmax", m)?;
+            let amax = parse_per_joint(&a.amax, "amax", m)?;
             if let Some(x) = vmax.iter().chain(&amax).find(|x| **x <= 0.0) {
                 return Err(CliError::input(format!(
                     "--vmax and --amax must be positive (got {x})"
                 )));
             }
-            let t = Trapezoid::new(&q0, &qf, &vmax, &amax, !a.unsynchronised)?;
+            let t = Trapezoid::new(q0, qf, &vmax, &amax, !a.unsynchronised)?;
             let cruise: Vec<String> = t
                 .cruise_speeds()
                 .iter()
@@ -612,24 +698,23 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
                 )));
             }
             (
-                Box::new(Quintic::rest_to_rest(&q0, &qf, a.duration)?),
+                Box::new(Quintic::rest_to_rest(q0, qf, a.duration)?),
                 "quintic rest-to-rest".to_string(),
             )
         }
-    };
-    let p = sim::torque_profile(&m, traj.as_ref(), a.dt)?;
+    })
+}
+
+/// Peak, RMS, limits and violations per joint (JSON keys and the table).
+fn profile_report(
+    a: &TorqueProfileArgs,
+    m: &Model,
+    p: &sim::TorqueProfile,
+    duration: f64,
+    what: &str,
+) -> Report {
     let rec = &p.samples;
-    if let (Some(path), Some(kind)) = (&a.output, output_kind) {
-        let file = std::fs::File::create(path)
-            .map_err(|e| CliError::input(format!("cannot write {} ({e})", path.display())))?;
-        let mut w = RunWriter::new(kind, Box::new(std::io::BufWriter::new(file)));
-        w.sink().begin(&rec.joints, &rec.frames)?;
-        for k in 0..rec.len() {
-            w.sink().push(&rec.sample(k)?)?;
-        }
-        w.finish()?;
-    }
-    let j = names(&m);
+    let j = names(m);
     let viol: Vec<(String, Value)> = j
         .iter()
         .zip(&p.violation_summary)
@@ -649,7 +734,7 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
         .collect();
     let mut r = Report::new();
     r.add("joints", Value::Names(j.clone()))
-        .add("duration", Value::Scalar(traj.duration()))
+        .add("duration", Value::Scalar(duration))
         .add("peak", Value::joints(&j, &p.peak))
         .add("peak_time", Value::joints(&j, &p.peak_time))
         .add("rms", Value::joints(&j, &p.rms))
@@ -699,64 +784,73 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
             TrajectoryArg::Quintic => "torque profile (quintic)",
         },
         m.name(),
-        fmt(traj.duration()),
+        fmt(duration),
         rec.len(),
         a.dt
     ));
-    if let Some(path) = &a.plot {
-        let mut lines = Vec::new();
-        let mut limits: Vec<(f64, Vec<String>)> = Vec::new();
-        for (i, l) in p.effort_limit.iter().enumerate() {
-            if !l.is_finite() {
-                continue;
-            }
-            match limits.iter_mut().find(|(x, _)| x == l) {
-                Some((_, js)) => js.push((i + 1).to_string()),
-                None => limits.push((*l, vec![(i + 1).to_string()])),
-            }
+    r
+}
+
+/// Required torques against the effort limits, velocities and positions.
+fn plot_profile(
+    a: &TorqueProfileArgs,
+    m: &Model,
+    p: &sim::TorqueProfile,
+    duration: f64,
+    path: &Path,
+) -> Result<(), CliError> {
+    let rec = &p.samples;
+    let mut lines = Vec::new();
+    let mut limits: Vec<(f64, Vec<String>)> = Vec::new();
+    for (i, l) in p.effort_limit.iter().enumerate() {
+        if !l.is_finite() {
+            continue;
         }
-        for (l, js) in &limits {
-            let which = if js.len() == 1 { "joint" } else { "joints" };
-            let label = format!(
-                "effort limit ±{} N·m ({which} {})",
-                fmt_short(*l),
-                js.join(", ")
-            );
-            lines.push((label.clone(), *l));
-            lines.push((label, -*l));
+        match limits.iter_mut().find(|(x, _)| x == l) {
+            Some((_, js)) => js.push((i + 1).to_string()),
+            None => limits.push((*l, vec![(i + 1).to_string()])),
         }
-        let panels = vec![
-            Panel {
-                title: "Required joint torques (inverse dynamics)".into(),
-                y_label: "τ (N·m)".into(),
-                series: joint_series(rec, &rec.tau),
-                lines,
-            },
-            Panel {
-                title: "Joint velocities".into(),
-                y_label: "dq/dt (rad/s)".into(),
-                series: joint_series(rec, &rec.v),
-                lines: vec![],
-            },
-            Panel {
-                title: "Joint positions".into(),
-                y_label: "q (rad)".into(),
-                series: joint_series(rec, &rec.q),
-                lines: vec![],
-            },
-        ];
-        let kind = match a.trajectory {
-            TrajectoryArg::Trapezoid => "trapezoid",
-            TrajectoryArg::Quintic => "quintic",
-        };
-        let title = format!(
-            "{}: torques for a {kind} motion of {} s",
-            m.name(),
-            fmt_short(traj.duration())
-        );
-        plot_panels(path, &title, "t (s)", &panels)?;
     }
-    crate::output::print(&[r], resolve(a.model.format), false)
+    for (l, js) in &limits {
+        let which = if js.len() == 1 { "joint" } else { "joints" };
+        let label = format!(
+            "effort limit ±{} N·m ({which} {})",
+            fmt_short(*l),
+            js.join(", ")
+        );
+        lines.push((label.clone(), *l));
+        lines.push((label, -*l));
+    }
+    let panels = vec![
+        Panel {
+            title: "Required joint torques (inverse dynamics)".into(),
+            y_label: "τ (N·m)".into(),
+            series: joint_series(rec, &rec.tau),
+            lines,
+        },
+        Panel {
+            title: "Joint velocities".into(),
+            y_label: "dq/dt (rad/s)".into(),
+            series: joint_series(rec, &rec.v),
+            lines: vec![],
+        },
+        Panel {
+            title: "Joint positions".into(),
+            y_label: "q (rad)".into(),
+            series: joint_series(rec, &rec.q),
+            lines: vec![],
+        },
+    ];
+    let kind = match a.trajectory {
+        TrajectoryArg::Trapezoid => "trapezoid",
+        TrajectoryArg::Quintic => "quintic",
+    };
+    let title = format!(
+        "{}: torques for a {kind} motion of {} s",
+        m.name(),
+        fmt_short(duration)
+    );
+    plot_panels(path, &title, "t (s)", &panels).map(|_| ())
 }
 
 fn fmt_short(x: f64) -> String {

@@ -1,9 +1,9 @@
 //! Forward dynamics by Featherstone's articulated-body algorithm (O(n)), in the seeds' notation.
 
+use super::inputs::checked_poses;
 use super::rnea::base_acceleration;
 use super::wrenches::ExternalWrenches;
 use crate::error::{Error, Result};
-use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::{real, Real};
 use crate::spatial::{ad, ad_transpose, Twist};
@@ -59,12 +59,7 @@ pub(crate) fn articulated_body<'w, T: Real>(
     tau: &[T],
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<&'w DVector<T>> {
-    model.check_vector(v, "v")?;
-    model.check_vector(tau, "tau")?;
-    if let Some(f) = fext {
-        f.check(model)?;
-    }
-    forward_kinematics(model, ws, q)?;
+    checked_poses(model, ws, q, &[(v, "v"), (tau, "tau")], fext)?;
     let n = model.nbodies();
     let (motions, parents, bodies) = (model.motions(), model.parents(), model.bodies());
     // Pass 1: twists, velocity-product accelerations, rigid-body inertias and bias wrenches.

@@ -63,6 +63,11 @@ fn get_block<T: Real>(m: &DMatrix<T>, i: usize, j: usize) -> Matrix6<T> {
     m.fixed_view::<6, 6>(6 * i, 6 * j).into_owned()
 }
 
+/// The largest model (in joints) for [`closed_form`]: its stacked matrices are `6n × 6n` and
+/// their products cost O(n³), a teaching form for small arms; a larger model is refused before
+/// anything is allocated.
+pub const MAX_CLOSED_FORM_JOINTS: usize = 100;
+
 /// `(h)⊼`: the matrix of `X ↦ −ad_Xᵀ h` (skew-symmetric).
 pub(crate) fn bar_matrix<T: Real>(h: &Twist<T>) -> Matrix6<T> {
     let ha = -hat(&h.fixed_rows::<3>(0).into_owned());
@@ -91,6 +96,11 @@ pub(crate) fn bar_matrix<T: Real>(h: &Twist<T>) -> Matrix6<T> {
 /// assert_eq!(cf.l[(0, 0)], 1.0);
 /// ```
 pub fn closed_form<T: Real>(model: &Model<T>, q: &[T], v: &[T]) -> Result<ClosedForm<T>> {
+    super::lagrange::check_size(
+        model,
+        MAX_CLOSED_FORM_JOINTS,
+        "the stacked closed form (6n × 6n matrices, O(n³))",
+    )?;
     model.check_vector(v, "v")?;
     let pose_in_world = forward_kinematics_poe(model, q)?;
     let n = model.nbodies();

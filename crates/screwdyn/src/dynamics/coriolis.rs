@@ -47,6 +47,7 @@ pub fn coriolis_matrix<'w, T: Real>(
     v: &[T],
 ) -> Result<&'w DMatrix<T>> {
     forward_velocity(model, ws, q, v)?;
+    ws.ensure_square()?;
     let n = model.nbodies();
     let half: T = real(0.5);
     for i in 0..n {

@@ -37,6 +37,7 @@ pub fn crba<'w, T: Real>(
     q: &[T],
 ) -> Result<&'w DMatrix<T>> {
     forward_kinematics(model, ws, q)?;
+    ws.ensure_square()?;
     crba_given_poses(model, ws);
     Ok(&ws.mass_matrix)
 }

@@ -4,10 +4,10 @@
 use super::aba::articulated_body;
 use super::cholesky::{cholesky_in_place, cholesky_solve_in_place, singular_error};
 use super::crba::crba_given_poses;
+use super::inputs::checked_poses;
 use super::rnea::{base_acceleration, rnea_passes};
 use super::wrenches::ExternalWrenches;
 use crate::error::{Error, Result};
-use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::Real;
 use crate::spatial::Twist;
@@ -88,12 +88,7 @@ fn prepare<T: Real>(
     tau: &[T],
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<()> {
-    model.check_vector(v, "v")?;
-    model.check_vector(tau, "tau")?;
-    if let Some(f) = fext {
-        f.check(model)?;
-    }
-    forward_kinematics(model, ws, q)?;
+    checked_poses(model, ws, q, &[(v, "v"), (tau, "tau")], fext)?;
     // b = C q̇ + g − Σ Jᵀ W_ext: RNEA with q̈ = 0.
     rnea_passes(
         model,
@@ -138,6 +133,7 @@ pub fn forward_dynamics_crba<'w, T: Real>(
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<&'w DVector<T>> {
     prepare(model, ws, q, v, tau, fext)?;
+    ws.ensure_square()?;
     crba_given_poses(model, ws);
     solve(model, ws, tau)?;
     Ok(&ws.qdd)
@@ -158,6 +154,7 @@ pub fn forward_dynamics_walker_orin<'w, T: Real>(
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<&'w DVector<T>> {
     prepare(model, ws, q, v, tau, fext)?;
+    ws.ensure_square()?;
     let zero = Twist::zeros();
     for j in 0..model.nv() {
         rnea_passes(

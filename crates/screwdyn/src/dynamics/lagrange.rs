@@ -47,6 +47,23 @@ impl<T: Real> LagrangeCoefficients<T> {
     }
 }
 
+/// The largest model (in joints) for [`mass_matrix_derivatives`] and
+/// [`lagrange_coefficients`]: they hold `n` dense `n × n` matrices and cost O(n⁴), teaching
+/// quantities for small arms; a larger model is refused before anything is allocated.
+pub const MAX_LAGRANGE_JOINTS: usize = 60;
+
+/// `Err(InvalidArgument)` when `model` has more than `limit` joints for `what`.
+pub(crate) fn check_size<T: Real>(model: &Model<T>, limit: usize, what: &str) -> Result<()> {
+    if model.nq() > limit {
+        return Err(Error::InvalidArgument(format!(
+            "'{}' has {} joints, more than the limit of {limit} for {what}: use the recursive algorithms (crba, coriolis_matrix, rnea) on large models",
+            model.name(),
+            model.nq()
+        )));
+    }
+    Ok(())
+}
+
 /// `∂M/∂q_k` for every `k`, analytically: in the base frame column `j` of every link Jacobian is
 /// `s_j = Ad_{H_j^0} S_j`, with `∂s_j/∂q_k = ad_{s_k} s_j` when joint `k` strictly supports
 /// joint `j` (zero otherwise), and the base-frame inertia of body `i` has
@@ -65,6 +82,11 @@ impl<T: Real> LagrangeCoefficients<T> {
 /// assert!((dm[1][(0, 0)] + 2.0 * q2.sin()).abs() < 1e-12);
 /// ```
 pub fn mass_matrix_derivatives<T: Real>(model: &Model<T>, q: &[T]) -> Result<Vec<DMatrix<T>>> {
+    check_size(
+        model,
+        MAX_LAGRANGE_JOINTS,
+        "∂M/∂q and the Lagrangian coefficients (O(n⁴))",
+    )?;
     let mut ws = Workspace::new(model);
     forward_kinematics(model, &mut ws, q)?;
     let n = model.nbodies();
@@ -170,7 +192,7 @@ pub fn effective_inertia<T: Real>(
 ) -> Result<T> {
     let n = model.nv();
     if joint >= n {
-        return Err(Error::InvalidModel(format!(
+        return Err(Error::InvalidArgument(format!(
             "effective inertia of joint {joint}, but the model has {n} joints"
         )));
     }

@@ -24,13 +24,14 @@ mod coriolis;
 mod crba;
 pub(crate) mod energy;
 mod forward;
+mod inputs;
 mod lagrange;
 mod rnea;
 mod trace;
 mod wrenches;
 
 pub use aba::aba;
-pub use closed_form::{closed_form, ClosedForm};
+pub use closed_form::{closed_form, ClosedForm, MAX_CLOSED_FORM_JOINTS};
 pub use coriolis::coriolis_matrix;
 pub use crba::{crba, mass_matrix, mass_matrix_inverse};
 pub use energy::{
@@ -42,7 +43,7 @@ pub use forward::{
 };
 pub use lagrange::{
     effective_inertia, effective_inertia_free, effective_inertia_locked, lagrange_coefficients,
-    mass_matrix_derivatives, LagrangeCoefficients,
+    mass_matrix_derivatives, LagrangeCoefficients, MAX_LAGRANGE_JOINTS,
 };
 pub use rnea::{base_acceleration, gravity_torque, inverse_dynamics, nonlinear_effects, rnea};
 pub use trace::{rnea_trace, BackwardStep, ForwardStep, RneaTrace};

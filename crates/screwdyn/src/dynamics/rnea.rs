@@ -1,6 +1,7 @@
 //! Inverse dynamics by the recursive Newton–Euler algorithm in the seeds' Lie-group form
 //! (seeds 000–002), with gravity as a base acceleration and external wrenches.
 
+use super::inputs::checked_poses;
 use super::wrenches::ExternalWrenches;
 use crate::error::Result;
 use crate::kinematics::forward_kinematics;
@@ -122,12 +123,7 @@ pub fn inverse_dynamics<'w, T: Real>(
     a: &[T],
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<&'w DVector<T>> {
-    model.check_vector(v, "v")?;
-    model.check_vector(a, "a")?;
-    if let Some(f) = fext {
-        f.check(model)?;
-    }
-    forward_kinematics(model, ws, q)?;
+    checked_poses(model, ws, q, &[(v, "v"), (a, "a")], fext)?;
     rnea_passes(
         model,
         ws,
@@ -191,8 +187,7 @@ pub fn nonlinear_effects<'w, T: Real>(
     q: &[T],
     v: &[T],
 ) -> Result<&'w DVector<T>> {
-    model.check_vector(v, "v")?;
-    forward_kinematics(model, ws, q)?;
+    checked_poses(model, ws, q, &[(v, "v")], None)?;
     rnea_passes(
         model,
         ws,

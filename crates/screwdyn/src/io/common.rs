@@ -73,8 +73,13 @@ impl PoseSpec {
         let mut h = if let Some([r, p, y]) = self.rpy {
             Se3::from_rpy(r, p, y)
         } else if let Some([w, x, y, z]) = self.quaternion {
-            let q = Quaternion::new(w, x, y, z);
-            if q.norm().is_nan() || q.norm() <= 1e-9 {
+            // Scaled first, so that a huge quaternion normalises instead of overflowing.
+            let scale = [w, x, y, z].iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+            if !(scale.is_finite() && scale > 0.0) {
+                return Err("has a zero quaternion (or a non-finite one)".into());
+            }
+            let q = Quaternion::new(w / scale, x / scale, y / scale, z / scale);
+            if q.norm() * scale <= 1e-9 {
                 return Err("has a zero quaternion".into());
             }
             Se3::new(
@@ -223,6 +228,46 @@ impl LimitSpec {
             j = j.friction(x);
         }
         j
+    }
+}
+
+/// The keys every TOML description shares — `name`, `base`, `gravity` and the `[[frame]]`
+/// tables — read from any of the three formats (DH, PoE, native), and what they do to the
+/// builder.
+pub(crate) struct Header<'f> {
+    /// `name`: the robot's name (default: the file name without its extension).
+    pub name: Option<&'f str>,
+    /// `base`: the root link's name (default `base`).
+    pub base: Option<&'f str>,
+    /// `gravity = [gx, gy, gz]` in the base frame (default `(0, 0, −9.81)`).
+    pub gravity: Option<[f64; 3]>,
+    /// `[[frame]]`: extra named frames.
+    pub frames: &'f [toml::Spanned<FrameSpec>],
+}
+
+impl Header<'_> {
+    /// The robot's name.
+    pub fn model_name(&self, file: &str) -> String {
+        self.name
+            .map(str::to_string)
+            .unwrap_or_else(|| super::native::default_name(file))
+    }
+    /// The root link's name.
+    pub fn base(&self) -> &str {
+        self.base.unwrap_or("base")
+    }
+    /// A builder with the name, root link, gravity and strictness set.
+    pub fn builder(&self, file: &str, options: &super::LoadOptions) -> ModelBuilder {
+        let mut b = ModelBuilder::new(&self.model_name(file));
+        b.base_name(self.base())
+            .gravity(gravity(self.gravity))
+            .strict(options.strict);
+        b
+    }
+    /// Adds the `[[frame]]` tables and builds the model.
+    pub fn finish(&self, mut b: ModelBuilder, file: &str, text: &str) -> Result<Model> {
+        add_frames(&mut b, self.frames, file, text)?;
+        build(&b, file)
     }
 }
 

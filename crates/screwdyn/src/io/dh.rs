@@ -51,7 +51,7 @@
 use super::common::{self, FrameSpec, LimitSpec};
 use super::LoadOptions;
 use crate::error::{Error, Result};
-use crate::model::{JointSpec, Model, ModelBuilder};
+use crate::model::{JointSpec, Model};
 use crate::spatial::{Se3, SpatialInertia};
 use nalgebra::{Vector3, Vector6};
 use serde::Deserialize;
@@ -145,15 +145,14 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
             )))
         }
     };
-    let mut b = ModelBuilder::new(
-        &f.name
-            .clone()
-            .unwrap_or_else(|| super::native::default_name(file)),
-    );
-    let base = f.base.clone().unwrap_or_else(|| "base".into());
-    b.base_name(&base)
-        .gravity(common::gravity(f.gravity))
-        .strict(options.strict);
+    let header = common::Header {
+        name: f.name.as_deref(),
+        base: f.base.as_deref(),
+        gravity: f.gravity,
+        frames: &f.frame,
+    };
+    let mut b = header.builder(file, options);
+    let base = header.base().to_string();
     if f.row.is_empty() {
         return Err(Error::Parse(format!("{file}: the DH table has no [[row]]")));
     }
@@ -210,6 +209,5 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
         b.link(&lname, &parent, j, home, inertia);
         previous = lname;
     }
-    common::add_frames(&mut b, &f.frame, file, text)?;
-    common::build(&b, file)
+    header.finish(b, file, text)
 }

@@ -78,6 +78,14 @@ pub fn load_model_with(path_or_builtin: &str, options: &LoadOptions) -> Result<M
             crate::builtin::NAMES.join(", ")
         )));
     }
+    // Regular files only: a FIFO or a device given as a model would block or never end.
+    let meta = std::fs::metadata(path_or_builtin)
+        .map_err(|e| Error::Io(format!("{path_or_builtin}: cannot be read ({e})")))?;
+    if !meta.is_file() {
+        return Err(Error::Io(format!(
+            "{path_or_builtin}: is not a regular file (a model must be a .urdf or .toml file)"
+        )));
+    }
     let text = std::fs::read_to_string(path_or_builtin)
         .map_err(|e| Error::Io(format!("{path_or_builtin}: cannot be read ({e})")))?;
     load_str(&text, path_or_builtin, options)

@@ -58,7 +58,7 @@
 use super::common::{self, FrameSpec, InertiaSpec, LimitSpec, PoseSpec};
 use super::LoadOptions;
 use crate::error::{Error, Result};
-use crate::model::{JointSpec, Model, ModelBuilder};
+use crate::model::{JointSpec, Model};
 use nalgebra::Vector6;
 use serde::Deserialize;
 
@@ -124,11 +124,13 @@ pub(crate) fn default_name(file: &str) -> String {
 /// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
 pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let f: NativeFile = common::from_toml(text, file)?;
-    let mut b = ModelBuilder::new(&f.name.clone().unwrap_or_else(|| default_name(file)));
-    if let Some(base) = &f.base {
-        b.base_name(base);
-    }
-    b.gravity(common::gravity(f.gravity)).strict(options.strict);
+    let header = common::Header {
+        name: f.name.as_deref(),
+        base: f.base.as_deref(),
+        gravity: f.gravity,
+        frames: &f.frame,
+    };
+    let mut b = header.builder(file, options);
     for spanned in &f.body {
         let body = spanned.get_ref();
         let at = common::at_line(file, text, spanned);
@@ -196,6 +198,5 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
         j = body.limits.apply(j, body.damping, body.friction);
         b.link(&body.name, &body.parent, j, home, inertia);
     }
-    common::add_frames(&mut b, &f.frame, file, text)?;
-    common::build(&b, file)
+    header.finish(b, file, text)
 }

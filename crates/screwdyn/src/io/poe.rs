@@ -139,35 +139,7 @@ pub fn poe_builder(
     let mut m_i = Se3::identity();
     for i in 0..n {
         m_i = m_i.compose(&mlist[i]);
-        let s = slist[i];
-        if !s.iter().all(|x| x.is_finite()) {
-            return bad(format!("screw {} of Slist has a non-finite entry", i + 1));
-        }
-        let (w, v) = (ang(&s), lin(&s));
-        let mut j = if w.norm() < 1e-12 {
-            if v.norm() < 1e-12 {
-                return bad(format!("screw {} of Slist is zero", i + 1));
-            }
-            JointSpec::prismatic(&jn[i])
-        } else {
-            let pitch = w.dot(&v) / w.norm_squared();
-            if pitch.abs() < 1e-12 {
-                JointSpec::revolute(&jn[i])
-            } else {
-                JointSpec::helical(&jn[i], pitch)
-            }
-        };
-        // Body screw of joint i in link frame i: Ad_{M_i⁻¹} S_i.
-        j = j.screw_in_child(m_i.inv_act_twist(&s));
-        if let Some(l) = &extras.limits {
-            j = j.limits(l[i].0, l[i].1);
-        }
-        if let Some(v) = &extras.velocity {
-            j = j.velocity_limit(v[i]);
-        }
-        if let Some(e) = &extras.effort {
-            j = j.effort_limit(e[i]);
-        }
+        let j = poe_joint(&jn[i], i, &slist[i], &m_i, extras, what)?;
         let g = SpatialInertia::from_matrix(&glist[i]).map_err(|why| {
             Error::InvalidModel(format!(
                 "{what}: Glist entry {} is not a spatial inertia: {why}",
@@ -181,23 +153,7 @@ pub fn poe_builder(
         };
         b.link(&ln[i], &parent, j, mlist[i], g);
     }
-    let ee_from_mlist = (mlist.len() == n + 1).then(|| mlist[n]);
-    let ee = match (m, ee_from_mlist) {
-        (Some(m), Some(last)) => {
-            let from_m = m_i.inverse().compose(m);
-            if (from_m.to_matrix() - last.to_matrix()).amax() > 1e-9 {
-                return bad(format!(
-                    "M disagrees with the last Mlist entry M_{n}{}: M must equal M01⋯M{n}{}",
-                    n + 1,
-                    n + 1
-                ));
-            }
-            Some(last)
-        }
-        (Some(m), None) => Some(m_i.inverse().compose(m)),
-        (None, last) => last,
-    };
-    if let Some(ee) = ee {
+    if let Some(ee) = end_effector(m, &m_i, mlist, n, what)? {
         b.frame("ee", &ln[n - 1], ee);
     }
     Ok(b)
@@ -308,12 +264,94 @@ pub fn parse_poe(text: &str, file: &str, options: &LoadOptions) -> Result<Model>
         effort: f.effort.clone(),
         strict: options.strict,
     };
-    let name = f
-        .name
-        .clone()
-        .unwrap_or_else(|| super::native::default_name(file));
-    let mut b = poe_builder(&name, m.as_ref(), &slist, &mlist, &glist, &extras, file)?;
+    let header = common::Header {
+        name: f.name.as_deref(),
+        base: f.base.as_deref(),
+        gravity: f.gravity,
+        frames: &f.frame,
+    };
+    let mut b = poe_builder(
+        &header.model_name(file),
+        m.as_ref(),
+        &slist,
+        &mlist,
+        &glist,
+        &extras,
+        file,
+    )?;
     b.gravity(common::gravity(f.gravity));
-    common::add_frames(&mut b, &f.frame, file, text)?;
-    common::build(&b, file)
+    header.finish(b, file, text)
+}
+
+/// Joint `i` of a PoE description from its space screw `S_i` (revolute, prismatic or helical by
+/// its pitch), written in link frame `i` as `Ad_{M_i⁻¹} S_i` (`m_i = M_{0i}`), with its limits.
+fn poe_joint(
+    name: &str,
+    i: usize,
+    s: &Twist,
+    m_i: &Se3,
+    extras: &PoeExtras,
+    what: &str,
+) -> Result<JointSpec> {
+    let bad = |s: String| Error::InvalidModel(format!("{what}: {s}"));
+    let s = *s;
+    if !s.iter().all(|x| x.is_finite()) {
+        return Err(bad(format!(
+            "screw {} of Slist has a non-finite entry",
+            i + 1
+        )));
+    }
+    let (w, v) = (ang(&s), lin(&s));
+    let mut j = if w.norm() < 1e-12 {
+        if v.norm() < 1e-12 {
+            return Err(bad(format!("screw {} of Slist is zero", i + 1)));
+        }
+        JointSpec::prismatic(name)
+    } else {
+        let pitch = w.dot(&v) / w.norm_squared();
+        if pitch.abs() < 1e-12 {
+            JointSpec::revolute(name)
+        } else {
+            JointSpec::helical(name, pitch)
+        }
+    };
+    // Body screw of joint i in link frame i: Ad_{M_i⁻¹} S_i.
+    j = j.screw_in_child(m_i.inv_act_twist(&s));
+    if let Some(l) = &extras.limits {
+        j = j.limits(l[i].0, l[i].1);
+    }
+    if let Some(v) = &extras.velocity {
+        j = j.velocity_limit(v[i]);
+    }
+    if let Some(e) = &extras.effort {
+        j = j.effort_limit(e[i]);
+    }
+    Ok(j)
+}
+
+/// The end-effector frame `M_{n,n+1}` in the last link (`m_n = M_{0n}`), from `M` (home pose
+/// of the end effector in the base) and/or an `(n+1)`-th `Mlist` entry, which must agree.
+fn end_effector(
+    m: Option<&Se3>,
+    m_n: &Se3,
+    mlist: &[Se3],
+    n: usize,
+    what: &str,
+) -> Result<Option<Se3>> {
+    let from_mlist = (mlist.len() == n + 1).then(|| mlist[n]);
+    Ok(match (m, from_mlist) {
+        (Some(m), Some(last)) => {
+            let from_m = m_n.inverse().compose(m);
+            if (from_m.to_matrix() - last.to_matrix()).amax() > 1e-9 {
+                return Err(Error::InvalidModel(format!(
+                    "{what}: M disagrees with the last Mlist entry M_{n}{}: M must equal M01⋯M{n}{}",
+                    n + 1,
+                    n + 1
+                )));
+            }
+            Some(last)
+        }
+        (Some(m), None) => Some(m_n.inverse().compose(m)),
+        (None, last) => last,
+    })
 }

@@ -120,6 +120,34 @@ impl Ctx<'_> {
     fn number(&self, n: Node, name: &str, owner: &str) -> Result<Option<f64>> {
         Ok(self.numbers(n, name, owner, 1)?.map(|v| v[0]))
     }
+    /// A finite number that must not be negative (an effort, speed, damping or friction).
+    fn non_negative(&self, n: Node, name: &str, owner: &str) -> Result<Option<f64>> {
+        let x = self.number(n, name, owner)?;
+        if let Some(x) = x.filter(|x| *x < 0.0) {
+            return Err(self.parse_err(
+                n,
+                format!(
+                    "<{} {name}=\"{x}\"> of {owner} is negative; it must be zero or more",
+                    n.tag_name().name()
+                ),
+            ));
+        }
+        Ok(x)
+    }
+    /// A name attribute: present, not empty, without control characters.
+    fn name(&self, n: Node, owner: &str) -> Result<String> {
+        let name = self.attr(n, "name", owner)?;
+        if name.trim().is_empty() || name.chars().any(char::is_control) {
+            return Err(self.parse_err(
+                n,
+                format!(
+                    "<{}> has the name {name:?}; names must be non-empty, without control characters",
+                    n.tag_name().name()
+                ),
+            ));
+        }
+        Ok(name.to_string())
+    }
     fn vec3(&self, n: Node, name: &str, owner: &str) -> Result<Option<Vector3<f64>>> {
         Ok(self
             .numbers(n, name, owner, 3)?
@@ -140,7 +168,7 @@ fn child<'a, 'i>(n: Node<'a, 'i>, tag: &str) -> Option<Node<'a, 'i>> {
 }
 
 fn parse_link(ctx: &Ctx, n: Node, b: &mut ModelBuilder) -> Result<ULink> {
-    let name = ctx.attr(n, "name", "a link")?.to_string();
+    let name = ctx.name(n, "a link")?;
     let owner = format!("link '{name}'");
     let mut link = ULink {
         name: name.clone(),
@@ -189,7 +217,7 @@ fn parse_link(ctx: &Ctx, n: Node, b: &mut ModelBuilder) -> Result<ULink> {
 }
 
 fn parse_joint(ctx: &Ctx, n: Node) -> Result<UJoint> {
-    let name = ctx.attr(n, "name", "a joint")?.to_string();
+    let name = ctx.name(n, "a joint")?;
     let owner = format!("joint '{name}'");
     let kind = ctx.attr(n, "type", &owner)?.to_string();
     match kind.as_str() {
@@ -217,14 +245,18 @@ fn parse_joint(ctx: &Ctx, n: Node) -> Result<UJoint> {
     let mut axis = Vector3::x();
     if let Some(a) = child(n, "axis") {
         if let Some(v) = ctx.vec3(a, "xyz", &owner)? {
-            if v.norm() < 1e-12 && kind != "fixed" {
-                return Err(ctx.model_err(
-                    ctx.line(a),
-                    format!("{owner} has a zero axis; the axis must be a nonzero direction"),
-                ));
-            }
-            if kind != "fixed" {
-                axis = v / v.norm();
+            // Scaled first, so that a huge axis such as 1e308 1e308 0 normalises too.
+            let scale = v.amax();
+            if scale <= 0.0 || (v / scale).norm() * scale < 1e-12 {
+                if kind != "fixed" {
+                    return Err(ctx.model_err(
+                        ctx.line(a),
+                        format!("{owner} has a zero axis; the axis must be a nonzero direction"),
+                    ));
+                }
+            } else if kind != "fixed" {
+                let u = v / scale;
+                axis = u / u.norm();
             }
         }
     }
@@ -250,13 +282,22 @@ fn parse_joint(ctx: &Ctx, n: Node) -> Result<UJoint> {
         if j.kind != "continuous" {
             j.lower = ctx.number(l, "lower", &owner)?.unwrap_or(-inf);
             j.upper = ctx.number(l, "upper", &owner)?.unwrap_or(inf);
+            if j.lower > j.upper {
+                return Err(ctx.parse_err(
+                    l,
+                    format!(
+                        "<limit> of {owner} has lower = {} above upper = {}",
+                        j.lower, j.upper
+                    ),
+                ));
+            }
         }
-        j.velocity = ctx.number(l, "velocity", &owner)?.unwrap_or(inf);
-        j.effort = ctx.number(l, "effort", &owner)?.unwrap_or(inf);
+        j.velocity = ctx.non_negative(l, "velocity", &owner)?.unwrap_or(inf);
+        j.effort = ctx.non_negative(l, "effort", &owner)?.unwrap_or(inf);
     }
     if let Some(d) = child(n, "dynamics") {
-        j.damping = ctx.number(d, "damping", &owner)?.unwrap_or(0.0);
-        j.friction = ctx.number(d, "friction", &owner)?.unwrap_or(0.0);
+        j.damping = ctx.non_negative(d, "damping", &owner)?.unwrap_or(0.0);
+        j.friction = ctx.non_negative(d, "friction", &owner)?.unwrap_or(0.0);
     }
     if let Some(m) = child(n, "mimic") {
         j.mimic = Some(Mimic {
@@ -268,10 +309,91 @@ fn parse_joint(ctx: &Ctx, n: Node) -> Result<UJoint> {
     Ok(j)
 }
 
+/// URDF's joint type for `j`, its axis, and the offset from the child frame to a point on the
+/// axis (non-zero when the screw axis misses the child origin, which URDF cannot say directly).
+fn urdf_joint_kind(j: &crate::model::Joint) -> Result<(&'static str, Vector3<f64>, Vector3<f64>)> {
+    let (w, v) = (ang(&j.screw), lin(&j.screw));
+    Ok(match j.kind {
+        JointKind::Helical { .. } => {
+            return Err(Error::InvalidModel(format!(
+                "joint '{}' is helical, which URDF cannot describe",
+                j.name
+            )))
+        }
+        JointKind::Prismatic => ("prismatic", v, Vector3::zeros()),
+        JointKind::Continuous => ("continuous", w, w.cross(&v)),
+        JointKind::Revolute => {
+            let unlimited = !limited(j.limits.lower) && !limited(j.limits.upper);
+            (
+                if unlimited { "continuous" } else { "revolute" },
+                w,
+                w.cross(&v),
+            )
+        }
+    })
+}
+
+/// The `<joint>` element of a moving joint: parent, child, origin, axis, limits, dynamics and
+/// mimic.
+fn joint_element(
+    j: &crate::model::Joint,
+    kind: &str,
+    parent: &str,
+    child: &str,
+    home: &Se3,
+    axis: &Vector3<f64>,
+) -> String {
+    let mut limit = String::new();
+    for (key, x, on) in [
+        ("lower", j.limits.lower, kind != "continuous"),
+        ("upper", j.limits.upper, kind != "continuous"),
+        ("effort", j.limits.effort, true),
+        ("velocity", j.limits.velocity, true),
+    ] {
+        if on && limited(x) {
+            let _ = write!(limit, " {key}=\"{}\"", num(x));
+        }
+    }
+    let mut s = format!(
+        "  <joint name=\"{}\" type=\"{kind}\">\n    <parent link=\"{}\"/>\n    <child link=\"{}\"/>\n    {}\n    <axis xyz=\"{}\"/>\n",
+        xml_escape(&j.name),
+        xml_escape(parent),
+        xml_escape(child),
+        origin_tag(home),
+        v3(axis)
+    );
+    if !limit.is_empty() {
+        let _ = writeln!(s, "    <limit{limit}/>");
+    }
+    if j.damping != 0.0 || j.friction != 0.0 {
+        let _ = writeln!(
+            s,
+            "    <dynamics damping=\"{}\" friction=\"{}\"/>",
+            num(j.damping),
+            num(j.friction)
+        );
+    }
+    if let Some(m) = &j.mimic {
+        let _ = writeln!(
+            s,
+            "    <mimic joint=\"{}\" multiplier=\"{}\" offset=\"{}\"/>",
+            xml_escape(&m.joint),
+            num(m.multiplier),
+            num(m.offset)
+        );
+    }
+    s += "  </joint>\n";
+    s
+}
+
 /// Parses URDF text into a [`Model`]; `file` names the source in messages (`file:line: …`).
 ///
 /// # Errors
-/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
+/// [`Error::Parse`] for malformed XML, a missing attribute or a value out of range (a NaN or
+/// infinite number, limits with lower > upper, a negative effort, velocity, damping or
+/// friction, an empty name, a mimic of a missing joint), and [`Error::InvalidModel`] for a
+/// tree that is not one (two parents, a cycle, no or several roots), each at `file:line`; with
+/// `strict`, the first physical-consistency problem.
 pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let doc = Document::parse(text).map_err(|e| {
         let p = e.pos();
@@ -299,44 +421,81 @@ pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model
         .unwrap_or_else(|| super::native::default_name(file));
     let mut b = ModelBuilder::new(&robot_name);
     b.strict(options.strict);
-    let mut links: Vec<ULink> = Vec::new();
-    let mut joints: Vec<UJoint> = Vec::new();
-    let mut link_at: HashMap<String, usize> = HashMap::new();
+    let e = read_elements(&ctx, root, &mut b)?;
+    let root_link = check_tree(&ctx, root, &e)?;
+    // Physical-consistency findings name the <inertial> element (the builder makes them).
+    for l in &e.links {
+        b.locate(&l.name, format!("{}:{}", ctx.file, l.inertial_line));
+    }
+    b.base_name(&root_link.name).base_inertia(root_link.inertia);
+    for j in &e.joints {
+        let inertia = e.links[e.link_at[j.child.as_str()]].inertia;
+        b.link(&j.child, &j.parent, joint_spec(j), j.origin, inertia);
+    }
+    super::common::build(&b, file)
+}
+
+/// The `<link>` and `<joint>` elements in file order, names unique, mimics resolved.
+struct Elements {
+    links: Vec<ULink>,
+    joints: Vec<UJoint>,
+    link_at: HashMap<String, usize>,
+}
+
+fn read_elements(ctx: &Ctx, root: Node, b: &mut ModelBuilder) -> Result<Elements> {
+    let mut e = Elements {
+        links: Vec::new(),
+        joints: Vec::new(),
+        link_at: HashMap::new(),
+    };
     let mut joint_at: HashMap<String, usize> = HashMap::new();
+    let twice = |what: &str, name: &str, line: u32, first: u32| {
+        ctx.model_err(
+            line,
+            format!("{what} '{name}' is declared twice (first at line {first})"),
+        )
+    };
     for n in root.children().filter(|c| c.is_element()) {
         if n.has_tag_name("link") {
-            let l = parse_link(&ctx, n, &mut b)?;
-            if let Some(&k) = link_at.get(&l.name) {
-                return Err(ctx.model_err(
-                    l.line,
-                    format!(
-                        "link '{}' is declared twice (first at line {})",
-                        l.name, links[k].line
-                    ),
-                ));
+            let l = parse_link(ctx, n, b)?;
+            if let Some(&k) = e.link_at.get(&l.name) {
+                return Err(twice("link", &l.name, l.line, e.links[k].line));
             }
-            link_at.insert(l.name.clone(), links.len());
-            links.push(l);
+            e.link_at.insert(l.name.clone(), e.links.len());
+            e.links.push(l);
         } else if n.has_tag_name("joint") {
-            let j = parse_joint(&ctx, n)?;
+            let j = parse_joint(ctx, n)?;
             if let Some(&k) = joint_at.get(&j.name) {
+                return Err(twice("joint", &j.name, j.line, e.joints[k].line));
+            }
+            joint_at.insert(j.name.clone(), e.joints.len());
+            e.joints.push(j);
+        }
+    }
+    for j in &e.joints {
+        if let Some(m) = &j.mimic {
+            if !joint_at.contains_key(&m.joint) {
                 return Err(ctx.model_err(
                     j.line,
                     format!(
-                        "joint '{}' is declared twice (first at line {})",
-                        j.name, joints[k].line
+                        "joint '{}' mimics joint '{}', which does not exist",
+                        j.name, m.joint
                     ),
                 ));
             }
-            joint_at.insert(j.name.clone(), joints.len());
-            joints.push(j);
         }
     }
-    // Tree checks, each reported at the offending element.
+    Ok(e)
+}
+
+/// Checks that the joints make a tree (every link named exists, one parent each, no cycle)
+/// and returns its one root link; each problem is reported at the offending element. Linear in
+/// the number of joints.
+fn check_tree<'e>(ctx: &Ctx, root: Node, e: &'e Elements) -> Result<&'e ULink> {
     let mut parent_joint: HashMap<&str, usize> = HashMap::new();
-    for (k, j) in joints.iter().enumerate() {
+    for (k, j) in e.joints.iter().enumerate() {
         for (role, l) in [("parent", &j.parent), ("child", &j.child)] {
-            if !link_at.contains_key(l) {
+            if !e.link_at.contains_key(l) {
                 return Err(ctx.model_err(
                     j.line,
                     format!(
@@ -347,7 +506,7 @@ pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model
             }
         }
         if let Some(&p) = parent_joint.get(j.child.as_str()) {
-            let first = &joints[p];
+            let first = &e.joints[p];
             return Err(ctx.model_err(
                 j.line,
                 format!(
@@ -358,40 +517,12 @@ pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model
         }
         parent_joint.insert(&j.child, k);
     }
-    for j in &joints {
-        // Walk up from the parent: reaching the child again means a cycle.
-        let mut at = j.parent.as_str();
-        let mut path = vec![j.name.as_str()];
-        let mut steps = 0;
-        while let Some(&p) = parent_joint.get(at) {
-            if at == j.child {
-                path.reverse();
-                return Err(
-                    ctx.model_err(j.line, format!("joints {} form a cycle", path.join(", ")))
-                );
-            }
-            path.push(&joints[p].name);
-            at = &joints[p].parent;
-            steps += 1;
-            if steps > joints.len() {
-                break;
-            }
-        }
-        if at == j.child {
-            return Err(ctx.model_err(j.line, format!("joint '{}' closes a cycle", j.name)));
-        }
-    }
-    let roots: Vec<&ULink> = links
+    let roots: Vec<&ULink> = e
+        .links
         .iter()
         .filter(|l| !parent_joint.contains_key(l.name.as_str()))
         .collect();
     let root_link = match roots.as_slice() {
-        [] => {
-            return Err(ctx.model_err(
-                ctx.line(root),
-                "the robot has no root link: every link is the child of a joint".into(),
-            ))
-        }
         [r] => *r,
         [_, second, ..] => {
             let names: Vec<&str> = roots.iter().map(|l| l.name.as_str()).collect();
@@ -403,48 +534,97 @@ pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model
                 ),
             ));
         }
+        [] if e.joints.is_empty() => {
+            return Err(ctx.model_err(
+                ctx.line(root),
+                "the robot has no root link: every link is the child of a joint".into(),
+            ))
+        }
+        [] => return Err(cycle_error(ctx, e, &parent_joint, 0)),
     };
-    // Physical-consistency findings name the <inertial> element (the builder makes them).
-    for l in &links {
-        b.locate(&l.name, format!("{}:{}", ctx.file, l.inertial_line));
+    // With one parent per link, a link that the root does not reach lies on a cycle.
+    let mut children: HashMap<&str, Vec<&str>> = HashMap::new();
+    for j in &e.joints {
+        children
+            .entry(j.parent.as_str())
+            .or_default()
+            .push(&j.child);
     }
-    b.base_name(&root_link.name).base_inertia(root_link.inertia);
-    for j in &joints {
-        let spec = match j.kind.as_str() {
-            "fixed" => JointSpec::fixed(&j.name),
-            kind => {
-                let a = j.axis;
-                let (spec, s) = match kind {
-                    "prismatic" => (
-                        JointSpec::prismatic(&j.name),
-                        Vector6::new(0.0, 0.0, 0.0, a.x, a.y, a.z),
-                    ),
-                    "continuous" => (
-                        JointSpec::continuous(&j.name),
-                        Vector6::new(a.x, a.y, a.z, 0.0, 0.0, 0.0),
-                    ),
-                    _ => (
-                        JointSpec::revolute(&j.name),
-                        Vector6::new(a.x, a.y, a.z, 0.0, 0.0, 0.0),
-                    ),
-                };
-                let mut spec = spec
-                    .screw_in_child(s)
-                    .limits(j.lower, j.upper)
-                    .velocity_limit(j.velocity)
-                    .effort_limit(j.effort)
-                    .damping(j.damping)
-                    .friction(j.friction);
-                if let Some(m) = &j.mimic {
-                    spec = spec.mimic(m.clone());
-                }
-                spec
-            }
-        };
-        let inertia = links[link_at[j.child.as_str()]].inertia;
-        b.link(&j.child, &j.parent, spec, j.origin, inertia);
+    let mut seen: std::collections::HashSet<&str> = std::collections::HashSet::new();
+    let mut stack = vec![root_link.name.as_str()];
+    while let Some(l) = stack.pop() {
+        seen.insert(l);
+        stack.extend(children.get(l).into_iter().flatten());
     }
-    super::common::build(&b, file)
+    if seen.len() != e.links.len() {
+        let k = e
+            .joints
+            .iter()
+            .position(|j| !seen.contains(j.child.as_str()))
+            .unwrap_or(0);
+        return Err(cycle_error(ctx, e, &parent_joint, k));
+    }
+    Ok(root_link)
+}
+
+/// The cycle through joint `k`'s child, found by walking parents until a link repeats.
+fn cycle_error(ctx: &Ctx, e: &Elements, parent_joint: &HashMap<&str, usize>, k: usize) -> Error {
+    let mut seen: HashMap<&str, usize> = HashMap::new();
+    let mut path: Vec<usize> = Vec::new();
+    let mut at = e.joints[k].child.as_str();
+    while let Some(&p) = parent_joint.get(at) {
+        if let Some(&start) = seen.get(at) {
+            let mut names: Vec<&str> = path[start..]
+                .iter()
+                .map(|&j| e.joints[j].name.as_str())
+                .collect();
+            names.reverse();
+            let last = path[path.len() - 1];
+            return ctx.model_err(
+                e.joints[last].line,
+                format!("joints {} form a cycle", names.join(", ")),
+            );
+        }
+        seen.insert(at, path.len());
+        path.push(p);
+        at = &e.joints[p].parent;
+    }
+    ctx.model_err(
+        e.joints[k].line,
+        format!("joint '{}' closes a cycle", e.joints[k].name),
+    )
+}
+
+/// The builder's joint declaration of a URDF joint: axis in the child frame (URDF's axis is
+/// given in the joint frame, which is the child frame at `q = 0`).
+fn joint_spec(j: &UJoint) -> JointSpec {
+    let a = j.axis;
+    let (spec, s) = match j.kind.as_str() {
+        "fixed" => return JointSpec::fixed(&j.name),
+        "prismatic" => (
+            JointSpec::prismatic(&j.name),
+            Vector6::new(0.0, 0.0, 0.0, a.x, a.y, a.z),
+        ),
+        "continuous" => (
+            JointSpec::continuous(&j.name),
+            Vector6::new(a.x, a.y, a.z, 0.0, 0.0, 0.0),
+        ),
+        _ => (
+            JointSpec::revolute(&j.name),
+            Vector6::new(a.x, a.y, a.z, 0.0, 0.0, 0.0),
+        ),
+    };
+    let spec = spec
+        .screw_in_child(s)
+        .limits(j.lower, j.upper)
+        .velocity_limit(j.velocity)
+        .effort_limit(j.effort)
+        .damping(j.damping)
+        .friction(j.friction);
+    match &j.mimic {
+        Some(m) => spec.mimic(m.clone()),
+        None => spec,
+    }
 }
 
 /// Whether a limit value is an actual bound (not infinite, not the "no limit" default).
@@ -556,25 +736,7 @@ pub fn to_urdf_string(model: &Model) -> Result<String> {
     };
     for (i, (j, body)) in model.joints().iter().zip(model.bodies()).enumerate() {
         let parent = body_link(model.parents()[i]);
-        let (w, v) = (ang(&j.screw), lin(&j.screw));
-        let (kind, axis, offset) = match j.kind {
-            JointKind::Helical { .. } => {
-                return Err(Error::InvalidModel(format!(
-                    "joint '{}' is helical, which URDF cannot describe",
-                    j.name
-                )))
-            }
-            JointKind::Prismatic => ("prismatic", v, Vector3::zeros()),
-            JointKind::Continuous => ("continuous", w, w.cross(&v)),
-            JointKind::Revolute => {
-                let unlimited = !limited(j.limits.lower) && !limited(j.limits.upper);
-                (
-                    if unlimited { "continuous" } else { "revolute" },
-                    w,
-                    w.cross(&v),
-                )
-            }
-        };
+        let (kind, axis, offset) = urdf_joint_kind(j)?;
         let split = offset.norm() > 1e-12;
         let moving = if split {
             let mut name = format!("{}_axis", body.name);
@@ -587,47 +749,7 @@ pub fn to_urdf_string(model: &Model) -> Result<String> {
             body.name.clone()
         };
         let home = j.home.compose(&Se3::from_translation(offset));
-        let mut limit = String::new();
-        for (key, x, on) in [
-            ("lower", j.limits.lower, kind != "continuous"),
-            ("upper", j.limits.upper, kind != "continuous"),
-            ("effort", j.limits.effort, true),
-            ("velocity", j.limits.velocity, true),
-        ] {
-            if on && limited(x) {
-                let _ = write!(limit, " {key}=\"{}\"", num(x));
-            }
-        }
-        let mut s = format!(
-            "  <joint name=\"{}\" type=\"{kind}\">\n    <parent link=\"{}\"/>\n    <child link=\"{}\"/>\n    {}\n    <axis xyz=\"{}\"/>\n",
-            xml_escape(&j.name),
-            xml_escape(&parent),
-            xml_escape(&moving),
-            origin_tag(&home),
-            v3(&axis)
-        );
-        if !limit.is_empty() {
-            let _ = writeln!(s, "    <limit{limit}/>");
-        }
-        if j.damping != 0.0 || j.friction != 0.0 {
-            let _ = writeln!(
-                s,
-                "    <dynamics damping=\"{}\" friction=\"{}\"/>",
-                num(j.damping),
-                num(j.friction)
-            );
-        }
-        if let Some(m) = &j.mimic {
-            let _ = writeln!(
-                s,
-                "    <mimic joint=\"{}\" multiplier=\"{}\" offset=\"{}\"/>",
-                xml_escape(&m.joint),
-                num(m.multiplier),
-                num(m.offset)
-            );
-        }
-        s += "  </joint>\n";
-        joints += &s;
+        joints += &joint_element(j, kind, &parent, &moving, &home, &axis);
         if split {
             link(&moving, None);
             link(&body.name, Some(&body.inertia));

@@ -17,7 +17,10 @@ use crate::workspace::Workspace;
 /// `τ_limit = −k (q − bound) − d q̇`: a one-sided spring–damper stop.
 ///
 /// **The stop is scaled to the joint.** With `I` the inertia the joint moves when every other
-/// joint is free (`1 / (M⁻¹)_ii` at the initial configuration), time constant `T` and damping
+/// joint is free (`1 / (M⁻¹)_ii`, taken at the configuration where the joint is in its stop —
+/// the inertia a shoulder sees changes tenfold between an extended and a folded arm, and a stop
+/// tuned for the first would make an explicit integrator diverge on the second; see
+/// [`EffectGains::refresh_stops`]), time constant `T` and damping
 /// ratio `ζ`, `k = I / T²` and `d = 2 ζ I / T`: every joint's stop behaves like a critically
 /// damped (for `ζ = 1`) oscillator of period `2πT`, whether it holds a 0.2 kg wrist or a whole
 /// arm. A joint hitting the stop at speed `w` goes in by `w T / e` (for `ζ = 1`), or bounces out
@@ -78,6 +81,10 @@ pub struct EffectGains {
     pub stop_damping: Vec<f64>,
     /// `ε_i = max(ε, 4 f_i dt / I_i)` (rad/s or m/s).
     pub friction_smoothing: Vec<f64>,
+    /// The stop's time constant in use, `max(T, 4 dt)` (s).
+    pub time_constant: f64,
+    /// The stop's damping ratio `ζ`.
+    pub damping_ratio: f64,
 }
 
 impl EffectGains {
@@ -123,6 +130,8 @@ impl EffectGains {
                 stop_stiffness: vec![0.0; n],
                 stop_damping: vec![0.0; n],
                 friction_smoothing: vec![eps; n],
+                time_constant: t.max(4.0 * dt),
+                damping_ratio: zeta,
             });
         }
         let mut ws = Workspace::new(model);
@@ -138,7 +147,50 @@ impl EffectGains {
                 .zip(&inertia)
                 .map(|(j, i)| eps.max(4.0 * j.friction * dt / i))
                 .collect(),
+            time_constant: t,
+            damping_ratio: zeta,
         })
+    }
+
+    /// Re-tunes the stops of the joints that are beyond a position limit at `q` to the inertia
+    /// they feel there, `I_i = 1 / (M⁻¹(q))_ii`: `k_i = I_i / T²`, `d_i = 2ζ I_i / T`. The
+    /// simulator calls it whenever a joint is in its stop (`M⁻¹` costs O(n³) only then).
+    ///
+    /// # Errors
+    /// As [`mass_matrix_inverse`] (a bad `q`, a workspace made for another model, a singular
+    /// mass matrix).
+    ///
+    /// ```
+    /// use screwdyn::sim::{EffectGains, JointEffects};
+    /// use screwdyn::Workspace;
+    /// let m = screwdyn::builtin::load("ur5").unwrap();
+    /// let mut g = EffectGains::new(&JointEffects::default(), &m, &[0.0; 6], 1e-3).unwrap();
+    /// let mut ws = Workspace::new(&m);
+    /// let folded = [7.0, -2.5, 2.8, 0.0, 0.0, 0.0]; // the pan joint past its 2π limit
+    /// let before = g.stop_stiffness[0];
+    /// g.refresh_stops(&m, &mut ws, &folded).unwrap();
+    /// assert!(g.stop_stiffness[0] < before); // a folded arm turns more easily about its base
+    /// ```
+    pub fn refresh_stops(&mut self, model: &Model, ws: &mut Workspace, q: &[f64]) -> Result<()> {
+        let minv = mass_matrix_inverse(model, ws, q)?;
+        let t = self.time_constant;
+        for (i, j) in model.joints().iter().enumerate() {
+            if q[i] > j.limits.upper || q[i] < j.limits.lower {
+                let inertia = 1.0 / minv[(i, i)];
+                self.stop_stiffness[i] = inertia / (t * t);
+                self.stop_damping[i] = 2.0 * self.damping_ratio * inertia / t;
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether a joint is beyond one of its position limits at `q`.
+    pub fn any_in_stop(model: &Model, q: &[f64]) -> bool {
+        model
+            .joints()
+            .iter()
+            .zip(q)
+            .any(|(j, &x)| x > j.limits.upper || x < j.limits.lower)
     }
 }
 

@@ -85,6 +85,9 @@ impl Plant<'_> {
                 self.model.joints()[i].name
             )));
         }
+        if self.effects.position_limits && EffectGains::any_in_stop(self.model, q) {
+            self.gains.refresh_stops(self.model, &mut self.ws, q)?;
+        }
         self.effects
             .apply(self.model, &self.gains, q, v, &self.cmd, &mut self.tau)?;
         let active = |d: &&Disturbance| t >= d.start && t < d.end;
