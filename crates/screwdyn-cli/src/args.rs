@@ -74,6 +74,8 @@ pub enum Command {
     /// Least-squares identification of the base inertial parameters from a log (t, q.*, v.*,
     /// a.*, tau.*), or with --excite the writing of an exciting trajectory log.
     Identify(IdentifyArgs),
+    /// Writes one self-contained HTML page showing the robot in 3-D (and animating --run).
+    View(ViewArgs),
 }
 
 #[derive(Args, Debug)]
@@ -665,4 +667,37 @@ pub struct LagrangeArgs {
     /// With --steps: the largest number of terms of one expression.
     #[arg(long, default_value_t = screwdyn::symbolic::DEFAULT_MAX_TERMS)]
     pub max_terms: usize,
+}
+/// `screwdyn view MODEL`: the robot in 3-D in one self-contained HTML page (docs/view.md).
+#[derive(Args, Debug)]
+pub struct ViewArgs {
+    /// A .urdf or .toml file, or builtin:<name>.
+    pub model: String,
+    /// The configuration shown when there is no --run (default: all zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub q: Option<String>,
+    /// A run to animate: the .csv or .json written by `simulate --output` or
+    /// `torque-profile --output`.
+    #[arg(long, value_name = "FILE")]
+    pub run: Option<PathBuf>,
+    /// The page to write (default: the model's file name with .html, in the current folder;
+    /// `planar2.html` for builtin:planar2).
+    #[arg(long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// A folder searched for `package://` mesh paths (repeatable; before ROS_PACKAGE_PATH).
+    #[arg(long = "package-path", value_name = "DIR")]
+    pub package_path: Vec<PathBuf>,
+    /// Cap on the triangles embedded (larger meshes are simplified to fit).
+    #[arg(long, default_value_t = screwdyn_view::DEFAULT_MAX_TRIANGLES)]
+    pub max_triangles: usize,
+    /// Cap on the run samples embedded (longer runs are strided to fit).
+    #[arg(long, default_value_t = screwdyn_view::DEFAULT_MAX_SAMPLES)]
+    pub max_samples: usize,
+    /// Treat physical-consistency problems of the model (listed as warnings on stderr
+    /// otherwise) as errors.
+    #[arg(long)]
+    pub strict: bool,
+    /// Accepted for compatibility: inconsistent inertias are warnings now, not errors.
+    #[arg(long, hide = true)]
+    pub allow_nonphysical: bool,
 }

@@ -11,6 +11,7 @@ mod kinematics;
 mod model;
 mod sim;
 mod symbolic;
+mod view;
 
 use crate::args::{Cli, Command, Common, ModelArgs};
 use crate::output::{self, Report};
@@ -47,6 +48,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Derivatives(a) => identify::derivatives(&a),
         Command::Regressor(a) => identify::regressor(&a),
         Command::Identify(a) => identify::identify(&a),
+        Command::View(a) => view::view(&a),
     }
 }
 

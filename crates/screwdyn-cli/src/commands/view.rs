@@ -1,0 +1,108 @@
+//! `screwdyn view`: parse, call `screwdyn_view::render_html`, write the page atomically.
+
+use crate::args::ViewArgs;
+use crate::CliError;
+use screwdyn_view::{read_run, render_html, ViewOptions};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// The default page name: the model file's stem (or the built-in's name) with `.html`.
+fn default_output(model: &str) -> PathBuf {
+    let stem = match model.strip_prefix("builtin:") {
+        Some(name) => name.to_string(),
+        None => Path::new(model)
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "robot".into()),
+    };
+    PathBuf::from(format!("{stem}.html"))
+}
+
+/// Whether two paths name the same file (after resolving both, when they exist).
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => a == b,
+    }
+}
+
+/// Writes `text` to a temporary file beside `path`, then renames it over `path`.
+fn write_atomically(path: &Path, text: &str) -> Result<(), CliError> {
+    let fail =
+        |e: std::io::Error| CliError::input(format!("cannot write {} ({e})", path.display()));
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    let result = std::fs::File::create(&tmp)
+        .and_then(|mut f| f.write_all(text.as_bytes()).and_then(|_| f.sync_all()))
+        .and_then(|_| std::fs::rename(&tmp, path));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result.map_err(fail)
+}
+
+/// `screwdyn view MODEL [--q …] [--run FILE] [--output FILE] [--package-path DIR]…`.
+pub fn view(a: &ViewArgs) -> Result<(), CliError> {
+    let output = a.output.clone().unwrap_or_else(|| default_output(&a.model));
+    let inputs = std::iter::once(Path::new(&a.model)).chain(a.run.as_deref());
+    if let Some(p) = inputs.into_iter().find(|p| same_file(p, &output)) {
+        return Err(CliError::input(format!(
+            "--output {} is one of the inputs ({}); choose another file name",
+            output.display(),
+            p.display()
+        )));
+    }
+    if a.q.is_some() && a.run.is_some() {
+        return Err(CliError::input(
+            "--q cannot be combined with --run (the run gives the configurations)",
+        ));
+    }
+    let model = super::load_model(&a.model, a.strict)?;
+    let q =
+        a.q.as_deref()
+            .map(|text| super::parse_vector(Some(text), "q", &model))
+            .transpose()?;
+    let run = a
+        .run
+        .as_deref()
+        .map(|p| read_run(p, &model, a.max_samples))
+        .transpose()?;
+    let lower = a.model.to_ascii_lowercase();
+    let urdf = (!a.model.starts_with("builtin:")
+        && (lower.ends_with(".urdf") || lower.ends_with(".xml")))
+    .then(|| PathBuf::from(&a.model));
+    let page = render_html(
+        &model,
+        &ViewOptions {
+            q,
+            run,
+            urdf,
+            package_paths: a.package_path.clone(),
+            max_triangles: a.max_triangles,
+            title: None,
+        },
+    )?;
+    for w in &page.warnings {
+        eprintln!("warning: {w}");
+    }
+    write_atomically(&output, &page.html)?;
+    println!(
+        "wrote {} ({:.1} MB: {} triangles{})",
+        output.display(),
+        page.html.len() as f64 / 1e6,
+        page.triangles,
+        if page.samples > 0 {
+            format!(", {} run samples", page.samples)
+        } else {
+            String::new()
+        }
+    );
+    Ok(())
+}
