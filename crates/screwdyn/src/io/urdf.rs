@@ -423,9 +423,12 @@ pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model
     b.strict(options.strict);
     let e = read_elements(&ctx, root, &mut b)?;
     let root_link = check_tree(&ctx, root, &e)?;
-    // Physical-consistency findings name the <inertial> element (the builder makes them).
+    // Findings name the <inertial> element of a link and the <joint> element of a mimic.
     for l in &e.links {
         b.locate(&l.name, format!("{}:{}", ctx.file, l.inertial_line));
+    }
+    for j in e.joints.iter().filter(|j| j.mimic.is_some()) {
+        b.locate(&j.name, format!("{}:{}", ctx.file, j.line));
     }
     b.base_name(&root_link.name).base_inertia(root_link.inertia);
     for j in &e.joints {
@@ -448,6 +451,7 @@ fn read_elements(ctx: &Ctx, root: Node, b: &mut ModelBuilder) -> Result<Elements
         joints: Vec::new(),
         link_at: HashMap::new(),
     };
+    // A mimic naming a missing joint is a finding of the builder (Pinocchio loads such files).
     let mut joint_at: HashMap<String, usize> = HashMap::new();
     let twice = |what: &str, name: &str, line: u32, first: u32| {
         ctx.model_err(
@@ -470,19 +474,6 @@ fn read_elements(ctx: &Ctx, root: Node, b: &mut ModelBuilder) -> Result<Elements
             }
             joint_at.insert(j.name.clone(), e.joints.len());
             e.joints.push(j);
-        }
-    }
-    for j in &e.joints {
-        if let Some(m) = &j.mimic {
-            if !joint_at.contains_key(&m.joint) {
-                return Err(ctx.model_err(
-                    j.line,
-                    format!(
-                        "joint '{}' mimics joint '{}', which does not exist",
-                        j.name, m.joint
-                    ),
-                ));
-            }
         }
     }
     Ok(e)

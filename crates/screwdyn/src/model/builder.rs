@@ -504,6 +504,19 @@ impl<T: Real> ModelBuilder<T> {
                 });
             }
         }
+        for j in &m.joints {
+            if let Some(mimic) = &j.mimic {
+                if !m.joints.iter().any(|k| k.name == mimic.joint) {
+                    out.push(PhysicalFinding {
+                        link: j.name.clone(),
+                        location: location(&j.name),
+                        problem: Problem::MissingMimicTarget {
+                            target: mimic.joint.clone(),
+                        },
+                    });
+                }
+            }
+        }
         for (i, b) in m.bodies.iter().enumerate() {
             if m.children[i].is_empty() && b.inertia.mass == T::zero() {
                 out.push(PhysicalFinding {

@@ -16,6 +16,12 @@ pub enum Problem {
         /// The joint that moves it.
         joint: String,
     },
+    /// A joint's mimic tag names a joint the model does not have (the mimic is information
+    /// only: the joint is an independent coordinate either way).
+    MissingMimicTarget {
+        /// The joint it names.
+        target: String,
+    },
 }
 
 /// One problem of one link.
@@ -34,7 +40,7 @@ pub enum Problem {
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct PhysicalFinding {
-    /// The link (as named in the description).
+    /// The link (as named in the description); the joint, for a mimic problem.
     pub link: String,
     /// Where it was declared (`file:line`), when known.
     pub location: Option<String>,
@@ -49,6 +55,11 @@ impl std::fmt::Display for PhysicalFinding {
         }
         match &self.problem {
             Problem::Inertia(p) => write!(f, "link '{}': its inertia {p}", self.link),
+            Problem::MissingMimicTarget { target } => write!(
+                f,
+                "joint '{}' mimics joint '{target}', which does not exist",
+                self.link
+            ),
             Problem::MasslessLeaf { joint } => write!(
                 f,
                 "link '{}' is a moving leaf body with no mass: joint '{joint}' moves nothing",
