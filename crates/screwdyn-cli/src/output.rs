@@ -55,6 +55,27 @@ pub enum Value {
 }
 
 impl Value {
+    /// Where this value holds a NaN or an infinity (`""` for a scalar, `.<label>` for a vector
+    /// entry, `.<row>.<column>` for a matrix entry, nested for maps), if anywhere.
+    pub fn non_finite(&self) -> Option<String> {
+        match self {
+            Value::Scalar(x) => (!x.is_finite()).then(String::new),
+            Value::Vector(labels, x) => x
+                .iter()
+                .position(|v| !v.is_finite())
+                .map(|i| format!(".{}", labels.get(i).map_or("?", |s| s.as_str()))),
+            Value::Matrix(rows, cols, m) => m.iter().position(|v| !v.is_finite()).map(|k| {
+                let (r, c) = (k % m.nrows(), k / m.nrows());
+                let name = |l: &Labels, i: usize| l.get(i).map_or("?".to_string(), |s| s.clone());
+                format!(".{}.{}", name(rows, r), name(cols, c))
+            }),
+            Value::Map(items) => items
+                .iter()
+                .find_map(|(k, v)| v.non_finite().map(|at| format!(".{k}{at}"))),
+            Value::Count(_) | Value::Text(_) | Value::Names(_) => None,
+        }
+    }
+
     /// A joint-space vector.
     pub fn joints(names: &Labels, x: &[f64]) -> Value {
         Value::Vector(names.clone(), x.to_vec())

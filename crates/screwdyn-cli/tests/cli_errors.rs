@@ -308,3 +308,32 @@ fn batch_errors_name_the_row() {
         "singular_rows.csv:2 (row 1): ",
     );
 }
+
+/// Issue 12.3: a non-finite result is an error naming the quantity, never a NaN/null printed
+/// with exit status 0.
+#[test]
+fn non_finite_results_are_errors_naming_the_quantity() {
+    let e = fails(
+        &[
+            "rnea",
+            "builtin:planar2",
+            "--v",
+            "1e200,1e200",
+            "--format",
+            "json",
+        ],
+        "the result tau.joint",
+    );
+    assert!(e.contains("not finite"), "{e}");
+    fails(
+        &[
+            "rnea",
+            "builtin:planar2",
+            "--wrench",
+            "link2:0,0,1e308,1e308,1e308,0",
+            "--q",
+            "0.5,0.5",
+        ],
+        "not finite",
+    );
+}

@@ -464,7 +464,7 @@ pub fn run_states(
     let Some(path) = &common.input else {
         let s = flag_state(m, flags)?;
         let mut out = output::ReportWriter::new(sink, format, false);
-        out.write(&f(&s)?)?;
+        out.write(&finite(f(&s)?)?)?;
         return out.finish();
     };
     if let Some((name, _)) = flags.iter().find(|(_, v)| v.is_some()) {
@@ -477,7 +477,7 @@ pub fn run_states(
     let mut s = State::zeros(m.nq());
     let mut out = output::ReportWriter::new(sink, format, true);
     while rows.next(&mut s)? {
-        let r = f(&s).map_err(|e| rows.locate(e))?;
+        let r = f(&s).and_then(finite).map_err(|e| rows.locate(e))?;
         out.write(&r)?;
     }
     if out.count() == 0 {
@@ -543,4 +543,15 @@ pub fn external_wrenches(
 /// The joint names, as labels shared by every report of the command.
 pub fn names(m: &Model) -> output::Labels {
     output::labels(&m.joint_names())
+}
+
+/// A report of a numeric command whose numbers are all finite: a NaN or ∞ (inputs too large for
+/// double precision, e.g. `--v 1e200`) is an error naming the quantity, never printed.
+fn finite(r: Report) -> Result<Report, CliError> {
+    match r.items.iter().find_map(|(k, v)| v.non_finite().map(|at| (k, at))) {
+        None => Ok(r),
+        Some((key, at)) => Err(CliError::input(format!(
+            "the result {key}{at} is not finite (NaN or infinite): the inputs are too large for double precision"
+        ))),
+    }
 }
