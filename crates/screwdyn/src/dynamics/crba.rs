@@ -74,19 +74,27 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
     }
     // Bodies on different branches do not couple: those entries stay zero (on a chain every
     // entry is written below).
-    let mm = &mut ws.mass_matrix;
-    if !model.is_chain {
-        mm.as_mut_slice().fill(T::zero());
+    let data = ws.mass_matrix.as_mut_slice();
+    if n == 0 {
+        return;
     }
-    for i in 0..n {
+    if !model.is_chain {
+        data.fill(T::zero());
+    }
+    // Column i of the upper triangle through one slice (column-major storage: entry (k, i) is
+    // data[i n + k], with every ancestor k < i), then the lower triangle mirrored.
+    for (i, column) in data.chunks_exact_mut(n).enumerate() {
         let f = ci[i].apply(&s[i]);
-        mm[(i, i)] = s[i].dot(&f);
+        column[i] = s[i].dot(&f);
         let mut k = i;
         while let Some(p) = parents[k] {
             k = p;
-            let mij = s[k].dot(&f);
-            mm[(k, i)] = mij;
-            mm[(i, k)] = mij;
+            column[k] = s[k].dot(&f);
+        }
+    }
+    for c in 0..n {
+        for r in c + 1..n {
+            data[c * n + r] = data[r * n + c];
         }
     }
 }
