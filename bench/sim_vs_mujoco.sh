@@ -3,12 +3,13 @@
 # from rest, no joint effects on our side, contacts and limits disabled on MuJoCo's.
 # Installs mujoco from PyPI into a throwaway venv; builds screwdyn's example and CLI in release
 # mode and MuJoCo's own C loop (bench/mj_step_loop.c, against the libmujoco and headers of the
-# wheel); runs them one after the other and prints median seconds of
+# wheel); runs them in alternating rounds (ROUNDS, default 7) and prints median seconds of
 #   lib      screwdyn's library loop (examples/sim_bench.rs, recording only the end state),
 #   cli      the whole `screwdyn simulate ... --record-every 1000 --output run.csv` process,
 #   mj C     MuJoCo's C `mj_step` loop,
 #   rollout  MuJoCo through Python's `mujoco.rollout`,
-# and the ratios lib/mj C, cli/mj C and lib/rollout (lower is faster for screwdyn).
+# and the ratios lib/mj C, cli/mj C (medians of per-round ratios) and lib/rollout (lower is
+# faster for screwdyn).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 venv=.venv-mujoco
@@ -21,35 +22,44 @@ cargo build -q --release -p screwdyn-cli
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cc -O2 -o "$tmp/mj_step_loop" bench/mj_step_loop.c -I"$mj/include" "$lib" -Wl,-rpath,"$mj" -lm
-repeat=7
+rounds=${ROUNDS:-7}
 printf '%-6s %8s %8s %8s %8s %10s %10s %12s %s\n' model "lib (s)" "cli (s)" "mj C (s)" \
   "rollout" "lib/mj C" "cli/mj C" "lib/rollout" "max |Δq| at 0.2 s"
 for robot in ur5 panda; do
   ./target/release/examples/sim_bench "builtin:$robot" --repeat 1 --duration 0.2 > "$tmp/$robot-short.json"
-  ./target/release/examples/sim_bench "builtin:$robot" --repeat $repeat --urdf "$tmp/$robot.urdf" > "$tmp/$robot.json"
+  ./target/release/examples/sim_bench "builtin:$robot" --repeat 1 --urdf "$tmp/$robot.urdf" > "$tmp/$robot.json"
   q0=$("$venv/bin/python" -c 'import json,sys; print(",".join(repr(x) for x in json.load(open(sys.argv[1]))["q0"]))' "$tmp/$robot.json")
-  "$tmp/mj_step_loop" "$tmp/$robot.urdf" 10000 $repeat "$q0" > "$tmp/$robot-c.json"
   "$tmp/mj_step_loop" "$tmp/$robot.urdf" 200 1 "$q0" > "$tmp/$robot-c-short.json"
   "$venv/bin/python" bench/sim_vs_mujoco.py "$tmp/$robot.urdf" "$tmp/$robot.json" "$tmp/$robot-short.json" > "$tmp/$robot-cmp.json"
-  "$venv/bin/python" - "$tmp" "$robot" "$q0" $repeat <<'PY'
-import json, os, statistics, subprocess, sys, time
-tmp, robot, q0, repeat = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
+  "$venv/bin/python" - "$tmp" "$robot" "$q0" "$rounds" <<'PY'
+import json, statistics, subprocess, sys, time
+tmp, robot, q0, rounds = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
 r = json.load(open(f"{tmp}/{robot}-cmp.json"))
-c = json.load(open(f"{tmp}/{robot}-c.json"))
 short = json.load(open(f"{tmp}/{robot}-short.json"))
 c_short = json.load(open(f"{tmp}/{robot}-c-short.json"))
 # The whole CLI process: start, load, simulate 10 s, write every 1000th step, exit.
 cmd = ["./target/release/screwdyn", "simulate", f"builtin:{robot}", "--duration", "10",
        "--dt", "0.001", "--integrator", "rk4", "--no-effects", "--q0", q0,
        "--record-every", "1000", "--output", f"{tmp}/{robot}-run.csv", "--format", "json"]
-cli = []
-for _ in range(repeat):
+def run(args):
+    return json.loads(subprocess.run(args, check=True, capture_output=True, text=True).stdout)
+# Rounds alternate the three so that a change of the machine's speed (other jobs, the VM's
+# neighbours) hits all of them alike; each ratio is the median of the per-round ratios.
+lib, mjc, cli = [], [], []
+for _ in range(rounds):
+    lib.append(run(["./target/release/examples/sim_bench", f"builtin:{robot}", "--repeat", "1"])["median_s"])
+    mjc.append(run([f"{tmp}/mj_step_loop", f"{tmp}/{robot}.urdf", "10000", "1", q0])["median_s"])
     start = time.perf_counter()
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
     cli.append(time.perf_counter() - start)
-lib, cli_s, mjc, roll = r["screwdyn_median_s"], statistics.median(cli), c["median_s"], r["mujoco_median_s"]
+med = statistics.median
+roll = r["mujoco_median_s"]
+lib_c = med(a / b for a, b in zip(lib, mjc))
+cli_c = med(a / b for a, b in zip(cli, mjc))
 dq = max(abs(a - b) for a, b in zip(short["final_q"], c_short["final_q"]))
-print(f"{robot:<6} {lib:8.4f} {cli_s:8.4f} {mjc:8.4f} {roll:8.4f} {lib / mjc:10.3f} {cli_s / mjc:10.3f} "
-      f"{lib / roll:12.3f} {dq:.2e}  (MuJoCo {c['mujoco_version']})")
+print(f"{robot:<6} {med(lib):8.4f} {med(cli):8.4f} {med(mjc):8.4f} {roll:8.4f} {lib_c:10.3f} {cli_c:10.3f} "
+      f"{med(lib) / roll:12.3f} {dq:.2e}  (MuJoCo {json.load(open(f'{tmp}/{robot}-c-short.json')).get('mujoco_version', '')})")
+print(f"       per-round lib/mj C: {' '.join(f'{a / b:.3f}' for a, b in zip(lib, mjc))}")
+print(f"       per-round cli/mj C: {' '.join(f'{a / b:.3f}' for a, b in zip(cli, mjc))}")
 PY
 done
