@@ -179,7 +179,10 @@ fn base_dict<'py>(
             .map(|&i| b.standard_names[i].clone())
             .collect::<Vec<_>>(),
     )?;
-    d.set_item("combination_matrix", convert::matrix(py, &b.combination_matrix())?)?;
+    d.set_item(
+        "combination_matrix",
+        convert::matrix(py, &b.combination_matrix())?,
+    )?;
     let standard = identification::standard_parameters(&model.model, b.friction);
     d.set_item(
         "model_values",

@@ -17,8 +17,14 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_view, m)?)?;
     m.add_function(wrap_pyfunction!(_save_recording, m)?)?;
     m.add_function(wrap_pyfunction!(_write_text_atomically, m)?)?;
-    m.add("VIEW_DEFAULT_MAX_TRIANGLES", screwdyn_view::DEFAULT_MAX_TRIANGLES)?;
-    m.add("VIEW_DEFAULT_MAX_SAMPLES", screwdyn_view::DEFAULT_MAX_SAMPLES)?;
+    m.add(
+        "VIEW_DEFAULT_MAX_TRIANGLES",
+        screwdyn_view::DEFAULT_MAX_TRIANGLES,
+    )?;
+    m.add(
+        "VIEW_DEFAULT_MAX_SAMPLES",
+        screwdyn_view::DEFAULT_MAX_SAMPLES,
+    )?;
     Ok(())
 }
 
@@ -89,9 +95,7 @@ fn write_atomically(path: &Path, text: &[u8]) -> PyResult<()> {
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
-        .ok_or_else(|| {
-            PyValueError::new_err(format!("{} is not a file name", path.display()))
-        })?;
+        .ok_or_else(|| PyValueError::new_err(format!("{} is not a file name", path.display())))?;
     let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
     let result = std::fs::File::create(&tmp)
         .and_then(|mut f| f.write_all(text).and_then(|_| f.sync_all()))

@@ -340,8 +340,6 @@ for _name, _f in {
     _f.__qualname__ = f"Model.{_name}"
     setattr(Model, _name, _f)
 
-SimResult.save = _view.save_run
-SimResult.save.__qualname__ = "SimResult.save"
 
 # Pinocchio-style aliases.
 Model.inverse_dynamics = Model.rnea

@@ -242,6 +242,15 @@ class SimResult:
     def __len__(self) -> int:
         return len(self.t)
 
+    def save(self, path) -> None:
+        """Writes the run as the file ``screwdyn simulate --output`` writes, by the library's
+        writers (atomically): CSV for ``.csv`` (columns ``t``, ``q.<joint>``, ``v.<joint>``,
+        ``a.<joint>``, ``tau.<joint>``, the energies) or JSON for ``.json``. Recorded frame
+        poses are not written. ``Model.view(run=path)`` animates the file."""
+        from ._view import save_run
+
+        save_run(self, path)
+
     def __repr__(self) -> str:
         end = self.t[-1] if len(self.t) else 0.0
         return f"SimResult({len(self)} samples, t = 0 … {end:g} s, joints={self.joint_names})"
@@ -308,6 +317,10 @@ class TorqueProfile:
     @property
     def joint_names(self) -> List[str]:
         return self.samples.joint_names
+
+    def save(self, path) -> None:
+        """Writes the samples as a run file (see :meth:`SimResult.save`)."""
+        self.samples.save(path)
 
     def __repr__(self) -> str:
         return (f"TorqueProfile({len(self.samples)} samples, peak={np.round(self.peak, 6).tolist()}, "
