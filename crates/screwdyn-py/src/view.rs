@@ -4,14 +4,13 @@
 use crate::convert::{joint_states, ArrayIn};
 use crate::errors::{call_err, guard};
 use crate::model::PyModel;
-use pyo3::exceptions::{PyOSError, PyTypeError, PyValueError};
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use screwdyn::sim::Recording;
 use screwdyn::Model;
 use screwdyn_view::{read_run, render_html, Run, ViewOptions, WarningKind};
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_view, m)?)?;
@@ -60,7 +59,7 @@ fn recording(spec: &Bound<'_, PyTuple>) -> PyResult<Recording> {
         ));
     }
     let joints: Vec<String> = spec.get_item(0)?.extract()?;
-    let arr = |k: usize| -> PyResult<ArrayIn<'_>> { Ok(spec.get_item(k)?.extract()?) };
+    let arr = |k: usize| -> PyResult<ArrayIn<'_>> { spec.get_item(k)?.extract() };
     let t: Vec<f64> = {
         let a = arr(1)?;
         let v = a.as_array();
@@ -85,39 +84,10 @@ fn recording(spec: &Bound<'_, PyTuple>) -> PyResult<Recording> {
     Ok(rec)
 }
 
-/// Writes `text` to a temporary file beside `path`, then renames it over `path` (a reader never
-/// sees a half-written page).
-fn write_atomically(path: &Path, text: &[u8]) -> PyResult<()> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .ok_or_else(|| PyValueError::new_err(format!("{} is not a file name", path.display())))?;
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    let result = std::fs::File::create(&tmp)
-        .and_then(|mut f| f.write_all(text).and_then(|_| f.sync_all()))
-        .and_then(|_| std::fs::rename(&tmp, path));
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        let msg = format!("cannot write {} ({e})", path.display());
-        return Err(match e.kind() {
-            std::io::ErrorKind::NotFound => pyo3::exceptions::PyFileNotFoundError::new_err(msg),
-            std::io::ErrorKind::PermissionDenied => {
-                pyo3::exceptions::PyPermissionError::new_err(msg)
-            }
-            _ => PyOSError::new_err(msg),
-        });
-    }
-    Ok(())
-}
-
 /// Writes `text` to `path` atomically (temporary file, then rename).
 #[pyfunction]
 fn _write_text_atomically(path: PathBuf, text: &str) -> PyResult<()> {
-    write_atomically(&path, text.as_bytes())
+    screwdyn_view::write_atomically(&path, text.as_bytes()).map_err(call_err)
 }
 
 /// Writes a recording as the CSV or JSON file `screwdyn simulate --output` writes (by the
@@ -148,7 +118,7 @@ fn _save_recording(path: PathBuf, recording_spec: &Bound<'_, PyTuple>) -> PyResu
                 )))
             }
         };
-        write_atomically(&path, &bytes)
+        screwdyn_view::write_atomically(&path, &bytes).map_err(call_err)
     })
 }
 
