@@ -20,6 +20,12 @@
 #    (computeRNEADerivatives) and aba_derivatives (computeABADerivatives). The ratio is the
 #    median of the per-round ratios: each round's two numbers were taken seconds apart, so a
 #    burst of load from another process on this shared machine hits fewer ratios than medians.
+#
+# BASELINE=<commit> also builds that commit of screwdyn (same flags, from `git archive` into
+# target/bench-baseline) and times it in every round next to the other two, adding the columns
+# "baseline ns" and "vs baseline" (ours / baseline, median of per-round ratios): a before/after
+# measurement of a change taken in one run, so a machine whose speed moves between sessions does
+# not pass for a regression.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -62,13 +68,28 @@ RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR=$ROOT/target/bench-native \
     cargo build --release -q -p screwdyn-cli
 OURS=$ROOT/target/bench-native/release/screwdyn
 
+BASE=""
+if [ -n "${BASELINE:-}" ]; then
+    SRC=$ROOT/target/bench-baseline/src
+    rm -rf "$SRC" && mkdir -p "$SRC"
+    git archive "$BASELINE" | tar -x -C "$SRC"
+    echo "building screwdyn at $BASELINE (release, target-cpu=native) ..." >&2
+    (cd "$SRC" && RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR=$ROOT/target/bench-baseline/target \
+        cargo build --release -q -p screwdyn-cli)
+    BASE=$ROOT/target/bench-baseline/target/release/screwdyn
+fi
+
 : > "$OUT/runs.jsonl"
 for round in $(seq 1 "$ROUNDS"); do
     for r in ur5 panda; do
         echo "round $round/$ROUNDS: $r" >&2
         p=$("$PINBENCH" "$OUT/$r.txt" "$BATCHES" "$CALLS")
         o=$("$OURS" bench "${URDF[$r]}" --format json --batches "$BATCHES" --calls "$CALLS")
-        echo "{\"robot\": \"$r\", \"round\": $round, \"pinocchio\": $p, \"screwdyn\": $o}" >> "$OUT/runs.jsonl"
+        b=null
+        if [ -n "$BASE" ]; then
+            b=$("$BASE" bench "${URDF[$r]}" --format json --batches "$BATCHES" --calls "$CALLS")
+        fi
+        echo "{\"robot\": \"$r\", \"round\": $round, \"pinocchio\": $p, \"screwdyn\": $o, \"baseline\": $b}" >> "$OUT/runs.jsonl"
     done
 done
 
@@ -76,7 +97,9 @@ done
 import json, statistics, sys
 runs = [json.loads(l) for l in open(sys.argv[1])]
 algos = ["fk", "jacobians", "rnea", "crba", "aba", "rnea_derivatives", "aba_derivatives"]
-print(f"{'robot (nq)':<11}{'algorithm':<17}{'screwdyn ns':>13}{'Pinocchio ns':>14}{'ratio':>8}   per-round ratios")
+base = runs[0]["baseline"] is not None
+extra = f"{'baseline ns':>13}{'vs baseline':>13}" if base else ""
+print(f"{'robot (nq)':<11}{'algorithm':<17}{'screwdyn ns':>13}{'Pinocchio ns':>14}{'ratio':>8}{extra}   per-round ratios")
 for robot in ["ur5", "panda"]:
     rs = [r for r in runs if r["robot"] == robot]
     nq = rs[0]["screwdyn"]["nq"]
@@ -84,8 +107,18 @@ for robot in ["ur5", "panda"]:
     for a in algos:
         ours = statistics.median(r["screwdyn"]["ns_per_call"][a] for r in rs)
         pin = statistics.median(r["pinocchio"]["ns_per_call"][a] for r in rs)
+        extra = ""
+        if base:
+            # A baseline older than a row's algorithm has no number for it.
+            have = [r for r in rs if a in r["baseline"]["ns_per_call"]]
+            if have:
+                b = statistics.median(r["baseline"]["ns_per_call"][a] for r in have)
+                vs = statistics.median(r["screwdyn"]["ns_per_call"][a] / r["baseline"]["ns_per_call"][a] for r in have)
+                extra = f"{b:>13.1f}{vs:>13.2f}"
+            else:
+                extra = f"{'-':>13}{'-':>13}"
         ratios = [r["screwdyn"]["ns_per_call"][a] / r["pinocchio"]["ns_per_call"][a] for r in rs]
         per = " ".join(f"{x:.2f}" for x in ratios)
         name = f"{robot} ({nq})"
-        print(f"{name:<11}{a:<17}{ours:>13.1f}{pin:>14.1f}{statistics.median(ratios):>8.2f}   {per}")
+        print(f"{name:<11}{a:<17}{ours:>13.1f}{pin:>14.1f}{statistics.median(ratios):>8.2f}{extra}   {per}")
 EOF

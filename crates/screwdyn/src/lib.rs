@@ -25,7 +25,7 @@ pub mod inertia;
 pub mod io;
 pub mod kinematics;
 pub mod model;
-mod scalar;
+pub mod scalar;
 pub mod sim;
 pub mod spatial;
 pub mod symbolic;

@@ -557,3 +557,37 @@ fn effort_saturation_clamps_the_commanded_torque() {
             && (run.q.last().unwrap()[0] - 1.0).abs() < 1e-9
     );
 }
+
+/// Counts the calls of the torque law, applying no torque.
+struct Counting(usize);
+
+impl Controller for Counting {
+    fn torque(&mut self, _t: f64, _q: &[f64], _v: &[f64], tau: &mut [f64]) -> screwdyn::Result<()> {
+        self.0 += 1;
+        tau.fill(0.0);
+        Ok(())
+    }
+}
+
+/// Recording a sample costs no extra evaluation of the dynamics: RK4 evaluates the state
+/// equation four times per step, and the first evaluation of a step is at the state just
+/// recorded, so a run of `N` steps evaluates it `4 N + 1` times (the last sample's) whether it
+/// records every step or only the ends; and the recorded states are the same.
+#[test]
+fn recording_every_step_adds_no_dynamics_evaluation_and_changes_nothing() {
+    let m = builtin::load("ur5").unwrap();
+    let (q0, v0) = ur5_swinging_start();
+    let steps = 200;
+    let mut runs = Vec::new();
+    for every in [1, 1_000_000] {
+        let opts = passive(steps as f64 * 1e-3, 1e-3, Integrator::Rk4, every);
+        let mut count = Counting(0);
+        let run = simulate(&m, &q0, &v0, &mut count, &[], &opts, &mut |_| {}).unwrap();
+        assert_eq!(count.0, 4 * steps + 1, "record_every = {every}");
+        runs.push(run);
+    }
+    let (all, ends) = (&runs[0], &runs[1]);
+    assert_eq!((all.len(), ends.len()), (steps + 1, 2));
+    assert_eq!(all.q.last(), ends.q.last());
+    assert_eq!(all.a.last(), ends.a.last());
+}

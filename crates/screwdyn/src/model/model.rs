@@ -77,14 +77,23 @@ pub struct Model<T: Real = f64> {
 }
 
 /// `Err(NonFinite)` naming `what` and the position of the first NaN or infinite value.
+#[inline]
 pub(crate) fn check_finite<T: Real>(x: &[T], what: &str) -> Result<()> {
-    match x.iter().position(|v| !v.is_finite()) {
-        Some(i) => Err(Error::NonFinite {
-            what: what.into(),
-            index: i,
-            value: format!("{:?}", x[i]),
-        }),
-        None => Ok(()),
+    // A branch-free pass first (it vectorises; every call of every algorithm makes it), the
+    // position only when something is wrong.
+    if !x.iter().fold(false, |bad, v| bad | !v.is_finite()) {
+        return Ok(());
+    }
+    Err(non_finite_error(x, what))
+}
+
+#[cold]
+fn non_finite_error<T: Real>(x: &[T], what: &str) -> Error {
+    let i = x.iter().position(|v| !v.is_finite()).unwrap_or(0);
+    Error::NonFinite {
+        what: what.into(),
+        index: i,
+        value: format!("{:?}", x[i]),
     }
 }
 
@@ -430,16 +439,22 @@ impl<T: Real> Model<T> {
     /// let e = m.check_vector(&[0.1, 0.2, 0.3], "--q").unwrap_err();
     /// assert_eq!(e.to_string(), "--q has 3 values, the model has 2 joints: joint1, joint2");
     /// ```
+    #[inline]
     pub fn check_vector(&self, x: &[T], what: &str) -> Result<()> {
         if x.len() != self.nq() {
-            return Err(Error::DimensionMismatch {
-                what: what.into(),
-                got: x.len(),
-                expected: self.nq(),
-                names: self.joint_names().join(", "),
-            });
+            return Err(self.length_error(x.len(), what));
         }
         check_finite(x, what)
+    }
+
+    #[cold]
+    fn length_error(&self, got: usize, what: &str) -> Error {
+        Error::DimensionMismatch {
+            what: what.into(),
+            got,
+            expected: self.nq(),
+            names: self.joint_names().join(", "),
+        }
     }
 }
 

@@ -144,7 +144,7 @@ impl Recording {
     /// r.write_csv(&mut out).unwrap();
     /// let text = String::from_utf8(out).unwrap();
     /// assert_eq!(text.lines().next().unwrap(), "t,q.j1,v.j1,a.j1,tau.j1,kinetic_energy,potential_energy,total_energy");
-    /// assert_eq!(text.lines().nth(1).unwrap(), "0.5,1,2,3,4,1,2,3");
+    /// assert_eq!(text.lines().nth(1).unwrap(), "0.5,1.0,2.0,3.0,4.0,1.0,2.0,3.0");
     /// ```
     pub fn write_csv(&self, w: &mut impl Write) -> Result<()> {
         let mut out = CsvSampleWriter::new(w);
@@ -265,12 +265,13 @@ impl SampleSink for Recording {
 /// w.push(&Sample { t: 0.0, q: &[1.0], v: &[0.5], a: &[0.0], tau: &[2.0],
 ///                  kinetic_energy: 0.25, potential_energy: 1.0, poses: &[] }).unwrap();
 /// let text = String::from_utf8(w.into_inner()).unwrap();
-/// assert_eq!(text, "t,\"q.j,1\",\"v.j,1\",\"a.j,1\",\"tau.j,1\",kinetic_energy,potential_energy,total_energy\n0,1,0.5,0,2,0.25,1,1.25\n");
+/// assert_eq!(text, "t,\"q.j,1\",\"v.j,1\",\"a.j,1\",\"tau.j,1\",kinetic_energy,potential_energy,total_energy\n0.0,1.0,0.5,0.0,2.0,0.25,1.0,1.25\n");
 /// ```
 pub struct CsvSampleWriter<W: Write> {
     out: W,
     row: Vec<f64>,
     line: String,
+    number: ryu::Buffer,
 }
 
 impl<W: Write> CsvSampleWriter<W> {
@@ -280,6 +281,7 @@ impl<W: Write> CsvSampleWriter<W> {
             out,
             row: Vec::new(),
             line: String::new(),
+            number: ryu::Buffer::new(),
         }
     }
     /// The writer, once the run is over.
@@ -293,6 +295,12 @@ impl<W: Write> CsvSampleWriter<W> {
     pub fn flush(&mut self) -> Result<()> {
         self.out.flush().map_err(io_error)
     }
+}
+
+/// `x` in the shortest form that reads back as the same `f64` (Ryū), `NaN`/`inf`/`-inf` for
+/// the non-finite values.
+fn shortest(buffer: &mut ryu::Buffer, x: f64) -> &str {
+    buffer.format(x)
 }
 
 fn io_error(e: std::io::Error) -> Error {
@@ -318,7 +326,6 @@ impl<W: Write> SampleSink for CsvSampleWriter<W> {
     }
 
     fn push(&mut self, s: &Sample) -> Result<()> {
-        use std::fmt::Write as _;
         self.row.clear();
         s.write_values(&mut self.row);
         self.line.clear();
@@ -326,7 +333,7 @@ impl<W: Write> SampleSink for CsvSampleWriter<W> {
             if k > 0 {
                 self.line.push(',');
             }
-            let _ = write!(self.line, "{x}");
+            self.line.push_str(shortest(&mut self.number, *x));
         }
         self.line.push('\n');
         self.out.write_all(self.line.as_bytes()).map_err(io_error)
@@ -356,6 +363,7 @@ pub struct JsonSampleWriter<W: Write> {
     columns: Vec<(String, std::io::BufWriter<std::fs::File>)>,
     samples: usize,
     row: Vec<f64>,
+    number: ryu::Buffer,
 }
 
 impl<W: Write> JsonSampleWriter<W> {
@@ -367,6 +375,7 @@ impl<W: Write> JsonSampleWriter<W> {
             columns: Vec::new(),
             samples: 0,
             row: Vec::new(),
+            number: ryu::Buffer::new(),
         }
     }
 
@@ -432,9 +441,14 @@ impl<W: Write> SampleSink for JsonSampleWriter<W> {
         let scalars = 1 + 4 * self.joints.len() + 3;
         let (plain, frames) = self.columns.split_at_mut(scalars);
         for ((_, spool), x) in plain.iter_mut().zip(&self.row) {
-            // Finite values print as JSON numbers (shortest round trip, as serde_json does).
-            let text = serde_json::to_string(x).map_err(|e| Error::Io(e.to_string()))?;
-            write!(spool, ",{text}").map_err(io_error)?;
+            // Finite values print as JSON numbers (shortest round trip), others as null.
+            let text = if x.is_finite() {
+                shortest(&mut self.number, *x)
+            } else {
+                "null"
+            };
+            spool.write_all(b",").map_err(io_error)?;
+            spool.write_all(text.as_bytes()).map_err(io_error)?;
         }
         for ((_, spool), h) in frames.iter_mut().zip(s.poses) {
             let m = h.to_matrix();

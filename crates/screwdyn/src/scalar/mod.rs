@@ -24,3 +24,6 @@ impl<T: nalgebra::RealField + Copy> Real for T {}
 pub fn real<T: Real>(x: f64) -> T {
     nalgebra::convert(x)
 }
+
+mod sin_cos;
+pub use sin_cos::{sin_cos, sin_cos_f64};
