@@ -193,3 +193,20 @@ def test_bad_input():
         sym.jacobian(m, reference="sideways")
     with pytest.raises(ValueError, match="unknown Coriolis form"):
         sym.coriolis_matrix(m, form="other")
+
+
+def test_prismatic_joints_are_polynomial_variables():
+    # The Pinocchio fixture's random tree has prismatic joints: θ_j itself is a variable there.
+    from conftest import fixture_model
+
+    m, _ = fixture_model("tree")
+    assert "prismatic" in m.joint_types
+    d = sym.derive(m, "gravity")
+    prismatic = {f"theta{i + 1}" for i, k in enumerate(m.joint_types) if k == "prismatic"}
+    assert prismatic & {s.name for s in d.matrix.free_symbols}
+    rng = np.random.default_rng(8)
+    for _ in range(3):
+        q = rng.uniform(-1, 1, m.nq)
+        want = m.gravity_torque(q)
+        np.testing.assert_allclose(d.evaluate(q=q).ravel(), want, rtol=0,
+                                   atol=1e-12 * max(1, np.abs(want).max()))
