@@ -210,3 +210,20 @@ def test_prismatic_joints_are_polynomial_variables():
         want = m.gravity_torque(q)
         np.testing.assert_allclose(d.evaluate(q=q).ravel(), want, rtol=0,
                                    atol=1e-12 * max(1, np.abs(want).max()))
+
+
+def test_a_model_past_the_joint_limit_is_refused():
+    # The expanded form takes at most 64 joints (angle bit masks): a 65-joint chain is refused
+    # with the library's sentence naming the limit, not a hang.
+    lines = ['format = "screwdyn"', 'name = "snake"']
+    parent = "base"
+    for i in range(65):
+        lines += ["[[body]]", f'name = "l{i}"', f'parent = "{parent}"', f'joint = "j{i}"',
+                  'type = "revolute"', "home = { xyz = [0.1, 0.0, 0.0] }",
+                  "screw_in_child = [0, 0, 1, 0, 0, 0]", "mass = 0.1", "com = [0.05, 0, 0]",
+                  "inertia = [1e-4, 0, 0, 1e-4, 0, 1e-4]"]
+        parent = f"l{i}"
+    m = screwdyn.load_string("\n".join(lines) + "\n", "toml")
+    assert m.nq == 65
+    with pytest.raises(ValueError, match="65 joints.*at most 64"):
+        sym.gravity_torque(m)
