@@ -2,11 +2,12 @@
 into Jupyter):
 
 1. the seeds' two-link arm: closed form M(θ), C(θ, θ̇), g(θ) against the hand-derived formulas
-   of seeds 003/004, the step-by-step RNEA trace, and a simulation with a plot;
+   of seeds 003/004, the step-by-step RNEA trace, a simulation with a plot and its 3-D
+   animation, the same M(θ) symbolically (SymPy) and the derivatives of the dynamics;
 2. a UR5 log: inverse dynamics and mass matrices of a batch of recorded states in one call.
 
-Writes two_link_simulation.png (when matplotlib is installed) next to the working directory
-or into the directory given as the first argument.
+Writes two_link_simulation.png (when matplotlib is installed) and two_link_run.html into the
+working directory or into the directory given as the first argument.
 """
 
 import math
@@ -72,6 +73,32 @@ except ImportError:
 hold = arm.simulate([0.4, 0.2], duration=0.5, controller=lambda t, q, v: arm.gravity_torque(q),
                     effects=False)
 print("held at", hold.q[-1])
+
+# %% See it: the run as a 3-D animation (in Jupyter, evaluate `view` to show it inline).
+view = arm.view(run=run)
+view.save(out_dir / "two_link_run.html")
+print(view, "written to", out_dir / "two_link_run.html")
+
+# %% The same equations symbolically (needs SymPy: pip install screwdyn[sympy]).
+try:
+    import sympy
+
+    import screwdyn.symbolic as sym
+
+    M_sym = sym.mass_matrix(arm, symbols="all")
+    m1, m2, L1, L2 = sympy.symbols("m1 m2 L1 L2")
+    c2 = sympy.cos(sympy.Symbol("theta2"))
+    seed = m1 * L1**2 + m2 * (L1**2 + 2 * L1 * L2 * c2 + L2**2)
+    print("M11 =", M_sym[0, 0], " (seed 003:", seed, ")")
+    assert sympy.expand(M_sym[0, 0] - seed) == 0
+    print("g(θ) =", list(sym.gravity_torque(arm, symbols="all")))
+except ImportError:
+    print("(install SymPy for the symbolic equations: pip install screwdyn[sympy])")
+
+# %% Derivatives of the dynamics for optimal control: ∂τ/∂q, ∂τ/∂q̇ and M in one pass.
+dtau_dq, dtau_dv, M_d = arm.rnea_derivatives(q, qd, qdd)
+print("∂τ/∂q =\n", dtau_dq)
+assert np.allclose(dtau_dv, 2 * arm.coriolis_matrix(q, qd)) and np.allclose(M_d, cf.M)
 
 # %% 2. A UR5 log: one row per recorded state (here synthetic: 200 000 states of a slow sweep).
 ur5 = screwdyn.load("builtin:ur5")

@@ -6,9 +6,12 @@
 mod analysis;
 mod batch;
 mod convert;
+mod derivatives;
 mod errors;
 mod model;
 mod sim;
+mod symbolic;
+mod view;
 
 use pyo3::prelude::*;
 
@@ -47,6 +50,9 @@ fn _screwdyn(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(model::builtin_names, m)?)?;
     m.add_function(wrap_pyfunction!(model::_unpickle_model, m)?)?;
     sim::register(m)?;
+    derivatives::register(m)?;
+    symbolic::register(m)?;
+    view::register(m)?;
     m.add_function(wrap_pyfunction!(_panic_for_tests, m)?)?;
     m.add_function(wrap_pyfunction!(_panic_in_batch_for_tests, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

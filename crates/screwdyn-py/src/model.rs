@@ -40,7 +40,7 @@ pub struct PyModel {
     gravity: Option<[f64; 3]>,
     joint_friction: Option<(Vec<f64>, Vec<f64>)>,
     /// A workspace reused by single-state calls (batches make one per thread).
-    scratch: Mutex<Option<Scratch>>,
+    pub(crate) scratch: Mutex<Option<Scratch>>,
 }
 
 fn options(strict: bool) -> LoadOptions {
@@ -78,6 +78,19 @@ impl PyModel {
             joint_friction,
             scratch: Mutex::new(None),
         })
+    }
+
+    /// The URDF file the model was loaded from, when it was loaded from one that still exists
+    /// (its `<visual>` elements are drawn by `view`).
+    pub fn urdf_path(&self) -> Option<PathBuf> {
+        match &self.source {
+            Source::Text { file, .. } => {
+                let lower = file.to_ascii_lowercase();
+                let p = PathBuf::from(file);
+                ((lower.ends_with(".urdf") || lower.ends_with(".xml")) && p.is_file()).then_some(p)
+            }
+            Source::Builtin(_) => None,
+        }
     }
 
     /// A frame given by name or index.

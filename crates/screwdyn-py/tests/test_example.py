@@ -17,6 +17,8 @@ def test_example_script_runs(tmp_path):
     assert r.returncode == 0, r.stderr
     assert "M(θ) by hand" in r.stdout and "UR5 log: 200000 states" in r.stdout
     assert "τ_1 = S_1ᵀ W_1" in r.stdout
+    assert (tmp_path / "two_link_run.html").read_text(encoding="utf-8").startswith("<!DOCTYPE")
+    assert "M11 =" in r.stdout and "∂τ/∂q =" in r.stdout
     try:
         import matplotlib  # noqa: F401
     except ImportError:

@@ -35,7 +35,8 @@ pub mod visual;
 pub use html::render_html;
 pub use run::{read_run, Run};
 
-use std::path::PathBuf;
+use std::io::Write;
+use std::path::{Path, PathBuf};
 
 /// Default cap on the triangles embedded in a page (all meshes together). The UR5's and the
 /// Panda's visual meshes fit under it; larger meshes are decimated to fit.
@@ -113,4 +114,50 @@ pub struct Page {
     pub triangles: usize,
     /// Run samples embedded (0 without a run).
     pub samples: usize,
+}
+
+impl Page {
+    /// Writes the page to `path` atomically, as [`write_atomically`] does.
+    ///
+    /// # Errors
+    /// As [`write_atomically`].
+    pub fn save(&self, path: &Path) -> screwdyn::Result<()> {
+        write_atomically(path, self.html.as_bytes())
+    }
+}
+
+/// Writes `bytes` to a temporary file beside `path` (same folder, so the rename stays on one
+/// file system), flushes it to disk, then renames it over `path`: a browser (or a reader of a
+/// run file) never sees a half-written file, and a failed write leaves no temporary behind.
+///
+/// # Errors
+/// [`screwdyn::Error::Io`] naming `path` when the folder does not exist or cannot be written.
+///
+/// ```
+/// let dir = std::env::temp_dir().join(format!("screwdyn-view-doc-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir).unwrap();
+/// let page = dir.join("robot.html");
+/// screwdyn_view::write_atomically(&page, b"<!DOCTYPE html>").unwrap();
+/// assert_eq!(std::fs::read(&page).unwrap(), b"<!DOCTYPE html>");
+/// let e = screwdyn_view::write_atomically(&dir.join("no/such/dir.html"), b"x").unwrap_err();
+/// assert!(e.to_string().starts_with("cannot write"));
+/// std::fs::remove_dir_all(&dir).unwrap();
+/// ```
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> screwdyn::Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    let result = std::fs::File::create(&tmp)
+        .and_then(|mut f| f.write_all(bytes).and_then(|_| f.sync_all()))
+        .and_then(|_| std::fs::rename(&tmp, path));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result.map_err(|e| screwdyn::Error::Io(format!("cannot write {} ({e})", path.display())))
 }

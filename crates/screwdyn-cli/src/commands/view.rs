@@ -1,9 +1,9 @@
-//! `screwdyn view`: parse, call `screwdyn_view::render_html`, write the page atomically.
+//! `screwdyn view`: parse, call `screwdyn_view::render_html`, write the page atomically
+//! (`Page::save`).
 
 use crate::args::ViewArgs;
 use crate::CliError;
 use screwdyn_view::{read_run, render_html, ViewOptions};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// The default page name: the model file's stem (or the built-in's name) with `.html`.
@@ -24,28 +24,6 @@ fn same_file(a: &Path, b: &Path) -> bool {
         (Ok(x), Ok(y)) => x == y,
         _ => a == b,
     }
-}
-
-/// Writes `text` to a temporary file beside `path`, then renames it over `path`.
-fn write_atomically(path: &Path, text: &str) -> Result<(), CliError> {
-    let fail =
-        |e: std::io::Error| CliError::input(format!("cannot write {} ({e})", path.display()));
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    let result = std::fs::File::create(&tmp)
-        .and_then(|mut f| f.write_all(text.as_bytes()).and_then(|_| f.sync_all()))
-        .and_then(|_| std::fs::rename(&tmp, path));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result.map_err(fail)
 }
 
 /// `screwdyn view MODEL [--q …] [--run FILE] [--output FILE] [--package-path DIR]…`.
@@ -92,7 +70,7 @@ pub fn view(a: &ViewArgs) -> Result<(), CliError> {
     for w in &page.warnings {
         eprintln!("warning: {w}");
     }
-    write_atomically(&output, &page.html)?;
+    page.save(&output)?;
     println!(
         "wrote {} ({:.1} MB: {} triangles{})",
         output.display(),

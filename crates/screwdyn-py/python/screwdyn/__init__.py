@@ -23,8 +23,12 @@ import numpy as np
 
 from . import _screwdyn
 from ._screwdyn import Model, ModelError, Trajectory, builtin_names, load, load_string
+from ._view import View
+from . import _view
 from ._results import (
+    BaseParameters,
     ClosedForm,
+    Identification,
     LagrangeCoefficients,
     RneaTrace,
     SimResult,
@@ -50,6 +54,9 @@ __all__ = [
     "RneaTrace",
     "SimResult",
     "TorqueProfile",
+    "BaseParameters",
+    "Identification",
+    "View",
     "load",
     "load_string",
     "builtin_names",
@@ -247,6 +254,72 @@ def _torque_profile(self, trajectory: Trajectory, dt: float = 0.01) -> TorquePro
     return TorqueProfile(self._torque_profile(trajectory, float(dt)))
 
 
+def _rnea_derivatives(self, q, v, a, *, fext=None, fext_world=None, tip_wrenches=None,
+                      threads=None):
+    """First-order derivatives of the inverse dynamics ``τ = RNEA(q, v, a)`` (docs/derivatives.md):
+    ``(dtau_dq, dtau_dv, M)`` with ``dtau_dq[i, j] = ∂τ_i/∂q_j``, ``dtau_dv = ∂τ/∂q̇`` and
+    ``M = ∂τ/∂q̈``, each ``(nq, nq)`` — ``(N, nq, nq)`` for stacked states (views into one
+    ``(N, 3, nq, nq)`` array). Computed analytically in one forward and one backward pass in the
+    base frame (Lie brackets with the joint screws). External wrenches as in :meth:`rnea`:
+    ``fext`` and ``tip_wrenches`` move with their link, ``fext_world`` stays fixed in space."""
+    d = _screwdyn._rnea_derivatives(self, q, v, a, fext, fext_world, tip_wrenches, threads)
+    return d[..., 0, :, :], d[..., 1, :, :], d[..., 2, :, :]
+
+
+def _aba_derivatives(self, q, v, tau, *, fext=None, fext_world=None, tip_wrenches=None,
+                     threads=None):
+    """First-order derivatives of the forward dynamics ``q̈ = ABA(q, v, τ)``:
+    ``(dqdd_dq, dqdd_dv, Minv)`` with ``∂q̈/∂q = −M⁻¹ ∂τ/∂q``, ``∂q̈/∂q̇ = −M⁻¹ ∂τ/∂q̇`` (at
+    ``q̈ = ABA(q, v, τ)``) and ``Minv = M⁻¹ = ∂q̈/∂τ``, each ``(nq, nq)`` or ``(N, nq, nq)``.
+    External wrenches as in :meth:`rnea`. A singular mass matrix raises ValueError."""
+    d = _screwdyn._aba_derivatives(self, q, v, tau, fext, fext_world, tip_wrenches, threads)
+    return d[..., 0, :, :], d[..., 1, :, :], d[..., 2, :, :]
+
+
+def _regressor(self, q, v=None, a=None, *, threads=None):
+    """The joint-torque regressor ``Y(q, q̇, q̈)``, ``(nq, 10 nq)`` (``(N, nq, 10 nq)``): the
+    inverse dynamics (with gravity, no external wrench or friction) is linear in the standard
+    parameters, ``rnea(q, v, a) = Y @ inertial_parameters()``. Columns ``10 k … 10 k + 9``
+    belong to body ``k``: ``m, mx, my, mz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz`` (first moment and
+    inertia about the body frame origin, body axes; names in :meth:`parameter_names`)."""
+    z = np.zeros(self.nq)
+    return _screwdyn._regressor(self, q, z if v is None else v, z if a is None else a, threads)
+
+
+def _inertial_parameters(self, friction: bool = False) -> np.ndarray:
+    """The standard parameters ``π`` of the model, ``(10 nq,)`` in the order of the
+    regressor's columns (then ``fv``, ``fc`` per joint: the joints' damping and Coulomb
+    friction, when ``friction=True``)."""
+    return _screwdyn._inertial_parameters(self, bool(friction))
+
+
+def _parameter_names(self, friction: bool = False) -> List[str]:
+    """Names of the standard parameters: ``<parameter>_<link>`` (``m_link1``, ``Izz_link2``),
+    then ``fv_<joint>``, ``fc_<joint>`` with ``friction``."""
+    return _screwdyn._parameter_names(self, bool(friction))
+
+
+def _base_parameters(self, friction: bool = False, *, states: int = 100,
+                     seed: int = 1) -> BaseParameters:
+    """The base (identifiable) parameters, found numerically from the regressor stacked at
+    ``states`` random states (QR with column pivoting in a fixed preferred order; the same as
+    ``screwdyn regressor --base``): a :class:`BaseParameters` with readable expressions and
+    ``K`` (``π_b = K π``)."""
+    return BaseParameters(_screwdyn._base_parameters(self, bool(friction), int(states), int(seed)))
+
+
+def _identify(self, q, v, a, tau, *, friction: bool = False, states: int = 100,
+              seed: int = 1) -> Identification:
+    """Least-squares identification of the base parameters from stacked samples ``q``, ``v``,
+    ``a``, ``tau`` of shape ``(N, nq)`` (the library's streaming QR, as ``screwdyn identify``):
+    an :class:`Identification` with the estimates, their standard deviations, ``sigma`` and
+    the condition number. ``friction=True`` adds ``fv q̇ + fc sign(q̇)`` per joint. Raises
+    ValueError for too few samples or a log that does not excite every base parameter
+    (condition number above 1e10), naming it."""
+    return Identification(_screwdyn._identify(self, q, v, a, tau, bool(friction), int(states),
+                                              int(seed)))
+
+
 for _name, _f in {
     "aba": _aba,
     "closed_form": _closed_form,
@@ -254,10 +327,19 @@ for _name, _f in {
     "rnea_trace": _trace,
     "simulate": _simulate,
     "torque_profile": _torque_profile,
+    "rnea_derivatives": _rnea_derivatives,
+    "aba_derivatives": _aba_derivatives,
+    "regressor": _regressor,
+    "inertial_parameters": _inertial_parameters,
+    "parameter_names": _parameter_names,
+    "base_parameters": _base_parameters,
+    "identify": _identify,
+    "view": _view.view,
 }.items():
     _f.__name__ = _name
     _f.__qualname__ = f"Model.{_name}"
     setattr(Model, _name, _f)
+
 
 # Pinocchio-style aliases.
 Model.inverse_dynamics = Model.rnea
@@ -284,7 +366,9 @@ _FUNCTIONS = [
     "mass_matrix_inverse", "coriolis_matrix", "gravity_torque", "nonlinear_effects",
     "forward_dynamics", "aba", "kinetic_energy", "potential_energy", "total_energy", "power",
     "center_of_mass", "closed_form", "lagrange_coefficients", "mass_matrix_derivatives",
-    "effective_inertia", "rnea_trace", "simulate", "torque_profile",
+    "effective_inertia", "rnea_trace", "simulate", "torque_profile", "rnea_derivatives",
+    "aba_derivatives", "regressor", "inertial_parameters", "parameter_names", "base_parameters",
+    "identify", "view",
 ]
 for _name in _FUNCTIONS:
     globals()[_name] = _functional(_name)

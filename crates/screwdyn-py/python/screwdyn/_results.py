@@ -242,6 +242,15 @@ class SimResult:
     def __len__(self) -> int:
         return len(self.t)
 
+    def save(self, path) -> None:
+        """Writes the run as the file ``screwdyn simulate --output`` writes, by the library's
+        writers (atomically): CSV for ``.csv`` (columns ``t``, ``q.<joint>``, ``v.<joint>``,
+        ``a.<joint>``, ``tau.<joint>``, the energies) or JSON for ``.json``. Recorded frame
+        poses are not written. ``Model.view(run=path)`` animates the file."""
+        from ._view import save_run
+
+        save_run(self, path)
+
     def __repr__(self) -> str:
         end = self.t[-1] if len(self.t) else 0.0
         return f"SimResult({len(self)} samples, t = 0 … {end:g} s, joints={self.joint_names})"
@@ -309,6 +318,10 @@ class TorqueProfile:
     def joint_names(self) -> List[str]:
         return self.samples.joint_names
 
+    def save(self, path) -> None:
+        """Writes the samples as a run file (see :meth:`SimResult.save`)."""
+        self.samples.save(path)
+
     def __repr__(self) -> str:
         return (f"TorqueProfile({len(self.samples)} samples, peak={np.round(self.peak, 6).tolist()}, "
                 f"{len(self.violations)} violations)")
@@ -342,3 +355,62 @@ class TorqueProfile:
                 ax.axhline(lim, color=color, linestyle="--", linewidth=0.8)
                 ax.axhline(-lim, color=color, linestyle="--", linewidth=0.8)
         return fig
+
+
+class BaseParameters:
+    """The identifiable (base) combinations of the standard inertial parameters (library
+    ``identification::BaseParameters``): ``expressions`` (one readable combination per base
+    parameter, e.g. ``mx_link2 + m_link2``), ``independent`` (the standard parameter leading
+    each), ``standard_names`` (every standard parameter, the columns of ``Model.regressor``),
+    ``combination_matrix`` ``K`` (``π_b = K π``) and ``model_values`` (``K π`` of the model's own
+    parameters)."""
+
+    def __init__(self, data: Dict[str, Any]):
+        self.expressions: List[str] = list(data["expressions"])
+        self.independent: List[str] = list(data["independent"])
+        self.standard_names: List[str] = list(data["standard_names"])
+        self.combination_matrix: np.ndarray = data["combination_matrix"]
+        self.model_values: np.ndarray = data["model_values"]
+
+    def __len__(self) -> int:
+        return len(self.expressions)
+
+    def __repr__(self) -> str:
+        return f"BaseParameters({len(self)} of {len(self.standard_names)} standard parameters)"
+
+
+class Identification(BaseParameters):
+    """Least-squares estimate of the base parameters from a log (library
+    ``identification::LeastSquares``): ``values`` (``π̂_b``, in the order of ``expressions``),
+    ``std_dev`` (``σ √diag((W_iᵀ W_i)⁻¹)``), ``sigma`` (RMS torque residual corrected for the
+    degrees of freedom), ``condition_number`` of the base regressor, ``samples``; and, as
+    :class:`BaseParameters`, the expressions, ``K`` and the model's own ``model_values`` to
+    compare with."""
+
+    def __init__(self, data: Dict[str, Any]):
+        super().__init__(data)
+        self.values: np.ndarray = data["values"]
+        self.std_dev: np.ndarray = data["std_dev"]
+        self.sigma: float = float(data["sigma"])
+        self.condition_number: float = float(data["condition_number"])
+        self.samples: int = int(data["samples"])
+
+    def __repr__(self) -> str:
+        return (f"Identification({len(self)} base parameters from {self.samples} samples, "
+                f"σ = {self.sigma:.3g}, cond = {self.condition_number:.3g})")
+
+    def to_dataframe(self):
+        """Estimate, standard deviation and the model's value per base parameter (pandas)."""
+        pd = _pandas()
+        return pd.DataFrame({"estimate": self.values, "std_dev": self.std_dev,
+                             "model": self.model_values},
+                            index=pd.Index(self.expressions, name="base parameter"))
+
+    def _repr_markdown_(self) -> str:
+        rows = ["| base parameter | estimate | σ | model |", "| --- | ---: | ---: | ---: |"]
+        for e, x, s, m in zip(self.expressions, self.values, self.std_dev, self.model_values):
+            rows.append(f"| {e} | {_num(x)} | {_num(s)} | {_num(m)} |")
+        rows.append("")
+        rows.append(f"{self.samples} samples, σ = {_num(self.sigma)}, condition number "
+                    f"{_num(self.condition_number)}.")
+        return "\n".join(rows)

@@ -12,7 +12,9 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 import numpy.typing as npt
 
-from ._results import ClosedForm, LagrangeCoefficients, RneaTrace, SimResult, TorqueProfile
+from ._results import (BaseParameters, ClosedForm, Identification, LagrangeCoefficients, RneaTrace,
+                       SimResult, TorqueProfile)
+from ._view import View
 
 ArrayLike = npt.ArrayLike
 FloatArray = npt.NDArray[np.float64]
@@ -32,6 +34,19 @@ def load_string(text: str, format: Optional[str] = None, *, name: str = "<string
     """Loads a description from text; ``format`` is ``"urdf"`` or ``"toml"`` (guessed if None)."""
 
 def builtin_names() -> List[str]: ...
+
+# Private entry points of the Python layer (Model.view, Model.rnea_derivatives, …,
+# screwdyn.symbolic); use those instead.
+VIEW_DEFAULT_MAX_TRIANGLES: int
+VIEW_DEFAULT_MAX_SAMPLES: int
+SYMBOLIC_DEFAULT_MAX_TERMS: int
+def _symbolic_derive(model: Model, quantity: str, symbols: str, frame: Optional[str],
+                     reference_frame: str, coriolis: str, max_terms: int) -> Dict[str, Any]: ...
+def _view(model: Model, q: Optional[ArrayLike], run: Any, urdf: Optional[str],
+          package_paths: List[str], max_triangles: int, max_samples: int,
+          title: Optional[str]) -> Dict[str, Any]: ...
+def _save_recording(path: str, recording_spec: Tuple[Any, ...]) -> None: ...
+def _write_text_atomically(path: str, text: str) -> None: ...
 
 class Model:
     """A robot model (immutable except for ``gravity``); pickles."""
@@ -117,6 +132,37 @@ class Model:
     def rnea_trace(self, q: ArrayLike, v: Optional[ArrayLike] = None, a: Optional[ArrayLike] = None, *,
                    fext: Optional[Wrenches] = None, fext_world: Optional[Wrenches] = None,
                    tip_wrenches: Optional[Wrenches] = None) -> RneaTrace: ...
+
+    # derivatives, regressor, identification (docs/derivatives.md)
+    def rnea_derivatives(self, q: ArrayLike, v: ArrayLike, a: ArrayLike, *,
+                         fext: Optional[Wrenches] = None, fext_world: Optional[Wrenches] = None,
+                         tip_wrenches: Optional[Wrenches] = None,
+                         threads: Optional[int] = None) -> Tuple[FloatArray, FloatArray, FloatArray]:
+        """(∂τ/∂q, ∂τ/∂q̇, M), each (nq, nq) or (N, nq, nq); [i, j] = ∂τ_i/∂x_j."""
+    def aba_derivatives(self, q: ArrayLike, v: ArrayLike, tau: ArrayLike, *,
+                        fext: Optional[Wrenches] = None, fext_world: Optional[Wrenches] = None,
+                        tip_wrenches: Optional[Wrenches] = None,
+                        threads: Optional[int] = None) -> Tuple[FloatArray, FloatArray, FloatArray]:
+        """(∂q̈/∂q, ∂q̈/∂q̇, M⁻¹), each (nq, nq) or (N, nq, nq)."""
+    def regressor(self, q: ArrayLike, v: Optional[ArrayLike] = None, a: Optional[ArrayLike] = None, *,
+                  threads: Optional[int] = None) -> FloatArray:
+        """Y (nq, 10 nq) or (N, nq, 10 nq): rnea(q, v, a) = Y @ inertial_parameters()."""
+    def inertial_parameters(self, friction: bool = False) -> FloatArray:
+        """π: m, mx, my, mz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz per body (body frame origin)."""
+    def parameter_names(self, friction: bool = False) -> List[str]: ...
+    def base_parameters(self, friction: bool = False, *, states: int = 100,
+                        seed: int = 1) -> BaseParameters: ...
+    def identify(self, q: ArrayLike, v: ArrayLike, a: ArrayLike, tau: ArrayLike, *,
+                 friction: bool = False, states: int = 100, seed: int = 1) -> Identification:
+        """Least squares of the base parameters from stacked (N, nq) samples."""
+
+    # 3-D view (the page of `screwdyn view`)
+    def view(self, q: Optional[ArrayLike] = None,
+             run: Union[None, str, os.PathLike[str], SimResult, TorqueProfile] = None, *,
+             urdf: Union[None, str, os.PathLike[str]] = None,
+             package_path: Union[str, os.PathLike[str], Sequence[Union[str, os.PathLike[str]]]] = (),
+             max_triangles: int = 200000, max_samples: int = 1000, title: Optional[str] = None,
+             width: Union[int, str] = "100%", height: Union[int, str] = 600) -> View: ...
 
     # simulation
     def simulate(self, q0: ArrayLike, v0: Optional[ArrayLike] = None, *, duration: float = 1.0,
