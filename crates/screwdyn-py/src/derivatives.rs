@@ -7,11 +7,14 @@ use crate::batch::{run, Rows};
 use crate::convert::{self, joint_states, vector, ArrayIn};
 use crate::errors::{call_err, guard};
 use crate::model::PyModel;
+use nalgebra::DMatrix;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use screwdyn::dynamics;
+use screwdyn::dynamics::ExternalWrenches;
 use screwdyn::identification::{self, BaseParameters, LeastSquares};
+use screwdyn::{Model, Workspace};
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_rnea_derivatives, m)?)?;
@@ -22,6 +25,49 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_base_parameters, m)?)?;
     m.add_function(wrap_pyfunction!(_identify, m)?)?;
     Ok(())
+}
+
+/// The library's derivative function (`dynamics::rnea_derivatives` or `aba_derivatives`) at
+/// one state, leaving its results in the workspace.
+type Derivatives = fn(
+    &Model,
+    &mut Workspace,
+    &[f64],
+    &[f64],
+    &[f64],
+    Option<&ExternalWrenches>,
+) -> screwdyn::Result<()>;
+
+/// Runs `derivatives` on each of the (stacked) states `(x0, x1, x2)` and writes the three
+/// `nq × nq` matrices `pick` takes from the workspace, stacked as `(3, nq, nq)` per state.
+fn three_matrices<'py>(
+    py: Python<'py>,
+    model: &PyModel,
+    inputs: [(&ArrayIn<'py>, &'static str); 3],
+    ext: Option<ExternalWrenches>,
+    threads: Option<usize>,
+    derivatives: Derivatives,
+    pick: fn(&Workspace) -> [&DMatrix<f64>; 3],
+) -> PyResult<Bound<'py, PyAny>> {
+    let m = &model.model;
+    let [x0, x1, x2] = inputs.map(|(x, name)| joint_states(m, x, name));
+    let (x0, x1, x2) = (x0?, x1?, x2?);
+    let n = m.nq();
+    run(
+        py,
+        m,
+        &model.scratch,
+        &[&x0, &x1, &x2],
+        &[3, n, n],
+        threads,
+        |m, s, r: &Rows<'_>, o| {
+            derivatives(m, &mut s.ws, r[0], r[1], r[2], ext.as_ref())?;
+            for (matrix, out) in pick(&s.ws).into_iter().zip(o.chunks_exact_mut(n * n)) {
+                convert::write_rows(matrix, out);
+            }
+            Ok(())
+        },
+    )
 }
 
 /// `∂τ/∂q`, `∂τ/∂q̇` and `M = ∂τ/∂q̈` stacked as `(3, nq, nq)` (`(N, 3, nq, nq)` for stacked
@@ -42,27 +88,14 @@ fn _rnea_derivatives<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     guard(|| {
         let ext = model.wrenches(fext, fext_world, tip_wrenches)?;
-        let m = &model.model;
-        let q = joint_states(m, &q, "q")?;
-        let v = joint_states(m, &v, "v")?;
-        let a = joint_states(m, &a, "a")?;
-        let n = m.nq();
-        run(
+        three_matrices(
             py,
-            m,
-            &model.scratch,
-            &[&q, &v, &a],
-            &[3, n, n],
+            model,
+            [(&q, "q"), (&v, "v"), (&a, "a")],
+            ext,
             threads,
-            |m, s, r: &Rows<'_>, o| {
-                dynamics::rnea_derivatives(m, &mut s.ws, r[0], r[1], r[2], ext.as_ref())?;
-                let (dq, rest) = o.split_at_mut(n * n);
-                let (dv, da) = rest.split_at_mut(n * n);
-                convert::write_rows(&s.ws.dtau_dq, dq);
-                convert::write_rows(&s.ws.dtau_dv, dv);
-                convert::write_rows(&s.ws.mass_matrix, da);
-                Ok(())
-            },
+            |m, ws, q, v, a, ext| dynamics::rnea_derivatives(m, ws, q, v, a, ext).map(|_| ()),
+            |ws| [&ws.dtau_dq, &ws.dtau_dv, &ws.mass_matrix],
         )
     })
 }
@@ -84,27 +117,14 @@ fn _aba_derivatives<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     guard(|| {
         let ext = model.wrenches(fext, fext_world, tip_wrenches)?;
-        let m = &model.model;
-        let q = joint_states(m, &q, "q")?;
-        let v = joint_states(m, &v, "v")?;
-        let tau = joint_states(m, &tau, "tau")?;
-        let n = m.nq();
-        run(
+        three_matrices(
             py,
-            m,
-            &model.scratch,
-            &[&q, &v, &tau],
-            &[3, n, n],
+            model,
+            [(&q, "q"), (&v, "v"), (&tau, "tau")],
+            ext,
             threads,
-            |m, s, r: &Rows<'_>, o| {
-                dynamics::aba_derivatives(m, &mut s.ws, r[0], r[1], r[2], ext.as_ref())?;
-                let (dq, rest) = o.split_at_mut(n * n);
-                let (dv, minv) = rest.split_at_mut(n * n);
-                convert::write_rows(&s.ws.dqdd_dq, dq);
-                convert::write_rows(&s.ws.dqdd_dv, dv);
-                convert::write_rows(&s.ws.mass_matrix_inverse, minv);
-                Ok(())
-            },
+            |m, ws, q, v, tau, ext| dynamics::aba_derivatives(m, ws, q, v, tau, ext).map(|_| ()),
+            |ws| [&ws.dqdd_dq, &ws.dqdd_dv, &ws.mass_matrix_inverse],
         )
     })
 }

@@ -102,20 +102,16 @@ fn reduce(x: f64) -> (i64, f64, f64) {
     let mut w = f * PIO2_1T;
     let mut y0 = r - w;
     let ex = exponent(x);
-    if ex - exponent(y0) > 16 {
-        // The first piece cancelled more than 16 bits: subtract the second exactly.
-        let t = r;
-        w = f * PIO2_2;
-        r = t - w;
-        w = f * PIO2_2T - ((t - r) - w);
-        y0 = r - w;
-        if ex - exponent(y0) > 49 {
-            let t = r;
-            w = f * PIO2_3;
-            r = t - w;
-            w = f * PIO2_3T - ((t - r) - w);
-            y0 = r - w;
+    // While the last subtraction cancelled more than 16 (then 49) bits, take the next piece.
+    for (piece, tail, cancelled) in [(PIO2_2, PIO2_2T, 16), (PIO2_3, PIO2_3T, 49)] {
+        if ex - exponent(y0) <= cancelled {
+            break;
         }
+        let t = r;
+        w = f * piece;
+        r = t - w;
+        w = f * tail - ((t - r) - w);
+        y0 = r - w;
     }
     let y1 = (r - y0) - w;
     (n, y0, y1)
