@@ -52,7 +52,7 @@ impl<T: Real> CompositeInertia<T> {
     }
 
     /// The sum of two inertias given in the same frame.
-    #[inline(always)]
+    #[inline]
     pub fn add(&mut self, o: &CompositeInertia<T>) {
         self.mass += o.mass;
         self.first_moment += o.first_moment;
@@ -61,7 +61,7 @@ impl<T: Real> CompositeInertia<T> {
 
     /// This inertia, given in frame `b`, written in frame `a`, where `h = H_b^a`:
     /// `Ad_{H_a^b}ᵀ 𝔍 Ad_{H_a^b}`.
-    #[inline(always)]
+    #[inline]
     pub fn transformed(&self, h: &Se3<T>) -> Self {
         // With h' = R h: I_o' = R I_o Rᵀ − [h'][p] − [p][h'] − m [p][p], and
         // [a][b] = b aᵀ − (a·b) 1, so the three translation terms are the symmetric
@@ -91,7 +91,7 @@ impl<T: Real> CompositeInertia<T> {
     }
 
     /// `𝔍 V = (I_o ω + h × v, m v − h × ω)`.
-    #[inline(always)]
+    #[inline]
     pub fn apply(&self, v: &Twist<T>) -> Wrench<T> {
         let w = Vector3::new(v[0], v[1], v[2]);
         let l = Vector3::new(v[3], v[4], v[5]);
