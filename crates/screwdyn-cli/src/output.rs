@@ -11,6 +11,7 @@ use crate::CliError;
 use comfy_table::{presets, Table};
 use nalgebra::DMatrix;
 use serde_json::{Map, Value as Json};
+use screwdyn::sim::csv_field;
 use std::borrow::Cow;
 use std::io::{IsTerminal, Write};
 use std::rc::Rc;
@@ -171,7 +172,7 @@ impl Value {
             Value::Map(items) => items
                 .iter()
                 .try_for_each(|(_, v)| v.write_csv(w, num, cells)),
-            Value::Text(s) => csv_cell(w, cells, &csv_quoted(s)),
+            Value::Text(s) => csv_cell(w, cells, &csv_field(s)),
             Value::Names(_) => Ok(()),
         }
     }
@@ -509,23 +510,13 @@ fn io_error(e: std::io::Error) -> CliError {
 
 /// Writes one CSV cell (already quoted if needed), preceded by a comma unless it is the first
 /// of its row. Numbers never need quotes, so rows are written without the CSV writer's
-/// per-byte scan; names (the header, words) go through [`csv_quoted`].
+/// per-byte scan; names (the header, words) go through [`csv_field`].
 fn csv_cell(w: &mut impl Write, cells: &mut usize, text: &str) -> std::io::Result<()> {
     if *cells > 0 {
         w.write_all(b",")?;
     }
     *cells += 1;
     w.write_all(text.as_bytes())
-}
-
-/// `s` as a CSV field: quoted, with `"` doubled, when it holds a comma, a quote or a line
-/// break (RFC 4180), as is otherwise.
-fn csv_quoted(s: &str) -> Cow<'_, str> {
-    if s.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", s.replace('"', "\"\"")).into()
-    } else {
-        s.into()
-    }
 }
 
 /// A number as the shortest text that reads back to the same `f64` (`ryu`); `NaN`, `inf`.
