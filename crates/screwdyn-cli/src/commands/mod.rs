@@ -405,14 +405,70 @@ impl StateReader {
         Ok(())
     }
 
-    /// `e` placed at the last row read: "FILE:LINE (row K): ...".
-    fn locate(&self, e: CliError) -> CliError {
-        CliError {
-            code: e.code,
-            message: format!(
-                "{}:{} (row {}): {}",
-                self.file, self.line_no, self.rows, e.message
-            ),
+    /// Where the last row read is: (line in the file, row number).
+    fn place(&self) -> (u64, usize) {
+        (self.line_no, self.rows)
+    }
+}
+
+/// `e` placed at a row of `file`: "FILE:LINE (row K): ...".
+fn locate(file: &Path, (line, row): (u64, usize), e: CliError) -> CliError {
+    CliError {
+        code: e.code,
+        message: format!("{}:{line} (row {row}): {}", file.display(), e.message),
+    }
+}
+
+/// Rows per message from the reading thread of a batch to the computing one.
+const CHUNK_ROWS: usize = 256;
+/// Chunks in circulation: the memory of a batch is bounded by this many chunks of rows.
+const CHUNKS: usize = 4;
+
+/// Up to [`CHUNK_ROWS`] states read from `--input`, with the place of each in the file.
+struct Chunk {
+    states: Vec<State>,
+    places: Vec<(u64, usize)>,
+    len: usize,
+}
+
+impl Chunk {
+    fn new(nq: usize) -> Self {
+        Chunk {
+            states: (0..CHUNK_ROWS).map(|_| State::zeros(nq)).collect(),
+            places: vec![(0, 0); CHUNK_ROWS],
+            len: 0,
+        }
+    }
+}
+
+/// Reads rows into the chunks that come back through `empty` and sends them on through `full`
+/// until the file ends, a row is bad (the error is sent) or the computing side hangs up.
+fn read_chunks(
+    mut rows: StateReader,
+    empty: std::sync::mpsc::Receiver<Chunk>,
+    full: std::sync::mpsc::SyncSender<Result<Chunk, CliError>>,
+) {
+    while let Ok(mut chunk) = empty.recv() {
+        chunk.len = 0;
+        let mut ended = false;
+        while chunk.len < CHUNK_ROWS {
+            match rows.next(&mut chunk.states[chunk.len]) {
+                Ok(true) => {
+                    chunk.places[chunk.len] = rows.place();
+                    chunk.len += 1;
+                }
+                Ok(false) => {
+                    ended = true;
+                    break;
+                }
+                Err(e) => {
+                    let _ = full.send(Err(e));
+                    return;
+                }
+            }
+        }
+        if chunk.len > 0 && full.send(Ok(chunk)).is_err() || ended {
+            return;
         }
     }
 }
@@ -473,13 +529,29 @@ pub fn run_states(
             path.display()
         )));
     }
-    let mut rows = StateReader::open(m, path)?;
-    let mut s = State::zeros(m.nq());
+    let rows = StateReader::open(m, path)?;
     let mut out = output::ReportWriter::new(sink, format, true);
-    while rows.next(&mut s)? {
-        let r = f(&s).and_then(finite).map_err(|e| rows.locate(e))?;
-        out.write(&r)?;
-    }
+    // Two stages on two threads: one reads and parses the rows, this one computes and writes,
+    // with a few chunks of rows in circulation between them (memory stays bounded, and the
+    // order of the rows is kept). Parsing costs about as much as the computation, so the two
+    // overlap instead of adding up.
+    std::thread::scope(|scope| -> Result<(), CliError> {
+        let (full_tx, full_rx) = std::sync::mpsc::sync_channel(CHUNKS);
+        let (empty_tx, empty_rx) = std::sync::mpsc::channel();
+        for _ in 0..CHUNKS {
+            let _ = empty_tx.send(Chunk::new(m.nq()));
+        }
+        scope.spawn(move || read_chunks(rows, empty_rx, full_tx));
+        for message in full_rx {
+            let chunk: Chunk = message?;
+            for (s, &place) in chunk.states.iter().zip(&chunk.places).take(chunk.len) {
+                let r = f(s).and_then(finite).map_err(|e| locate(path, place, e))?;
+                out.write(&r)?;
+            }
+            let _ = empty_tx.send(chunk);
+        }
+        Ok(())
+    })?;
     if out.count() == 0 {
         return Err(CliError::input(format!(
             "{}: has no rows of states",
