@@ -297,12 +297,6 @@ impl<W: Write> CsvSampleWriter<W> {
     }
 }
 
-/// `x` in the shortest form that reads back as the same `f64` (Ryū), `NaN`/`inf`/`-inf` for
-/// the non-finite values.
-fn shortest(buffer: &mut ryu::Buffer, x: f64) -> &str {
-    buffer.format(x)
-}
-
 fn io_error(e: std::io::Error) -> Error {
     Error::Io(format!("writing the run failed ({e})"))
 }
@@ -333,7 +327,8 @@ impl<W: Write> SampleSink for CsvSampleWriter<W> {
             if k > 0 {
                 self.line.push(',');
             }
-            self.line.push_str(shortest(&mut self.number, *x));
+            // Shortest round trip (Ryū); `NaN`, `inf`, `-inf` as Rust prints them.
+            self.line.push_str(self.number.format(*x));
         }
         self.line.push('\n');
         self.out.write_all(self.line.as_bytes()).map_err(io_error)
@@ -443,7 +438,7 @@ impl<W: Write> SampleSink for JsonSampleWriter<W> {
         for ((_, spool), x) in plain.iter_mut().zip(&self.row) {
             // Finite values print as JSON numbers (shortest round trip), others as null.
             let text = if x.is_finite() {
-                shortest(&mut self.number, *x)
+                self.number.format_finite(*x)
             } else {
                 "null"
             };

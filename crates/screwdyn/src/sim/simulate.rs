@@ -74,47 +74,48 @@ struct Plant<'a> {
     method: ForwardMethod,
     effects: JointEffects,
     gains: EffectGains,
-    /// The last evaluation `(t, q, q̇) ↦ (q̈, τ)`: a sample is recorded at the state the next
-    /// step starts from, so the integrator's first stage there reuses the recorder's
-    /// forward dynamics instead of repeating it.
-    last: Option<LastEvaluation>,
+    /// The last evaluation `(t, q, q̇) ↦ q̈` (its `τ` is still in `tau`): a sample is recorded
+    /// at the state the next step starts from, so the integrator's first stage there reuses
+    /// the recorder's forward dynamics instead of repeating it.
+    last: LastEvaluation,
 }
 
-/// The inputs and results of [`Plant::accel`]'s last call.
+/// The inputs and result of [`Plant::accel`]'s last call (`t` is NaN before the first, so no
+/// call matches it).
 struct LastEvaluation {
     t: f64,
     q: Vec<f64>,
     v: Vec<f64>,
     qdd: Vec<f64>,
-    tau: Vec<f64>,
+}
+
+impl LastEvaluation {
+    fn new(n: usize) -> Self {
+        LastEvaluation {
+            t: f64::NAN,
+            q: vec![0.0; n],
+            v: vec![0.0; n],
+            qdd: vec![0.0; n],
+        }
+    }
 }
 
 impl Plant<'_> {
     /// `q̈ = FD(q, q̇, τ(t, q, q̇))`, the state equation the integrator steps; a call with the
     /// same `(t, q, q̇)` as the previous one returns the previous result (the controller, a
-    /// function of the state, is not asked twice).
+    /// function of the state, is not asked twice, and `tau` still holds its torque).
     fn accel(&mut self, t: f64, q: &[f64], v: &[f64], qdd: &mut [f64]) -> Result<()> {
-        if let Some(l) = &self.last {
-            if l.t == t && l.q == q && l.v == v {
-                qdd.copy_from_slice(&l.qdd);
-                self.tau.copy_from_slice(&l.tau);
-                return Ok(());
-            }
+        let l = &mut self.last;
+        if l.t == t && l.q == q && l.v == v {
+            qdd.copy_from_slice(&l.qdd);
+            return Ok(());
         }
         self.evaluate(t, q, v, qdd)?;
-        let n = q.len();
-        let l = self.last.get_or_insert_with(|| LastEvaluation {
-            t,
-            q: vec![0.0; n],
-            v: vec![0.0; n],
-            qdd: vec![0.0; n],
-            tau: vec![0.0; n],
-        });
+        let l = &mut self.last;
         l.t = t;
         l.q.copy_from_slice(q);
         l.v.copy_from_slice(v);
         l.qdd.copy_from_slice(qdd);
-        l.tau.copy_from_slice(&self.tau);
         Ok(())
     }
 
@@ -285,7 +286,7 @@ pub fn simulate_into(
         effects: opts.effects,
         gains: EffectGains::new(&opts.effects, model, q0, opts.dt)?,
 
-        last: None,
+        last: LastEvaluation::new(n),
     };
     let mut stepper = Stepper::new(opts.integrator, n)?;
     let mut recorder = Recorder::new(model, &opts.frames)?;
