@@ -70,6 +70,7 @@
 
 use super::aba::articulated_body;
 use super::crba::invert_mass_matrix;
+use super::inputs::checked_poses;
 use super::rnea::base_acceleration;
 use super::wrenches::ExternalWrenches;
 use crate::error::Result;
@@ -119,13 +120,8 @@ pub fn rnea_derivatives<T: Real>(
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<()> {
     ws.check(model)?;
-    model.check_vector(v, "v")?;
-    model.check_vector(a, "a")?;
-    if let Some(f) = fext {
-        f.check(model)?;
-    }
     ws.ensure_derivatives()?;
-    forward_kinematics(model, ws, q)?;
+    checked_poses(model, ws, q, &[(v, "v"), (a, "a")], fext)?;
     derivative_passes(model, ws, v, |i| a[i], fext);
     Ok(())
 }
@@ -314,9 +310,8 @@ pub fn aba_derivatives<T: Real>(
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<()> {
     ws.check(model)?;
-    model.check_vector(v, "v")?;
-    model.check_vector(tau, "tau")?;
     ws.ensure_derivatives()?;
+    // ABA checks q, q̇, τ and the wrenches.
     articulated_body(model, ws, q, v, tau, fext)?;
     // Poses are those of `q` (set by ABA); q̈ is read from a moved-out buffer (no allocation).
     let qdd = std::mem::replace(&mut ws.qdd, DVector::zeros(0));
