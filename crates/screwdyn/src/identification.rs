@@ -26,6 +26,7 @@
 //! algorithm); the regressor itself, [`regressor`], is generic over the scalar type and
 //! allocation-free.
 
+use crate::dynamics::pack_parameters;
 use crate::dynamics::{
     body_parameters, inertia_from_parameters, model_parameters, regressor, PARAMETERS_PER_BODY,
     PARAMETER_NAMES,
@@ -665,18 +666,8 @@ fn parameters_of_pseudo_inertia(j: &Matrix4<f64>) -> [f64; 10] {
     let s = j.fixed_view::<3, 3>(0, 0);
     // I = tr(Σ) 1 − Σ.
     let i = nalgebra::Matrix3::identity() * s.trace() - s;
-    [
-        j[(3, 3)],
-        j[(0, 3)],
-        j[(1, 3)],
-        j[(2, 3)],
-        i[(0, 0)],
-        i[(0, 1)],
-        i[(1, 1)],
-        i[(0, 2)],
-        i[(1, 2)],
-        i[(2, 2)],
-    ]
+    let h = nalgebra::Vector3::new(j[(0, 3)], j[(1, 3)], j[(2, 3)]);
+    pack_parameters(j[(3, 3)], &h, &i)
 }
 
 /// Log-Cholesky coordinates (10 numbers) → pseudo-inertia `J = U Uᵀ`, `U` upper triangular

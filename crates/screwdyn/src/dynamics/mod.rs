@@ -50,6 +50,7 @@ pub use lagrange::{
     effective_inertia, effective_inertia_free, effective_inertia_locked, lagrange_coefficients,
     mass_matrix_derivatives, LagrangeCoefficients, MAX_LAGRANGE_JOINTS,
 };
+pub(crate) use regressor::pack_parameters;
 pub use regressor::{
     body_parameters, inertia_from_parameters, model_parameters, regressor, PARAMETERS_PER_BODY,
     PARAMETER_NAMES,

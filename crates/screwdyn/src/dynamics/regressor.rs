@@ -1,9 +1,9 @@
 //! The joint-torque regressor: inverse dynamics written linearly in the inertial parameters,
 //! `τ = Y(q, q̇, q̈) π`.
 
+use super::inputs::checked_poses;
 use super::rnea::{base_acceleration, rnea_passes};
 use crate::error::Result;
-use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::Real;
 use crate::spatial::{hat, SpatialInertia};
@@ -35,9 +35,18 @@ pub const PARAMETER_NAMES: [&str; PARAMETERS_PER_BODY] = [
 /// ```
 pub fn body_parameters<T: Real>(inertia: &SpatialInertia<T>) -> [T; PARAMETERS_PER_BODY] {
     let h = inertia.com * inertia.mass;
-    let i = inertia.inertia_about_origin();
+    pack_parameters(inertia.mass, &h, &inertia.inertia_about_origin())
+}
+
+/// `(m, h, I)` (mass, first moment, rotational inertia about the frame origin) in the order of
+/// [`body_parameters`]: `m, h_x, h_y, h_z, I_xx, I_xy, I_yy, I_xz, I_yz, I_zz`.
+pub(crate) fn pack_parameters<T: Real>(
+    m: T,
+    h: &Vector3<T>,
+    i: &Matrix3<T>,
+) -> [T; PARAMETERS_PER_BODY] {
     [
-        inertia.mass,
+        m,
         h.x,
         h.y,
         h.z,
@@ -133,10 +142,8 @@ pub fn regressor<'w, T: Real>(
     a: &[T],
 ) -> Result<&'w DMatrix<T>> {
     ws.check(model)?;
-    model.check_vector(v, "v")?;
-    model.check_vector(a, "a")?;
     ws.ensure_regressor()?;
-    forward_kinematics(model, ws, q)?;
+    checked_poses(model, ws, q, &[(v, "v"), (a, "a")], None)?;
     rnea_passes(
         model,
         ws,
