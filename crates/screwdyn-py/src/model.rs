@@ -95,59 +95,22 @@ impl PyModel {
 
     /// A frame given by name or index.
     pub fn frame(&self, f: &Bound<'_, PyAny>) -> PyResult<usize> {
-        if let Ok(name) = f.extract::<String>() {
-            return self.model.frame_id(&name).map_err(call_err);
-        }
-        if let Ok(i) = f.extract::<i64>() {
-            let n = self.model.frames().len();
-            return usize::try_from(i).ok().filter(|&i| i < n).ok_or_else(|| {
-                PyValueError::new_err(format!(
-                    "frame index {i} is out of range: the model has {n} frames (0…{})",
-                    n.saturating_sub(1)
-                ))
-            });
-        }
-        Err(PyTypeError::new_err(
-            "a frame is given by its name (str) or its index (int)",
-        ))
+        let n = self.model.frames().len();
+        name_or_index(f, "frame", n, "frames", |name| self.model.frame_id(name))
     }
 
     /// A moving link (body) given by name or index.
     pub fn link(&self, b: &Bound<'_, PyAny>) -> PyResult<usize> {
-        if let Ok(name) = b.extract::<String>() {
-            return self.model.body_id(&name).map_err(call_err);
-        }
-        if let Ok(i) = b.extract::<i64>() {
-            let n = self.model.nbodies();
-            return usize::try_from(i).ok().filter(|&i| i < n).ok_or_else(|| {
-                PyValueError::new_err(format!(
-                    "link index {i} is out of range: the model has {n} moving links (0…{})",
-                    n.saturating_sub(1)
-                ))
-            });
-        }
-        Err(PyTypeError::new_err(
-            "a link is given by its name (str) or its index (int)",
-        ))
+        let n = self.model.nbodies();
+        name_or_index(b, "link", n, "moving links", |name| {
+            self.model.body_id(name)
+        })
     }
 
     /// A joint given by name or index.
     pub fn joint(&self, j: &Bound<'_, PyAny>) -> PyResult<usize> {
-        if let Ok(name) = j.extract::<String>() {
-            return self.model.joint_id(&name).map_err(call_err);
-        }
-        if let Ok(i) = j.extract::<i64>() {
-            let n = self.model.nq();
-            return usize::try_from(i).ok().filter(|&i| i < n).ok_or_else(|| {
-                PyValueError::new_err(format!(
-                    "joint index {i} is out of range: the model has {n} joints (0…{})",
-                    n.saturating_sub(1)
-                ))
-            });
-        }
-        Err(PyTypeError::new_err(
-            "a joint is given by its name (str) or its index (int)",
-        ))
+        let n = self.model.nq();
+        name_or_index(j, "joint", n, "joints", |name| self.model.joint_id(name))
     }
 
     /// An optional joint-space argument; `None` is the zero vector.
@@ -1379,4 +1342,29 @@ impl PyModel {
     ) -> PyResult<Bound<'py, PyDict>> {
         guard(|| sim::torque_profile(py, &self.model, &trajectory.borrow(), dt))
     }
+}
+
+/// An item of the model given by its name (looked up by `by_name`) or by its index below `n`;
+/// `kind` ("frame") and `plural` ("frames") word the messages.
+fn name_or_index(
+    x: &Bound<'_, PyAny>,
+    kind: &str,
+    n: usize,
+    plural: &str,
+    by_name: impl FnOnce(&str) -> screwdyn::Result<usize>,
+) -> PyResult<usize> {
+    if let Ok(name) = x.extract::<String>() {
+        return by_name(&name).map_err(call_err);
+    }
+    if let Ok(i) = x.extract::<i64>() {
+        return usize::try_from(i).ok().filter(|&i| i < n).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "{kind} index {i} is out of range: the model has {n} {plural} (0…{})",
+                n.saturating_sub(1)
+            ))
+        });
+    }
+    Err(PyTypeError::new_err(format!(
+        "a {kind} is given by its name (str) or its index (int)"
+    )))
 }
