@@ -353,6 +353,18 @@ impl CodeUnit {
                 Sx::N(_, id) => operand(*id),
             }
         };
+        // The outputs as nested row lists, `[[M11, M12], [M21, M22]]` (Python and Rust).
+        let nested_rows = || -> String {
+            let rows: Vec<String> = (0..self.rows)
+                .map(|r| {
+                    let cols: Vec<String> = (0..self.cols)
+                        .map(|c| out_expr(&self.outputs[r * self.cols + c]))
+                        .collect();
+                    format!("[{}]", cols.join(", "))
+                })
+                .collect();
+            format!("[{}]", rows.join(", "))
+        };
         let (cos, sin) = match lang {
             Language::Python => ("math.cos", "math.sin"),
             _ => ("cos", "sin"),
@@ -424,15 +436,7 @@ impl CodeUnit {
                 }
                 let _ = writeln!(s, "def {fname}({}):", args.join(", "));
                 s.push_str(&body);
-                let rows: Vec<String> = (0..self.rows)
-                    .map(|r| {
-                        let cols: Vec<String> = (0..self.cols)
-                            .map(|c| out_expr(&self.outputs[r * self.cols + c]))
-                            .collect();
-                        format!("[{}]", cols.join(", "))
-                    })
-                    .collect();
-                let _ = writeln!(s, "{indent}return [{}]", rows.join(", "));
+                let _ = writeln!(s, "{indent}return {}", nested_rows());
             }
             Language::Rust => {
                 s.push_str(&self.header("//"));
@@ -453,15 +457,7 @@ impl CodeUnit {
                     self.rows
                 );
                 s.push_str(&body);
-                let rows: Vec<String> = (0..self.rows)
-                    .map(|r| {
-                        let cols: Vec<String> = (0..self.cols)
-                            .map(|c| out_expr(&self.outputs[r * self.cols + c]))
-                            .collect();
-                        format!("[{}]", cols.join(", "))
-                    })
-                    .collect();
-                let _ = writeln!(s, "{indent}[{}]\n}}", rows.join(", "));
+                let _ = writeln!(s, "{indent}{}\n}}", nested_rows());
             }
             Language::Matlab => {
                 let mut args: Vec<&str> = Vec::new();
