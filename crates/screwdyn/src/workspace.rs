@@ -65,11 +65,13 @@ pub struct Workspace<T: Real = f64> {
     pub articulated_bias: Vec<Wrench<T>>,
     /// ABA: velocity-product acceleration `c_i = ad_{V_{λ(i)}^0}(s_i q̇_i)`, in the base frame.
     pub bias_acceleration: Vec<Twist<T>>,
-    /// ABA: `U_i = 𝔍ᴬ_i s_i`, the articulated inertia times the joint screw.
+    /// ABA: `U_i / D_i`, the articulated inertia times the joint screw (`U_i = 𝔍ᴬ_i s_i`)
+    /// divided by the joint's articulated inertia, so that `q̈_i = u_i / D_i − (U_i / D_i)ᵀ V̇'_i`.
     pub articulated_force: Vec<Wrench<T>>,
     /// ABA: `D_i = s_iᵀ U_i`, the inertia joint `i` feels through its articulated body.
     pub articulated_joint_inertia: DVector<T>,
-    /// ABA: `u_i = τ_i − s_iᵀ pᴬ_i`, the joint torque left for accelerating it.
+    /// ABA: `u_i / D_i`, where `u_i = τ_i − s_iᵀ pᴬ_i` is the joint torque left for
+    /// accelerating it.
     pub articulated_joint_force: DVector<T>,
     /// Forward dynamics by CRBA: the Cholesky factor of `M` (lower triangle).
     pub cholesky: DMatrix<T>,

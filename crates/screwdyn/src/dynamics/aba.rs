@@ -19,7 +19,7 @@ use nalgebra::DVector;
 ///    `V̇_i = V̇_λ + s_i q̈_i + ṡ_i q̇_i`), `𝔍ᴬ_i = 𝔍_i^0`, `pᴬ_i = −ad_{V_i}ᵀ 𝔍_i^0 V_i − W_ext,i`;
 /// 2. backward: `U_i = 𝔍ᴬ_i s_i`, `D_i = s_iᵀ U_i`, `u_i = τ_i − s_iᵀ pᴬ_i`; the parent
 ///    receives `𝔍ᴬ_i − U_i U_iᵀ / D_i` and `pᴬ_i + 𝔍ᵃ_i c_i + U_i u_i / D_i`;
-/// 3. forward: `V̇'_i = V̇_λ + c_i`, `q̈_i = (u_i − U_iᵀ V̇'_i) / D_i`,
+/// 3. forward: `V̇'_i = V̇_λ + c_i`, `q̈_i = u_i / D_i − (U_i / D_i)ᵀ V̇'_i`,
 ///    `V̇_i = V̇'_i + s_i q̈_i`, with `V̇_base = (0, −g)` (seed 000).
 ///
 /// Writes `ws.qdd`, and `ws.screw_in_world`, `ws.twist_in_world`, `ws.twist_dot_in_world`
@@ -51,6 +51,10 @@ pub fn aba<'w, T: Real>(
 
 /// [`aba`] with external wrenches on the bodies (and tip wrenches); public as
 /// [`forward_dynamics`](super::forward_dynamics) with [`ForwardMethod::Aba`](super::ForwardMethod::Aba).
+#[multiversion::multiversion(targets(
+    "x86_64+avx512f+avx512vl+avx512dq+avx512bw+avx2+fma",
+    "x86_64+avx2+fma"
+))]
 pub(crate) fn articulated_body<'w, T: Real>(
     model: &Model<T>,
     ws: &'w mut Workspace<T>,
@@ -90,7 +94,9 @@ pub(crate) fn articulated_body<'w, T: Real>(
     let tiny = model.inertia_scale() * T::default_epsilon() * real(64.0);
     for i in (0..n).rev() {
         let s = ws.screw_in_world[i];
-        let ia = ws.articulated_inertia[i];
+        // 𝔍ᴬ_i read in place, next to its parent's (whose index is below i) being written.
+        let (before, from_i) = ws.articulated_inertia.split_at_mut(i);
+        let ia = &from_i[0];
         let u = ia * s;
         let d = s.dot(&u);
         // Written to also catch NaN.
@@ -103,13 +109,15 @@ pub(crate) fn articulated_body<'w, T: Real>(
             )));
         }
         let small_u = tau[i] - s.dot(&ws.articulated_bias[i]);
-        ws.articulated_force[i] = u;
+        // One division per joint: U / D and u / D are what pass 3 and the parent need.
+        let inv_d = T::one() / d;
+        let ud = u * inv_d;
+        ws.articulated_force[i] = ud;
         ws.articulated_joint_inertia[i] = d;
-        ws.articulated_joint_force[i] = small_u;
+        ws.articulated_joint_force[i] = small_u * inv_d;
         if let Some(p) = parents[i] {
-            let ud = u / d;
             // 𝔍ᵃ = 𝔍ᴬ − U Uᵀ / D (symmetric), added to the parent's as it is formed.
-            let parent = &mut ws.articulated_inertia[p];
+            let parent = &mut before[p];
             for c in 0..6 {
                 for r in 0..6 {
                     parent[(r, c)] += ia[(r, c)] - ud[r] * u[c];
@@ -128,8 +136,7 @@ pub(crate) fn articulated_body<'w, T: Real>(
             Some(p) => ws.twist_dot_in_world[p],
             None => base,
         } + ws.bias_acceleration[i];
-        let qdd = (ws.articulated_joint_force[i] - ws.articulated_force[i].dot(&a_par))
-            / ws.articulated_joint_inertia[i];
+        let qdd = ws.articulated_joint_force[i] - ws.articulated_force[i].dot(&a_par);
         ws.qdd[i] = qdd;
         ws.twist_dot_in_world[i] = a_par + ws.screw_in_world[i] * qdd;
     }

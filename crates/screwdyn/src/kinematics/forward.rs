@@ -26,6 +26,10 @@ use crate::workspace::Workspace;
 /// assert!((p.x - (q1.cos() + (q1 + q2).cos())).abs() < 1e-15);
 /// assert!((p.y - (q1.sin() + (q1 + q2).sin())).abs() < 1e-15);
 /// ```
+#[multiversion::multiversion(targets(
+    "x86_64+avx512f+avx512vl+avx512dq+avx512bw+avx2+fma",
+    "x86_64+avx2+fma"
+))]
 pub fn forward_kinematics<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) -> Result<()> {
     ws.check(model)?;
     model.check_vector(q, "q")?;

@@ -79,9 +79,10 @@ pub struct Model<T: Real = f64> {
 /// `Err(NonFinite)` naming `what` and the position of the first NaN or infinite value.
 #[inline]
 pub(crate) fn check_finite<T: Real>(x: &[T], what: &str) -> Result<()> {
-    // A branch-free pass first (it vectorises; every call of every algorithm makes it), the
-    // position only when something is wrong.
-    if !x.iter().fold(false, |bad, v| bad | !v.is_finite()) {
+    // A branch-free pass first (every call of every algorithm makes it), the position only
+    // when something is wrong: `0 · v` is ±0 for a finite `v` and NaN for ±∞ or NaN, and a NaN
+    // anywhere makes the sum NaN.
+    if x.iter().fold(T::zero(), |sum, &v| sum + v * T::zero()) == T::zero() {
         return Ok(());
     }
     Err(non_finite_error(x, what))

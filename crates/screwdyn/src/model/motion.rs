@@ -116,7 +116,8 @@ impl<T: Real> JointMotion<T> {
 
     /// `H(0) e^{[S]q}`: the pose of the child in the parent given its home pose `home`
     /// (seed 000, forward iterations), composed without forming `e^{[S]q}` for axis joints.
-    #[inline]
+    // Always inlined, so that the CPU-specific clones of forward kinematics compile it too.
+    #[inline(always)]
     pub fn pose_in_parent(&self, home: &Se3<T>, q: T) -> Se3<T> {
         match *self {
             JointMotion::RevoluteAxis { axis, sign } => {
@@ -244,18 +245,28 @@ fn rotate_about_axis<T: Real>(
     theta: T,
 ) -> (Matrix3<T>, (usize, usize)) {
     let (s, c) = crate::scalar::sin_cos(theta);
-    let (i, j) = match axis {
-        0 => (1, 2),
-        1 => (2, 0),
-        _ => (0, 1),
-    };
-    let (ci, cj) = (r.column(i), r.column(j));
-    let ni = ci * c + cj * s;
-    let nj = cj * c - ci * s;
+    // One code path per axis, so that the columns are known at compile time.
+    match axis {
+        0 => (rotate_columns::<_, 1, 2>(r, s, c), (1, 2)),
+        1 => (rotate_columns::<_, 2, 0>(r, s, c), (2, 0)),
+        _ => (rotate_columns::<_, 0, 1>(r, s, c), (0, 1)),
+    }
+}
+
+/// Columns `I`, `J` of `R` turned by the angle whose sine and cosine are `s`, `c`.
+#[inline(always)]
+fn rotate_columns<T: Real, const I: usize, const J: usize>(
+    r: &Matrix3<T>,
+    s: T,
+    c: T,
+) -> Matrix3<T> {
     let mut rot = *r;
-    rot.set_column(i, &ni);
-    rot.set_column(j, &nj);
-    (rot, (i, j))
+    for k in 0..3 {
+        let (a, b) = (r[(k, I)], r[(k, J)]);
+        rot[(k, I)] = a * c + b * s;
+        rot[(k, J)] = b * c - a * s;
+    }
+    rot
 }
 
 #[cfg(test)]

@@ -238,6 +238,10 @@ impl JointEffects {
                 lens, gains_n
             )));
         }
+        if !(self.saturate || self.damping || self.friction || self.position_limits) {
+            tau.copy_from_slice(cmd);
+            return Ok(());
+        }
         for (i, j) in model.joints().iter().enumerate() {
             let mut t = cmd[i];
             if self.saturate {

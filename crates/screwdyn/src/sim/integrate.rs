@@ -214,16 +214,23 @@ impl Stepper {
         }
     }
 
+    /// The classic Runge–Kutta step on `ẋ = (q̇, q̈)`: `k_1 = f(t, x)`,
+    /// `k_2 = f(t + h/2, x + h/2 k_1)`, `k_3 = f(t + h/2, x + h/2 k_2)`, `k_4 = f(t + h, x + h k_3)`,
+    /// `x ← x + h/6 (k_1 + 2k_2 + 2k_3 + k_4)`. Each stage needs only the one before it, so the
+    /// stage states are formed directly rather than by the general tableau sum of `combine`.
     fn rk4(&mut self, f: &mut AccelFn, t: f64, h: f64, q: &mut [f64], v: &mut [f64]) -> Result<()> {
         let n = q.len();
-        self.combine(q, v, h, &[]);
+        self.qs.copy_from_slice(q);
+        self.vs.copy_from_slice(v);
         self.stage(f, 0, t)?;
-        self.combine(q, v, h, &[0.5]);
-        self.stage(f, 1, t + 0.5 * h)?;
-        self.combine(q, v, h, &[0.0, 0.5]);
-        self.stage(f, 2, t + 0.5 * h)?;
-        self.combine(q, v, h, &[0.0, 0.0, 1.0]);
-        self.stage(f, 3, t + h)?;
+        for (s, c) in [(1, 0.5), (2, 0.5), (3, 1.0)] {
+            let k = &self.k[s - 1];
+            for i in 0..n {
+                self.qs[i] = q[i] + h * (c * k[i]);
+                self.vs[i] = v[i] + h * (c * k[n + i]);
+            }
+            self.stage(f, s, t + c * h)?;
+        }
         for i in 0..n {
             let k = &self.k;
             q[i] += h / 6.0 * (k[0][i] + 2.0 * k[1][i] + 2.0 * k[2][i] + k[3][i]);

@@ -208,7 +208,7 @@ impl<T: Real> SpatialInertia<T> {
     /// let expected = ad.transpose() * i.matrix() * ad;
     /// assert!((i.transformed(&h).matrix() - expected).amax() < 1e-12);
     /// ```
-    #[inline]
+    #[inline(always)]
     pub fn transformed(&self, h: &Se3<T>) -> Self {
         let r = &h.rotation;
         let a = r * self.inertia_com;
