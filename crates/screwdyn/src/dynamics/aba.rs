@@ -65,37 +65,69 @@ pub(crate) fn articulated_body<'w, T: Real>(
 ) -> Result<&'w DVector<T>> {
     checked_poses(model, ws, q, &[(v, "v"), (tau, "tau")], fext)?;
     let n = model.nbodies();
-    let (motions, parents, bodies) = (model.motions(), model.parents(), model.bodies());
+    let (motions, parents, bodies) = (
+        &model.motions()[..n],
+        &model.parents()[..n],
+        &model.bodies()[..n],
+    );
+    let (v, tau) = (&v[..n], &tau[..n]);
+    // The workspace's buffers borrowed once, as slices of length n: their addresses and lengths
+    // stay in registers instead of being reloaded after every store (and most bounds checks go).
+    let Workspace {
+        pose_in_world,
+        screw_in_world,
+        twist_in_world,
+        twist_dot_in_world,
+        bias_acceleration,
+        articulated_inertia,
+        articulated_bias,
+        articulated_force,
+        articulated_joint_inertia,
+        articulated_joint_force,
+        qdd,
+        ..
+    } = ws;
+    let poses = &pose_in_world[..n];
+    let screws = &mut screw_in_world[..n];
+    let twists = &mut twist_in_world[..n];
+    let accels = &mut twist_dot_in_world[..n];
+    let bias_acc = &mut bias_acceleration[..n];
+    let inertias = &mut articulated_inertia[..n];
+    let biases = &mut articulated_bias[..n];
+    let u_over_d = &mut articulated_force[..n];
+    let d_joint = &mut articulated_joint_inertia.as_mut_slice()[..n];
+    let small_u_over_d = &mut articulated_joint_force.as_mut_slice()[..n];
+    let qdd_out = &mut qdd.as_mut_slice()[..n];
     // Pass 1: twists, velocity-product accelerations, rigid-body inertias and bias wrenches.
     for i in 0..n {
-        let h = &ws.pose_in_world[i];
+        let h = &poses[i];
         let s = motions[i].act(h);
         let sv = s * v[i];
         let (vi, ci) = match parents[i] {
             Some(p) => {
-                let vp = ws.twist_in_world[p];
+                let vp = twists[p];
                 (vp + sv, ad(&vp, &sv))
             }
             None => (sv, Twist::zeros()),
         };
         // 𝔍_i^0 = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i}, by its ten parameters (c ↦ R c + p, I_c ↦ R I_c Rᵀ).
         let inertia = bodies[i].inertia.transformed(h);
-        ws.articulated_inertia[i] = inertia.matrix();
+        inertias[i] = inertia.matrix();
         let mut p = -ad_transpose(&vi, &inertia.apply(&vi));
         if let Some(f) = fext {
             p -= f.in_world_at(h, i);
         }
-        ws.screw_in_world[i] = s;
-        ws.twist_in_world[i] = vi;
-        ws.bias_acceleration[i] = ci;
-        ws.articulated_bias[i] = p;
+        screws[i] = s;
+        twists[i] = vi;
+        bias_acc[i] = ci;
+        biases[i] = p;
     }
     // Pass 2: articulated inertias, from the leaves to the root.
     let tiny = model.inertia_scale() * T::default_epsilon() * real(64.0);
     for i in (0..n).rev() {
-        let s = ws.screw_in_world[i];
+        let s = screws[i];
         // 𝔍ᴬ_i read in place, next to its parent's (whose index is below i) being written.
-        let (before, from_i) = ws.articulated_inertia.split_at_mut(i);
+        let (before, from_i) = inertias.split_at_mut(i);
         let ia = &from_i[0];
         let u = ia * s;
         let d = s.dot(&u);
@@ -108,13 +140,13 @@ pub(crate) fn articulated_body<'w, T: Real>(
                 d
             )));
         }
-        let small_u = tau[i] - s.dot(&ws.articulated_bias[i]);
+        let small_u = tau[i] - s.dot(&biases[i]);
         // One division per joint: U / D and u / D are what pass 3 and the parent need.
         let inv_d = T::one() / d;
         let ud = u * inv_d;
-        ws.articulated_force[i] = ud;
-        ws.articulated_joint_inertia[i] = d;
-        ws.articulated_joint_force[i] = small_u * inv_d;
+        u_over_d[i] = ud;
+        d_joint[i] = d;
+        small_u_over_d[i] = small_u * inv_d;
         if let Some(p) = parents[i] {
             // 𝔍ᵃ = 𝔍ᴬ − U Uᵀ / D (symmetric), added to the parent's as it is formed.
             let parent = &mut before[p];
@@ -124,21 +156,21 @@ pub(crate) fn articulated_body<'w, T: Real>(
                 }
             }
             // pᵃ = pᴬ + 𝔍ᵃ c + U u / D = pᴬ + 𝔍ᴬ c + (U / D)(u − Uᵀ c).
-            let ci = ws.bias_acceleration[i];
-            let pa = ws.articulated_bias[i] + ia * ci + ud * (small_u - u.dot(&ci));
-            ws.articulated_bias[p] += pa;
+            let ci = bias_acc[i];
+            let pa = biases[i] + ia * ci + ud * (small_u - u.dot(&ci));
+            biases[p] += pa;
         }
     }
     // Pass 3: accelerations, from the root to the leaves.
     let base = base_acceleration(model);
-    for (i, parent) in parents.iter().enumerate() {
-        let a_par = match *parent {
-            Some(p) => ws.twist_dot_in_world[p],
+    for i in 0..n {
+        let a_par = match parents[i] {
+            Some(p) => accels[p],
             None => base,
-        } + ws.bias_acceleration[i];
-        let qdd = ws.articulated_joint_force[i] - ws.articulated_force[i].dot(&a_par);
-        ws.qdd[i] = qdd;
-        ws.twist_dot_in_world[i] = a_par + ws.screw_in_world[i] * qdd;
+        } + bias_acc[i];
+        let qdd_i = small_u_over_d[i] - u_over_d[i].dot(&a_par);
+        qdd_out[i] = qdd_i;
+        accels[i] = a_par + screws[i] * qdd_i;
     }
     Ok(&ws.qdd)
 }

@@ -35,7 +35,13 @@ pub fn forward_kinematics<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &
     model.check_vector(q, "q")?;
     // `check_vector` made `q.len() == n`; `check` that the workspace was made for this model.
     let n = model.nq();
-    let (joints, motions, parents) = (model.joints(), model.motions(), model.parents());
+    // Everything as slices of length n, so that the loop's bounds checks go.
+    let (joints, motions, parents) = (
+        &model.joints()[..n],
+        &model.motions()[..n],
+        &model.parents()[..n],
+    );
+    let q = &q[..n];
     let (pip, piw) = (&mut ws.pose_in_parent[..n], &mut ws.pose_in_world[..n]);
     for i in 0..n {
         let h = motions[i].pose_in_parent(&joints[i].home, q[i]);

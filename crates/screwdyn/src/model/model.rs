@@ -80,12 +80,18 @@ pub struct Model<T: Real = f64> {
 #[inline]
 pub(crate) fn check_finite<T: Real>(x: &[T], what: &str) -> Result<()> {
     // A branch-free pass first (every call of every algorithm makes it), the position only
-    // when something is wrong: `0 · v` is ±0 for a finite `v` and NaN for ±∞ or NaN, and a NaN
-    // anywhere makes the sum NaN.
-    if x.iter().fold(T::zero(), |sum, &v| sum + v * T::zero()) == T::zero() {
+    // when something is wrong.
+    if all_finite(x) {
         return Ok(());
     }
     Err(non_finite_error(x, what))
+}
+
+/// Whether every entry is finite, without a branch per entry: `0 · v` is ±0 for a finite `v`
+/// and NaN for ±∞ or NaN, and a NaN anywhere makes the sum NaN.
+#[inline]
+pub(crate) fn all_finite<T: Real>(x: &[T]) -> bool {
+    x.iter().fold(T::zero(), |sum, &v| sum + v * T::zero()) == T::zero()
 }
 
 #[cold]

@@ -9,7 +9,7 @@ use crate::dynamics::energy::{kinetic_energy_given_twists, potential_energy_give
 use crate::dynamics::{forward_dynamics, ExternalWrenches, ForwardMethod};
 use crate::error::{Error, Result};
 use crate::kinematics::{forward_velocity, frame_pose};
-use crate::model::Model;
+use crate::model::{all_finite, Model};
 use crate::spatial::{Se3, Wrench};
 use crate::workspace::Workspace;
 
@@ -121,7 +121,10 @@ impl Plant<'_> {
 
     fn evaluate(&mut self, t: f64, q: &[f64], v: &[f64], qdd: &mut [f64]) -> Result<()> {
         self.controller.torque(t, q, v, &mut self.cmd)?;
-        if let Some((i, x)) = self.cmd.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+        if !all_finite(&self.cmd) {
+            let (i, x) = (self.cmd.iter().enumerate())
+                .find(|(_, x)| !x.is_finite())
+                .unwrap_or((0, &f64::NAN));
             return Err(Error::Numerical(format!(
                 "the controller returned a non-finite torque {x} for joint '{}' at t = {t:.6} s",
                 self.model.joints()[i].name
@@ -148,7 +151,8 @@ impl Plant<'_> {
         };
         let a = forward_dynamics(self.model, &mut self.ws, q, v, &self.tau, fext, self.method)?;
         qdd.copy_from_slice(a.as_slice());
-        if let Some(i) = qdd.iter().position(|x| !x.is_finite()) {
+        if !all_finite(qdd) {
+            let i = qdd.iter().position(|x| !x.is_finite()).unwrap_or(0);
             let cause = if self.effects.total_torque_is_commanded() {
                 "a fixed step too large for the robot's fastest motion, or a controller with \
                  gains too high for the step, does this"
@@ -297,6 +301,8 @@ pub fn simulate_into(
     let every = opts.record_every.max(1);
     recorder.record(0.0, &q, &v, &mut plant, &mut a, sink)?;
     let report = (steps / 200).max(1);
+    // Countdowns instead of `k % every` and `k % report`: two integer divisions a step.
+    let (mut to_record, mut to_report) = (every, 1);
     let mut t = 0.0;
     for k in 0..steps {
         let h = if k + 1 == steps { last_dt } else { opts.dt };
@@ -312,11 +318,15 @@ pub fn simulate_into(
         } else {
             (k + 1) as f64 * opts.dt
         };
-        if (k + 1) % every == 0 || k + 1 == steps {
+        to_record -= 1;
+        if to_record == 0 || k + 1 == steps {
             recorder.record(t, &q, &v, &mut plant, &mut a, sink)?;
+            to_record = every;
         }
-        if k % report == 0 {
+        to_report -= 1;
+        if to_report == 0 {
             progress(k as f64 / steps as f64);
+            to_report = report;
         }
     }
     progress(1.0);
