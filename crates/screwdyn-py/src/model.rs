@@ -48,6 +48,52 @@ fn options(strict: bool) -> LoadOptions {
 }
 
 impl PyModel {
+    /// The body of `forward_dynamics` and `aba`.
+    #[allow(clippy::too_many_arguments)]
+    fn forward<'py>(
+        &self,
+        py: Python<'py>,
+        q: ArrayIn<'py>,
+        v: ArrayIn<'py>,
+        tau: ArrayIn<'py>,
+        how: dynamics::ForwardMethod,
+        fext: Option<&Bound<'py, PyDict>>,
+        fext_world: Option<&Bound<'py, PyDict>>,
+        tip_wrenches: Option<&Bound<'py, PyDict>>,
+        threads: Option<usize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        guard(|| {
+            let ext = self.wrenches(fext, fext_world, tip_wrenches)?;
+            let q = joint_states(&self.model, &q, "q")?;
+            let v = joint_states(&self.model, &v, "v")?;
+            let tau = joint_states(&self.model, &tau, "tau")?;
+            let nq = self.model.nq();
+            run(
+                py,
+                &self.model,
+                &self.scratch,
+                &[&q, &v, &tau],
+                &[nq],
+                threads,
+                |m, s, r, o| {
+                    put(
+                        o,
+                        dynamics::forward_dynamics(
+                            m,
+                            &mut s.ws,
+                            r[0],
+                            r[1],
+                            r[2],
+                            ext.as_ref(),
+                            how,
+                        )?,
+                    );
+                    Ok(())
+                },
+            )
+        })
+    }
+
     fn rebuild(
         source: Source,
         strict: bool,
@@ -998,37 +1044,27 @@ impl PyModel {
         tip_wrenches: Option<&Bound<'py, PyDict>>,
         threads: Option<usize>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        guard(|| {
-            let how = self::method(method)?;
-            let ext = self.wrenches(fext, fext_world, tip_wrenches)?;
-            let q = joint_states(&self.model, &q, "q")?;
-            let v = joint_states(&self.model, &v, "v")?;
-            let tau = joint_states(&self.model, &tau, "tau")?;
-            let nq = self.model.nq();
-            run(
-                py,
-                &self.model,
-                &self.scratch,
-                &[&q, &v, &tau],
-                &[nq],
-                threads,
-                |m, s, r, o| {
-                    put(
-                        o,
-                        dynamics::forward_dynamics(
-                            m,
-                            &mut s.ws,
-                            r[0],
-                            r[1],
-                            r[2],
-                            ext.as_ref(),
-                            how,
-                        )?,
-                    );
-                    Ok(())
-                },
-            )
-        })
+        let how = self::method(method)?;
+        self.forward(py, q, v, tau, how, fext, fext_world, tip_wrenches, threads)
+    }
+
+    /// Forward dynamics by the articulated-body algorithm (Featherstone): `forward_dynamics(…,
+    /// method="aba")`, q̈ (rad/s²) of shape `(nq,)` or `(N, nq)`. External wrenches as in `rnea`.
+    #[pyo3(signature = (q, v, tau, *, fext = None, fext_world = None, tip_wrenches = None, threads = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn aba<'py>(
+        &self,
+        py: Python<'py>,
+        q: ArrayIn<'py>,
+        v: ArrayIn<'py>,
+        tau: ArrayIn<'py>,
+        fext: Option<&Bound<'py, PyDict>>,
+        fext_world: Option<&Bound<'py, PyDict>>,
+        tip_wrenches: Option<&Bound<'py, PyDict>>,
+        threads: Option<usize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let how = dynamics::ForwardMethod::Aba;
+        self.forward(py, q, v, tau, how, fext, fext_world, tip_wrenches, threads)
     }
 
     /// Kinetic energy `½ Σ V_iᵀ 𝔍_i V_i` (J): a float, `(N,)` for stacked states.

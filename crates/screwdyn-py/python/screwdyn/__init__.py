@@ -189,12 +189,6 @@ def _controller_spec(controller):
 # Defined in Python on top of the native methods: results wrapped in display classes and the
 # keyword-argument front ends; no computation happens here.
 
-def _aba(self, q, v, tau, *, fext=None, fext_world=None, tip_wrenches=None, threads=None):
-    """Forward dynamics by the articulated-body algorithm: ``forward_dynamics(..., method="aba")``."""
-    return self.forward_dynamics(q, v, tau, method="aba", fext=fext, fext_world=fext_world,
-                                 tip_wrenches=tip_wrenches, threads=threads)
-
-
 def _closed_form(self, q, v=None) -> ClosedForm:
     """The seeds' closed form at one state ``(q, v)``: ``A(θ)``, ``L = (I − A)⁻¹``, ``S``, ``𝔍``,
     ``J = L S``, ``M = Sᵀ Lᵀ 𝔍 L S``, ``C``, ``g`` as arrays (a :class:`ClosedForm`)."""
@@ -321,7 +315,6 @@ def _identify(self, q, v, a, tau, *, friction: bool = False, states: int = 100,
 
 
 for _name, _f in {
-    "aba": _aba,
     "closed_form": _closed_form,
     "lagrange_coefficients": _lagrange,
     "rnea_trace": _trace,
