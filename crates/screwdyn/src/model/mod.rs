@@ -16,7 +16,7 @@ mod findings;
 mod joint;
 #[allow(clippy::module_inception)]
 mod model;
-pub(crate) use model::{all_finite, check_finite};
+pub(crate) use model::{check_finite, first_non_finite};
 mod motion;
 
 pub use builder::{JointSpec, ModelBuilder};

@@ -79,24 +79,30 @@ pub struct Model<T: Real = f64> {
 /// `Err(NonFinite)` naming `what` and the position of the first NaN or infinite value.
 #[inline]
 pub(crate) fn check_finite<T: Real>(x: &[T], what: &str) -> Result<()> {
-    // A branch-free pass first (every call of every algorithm makes it), the position only
-    // when something is wrong.
-    if all_finite(x) {
-        return Ok(());
+    match first_non_finite(x) {
+        None => Ok(()),
+        Some(i) => Err(non_finite_error(x, i, what)),
     }
-    Err(non_finite_error(x, what))
 }
 
-/// Whether every entry is finite, without a branch per entry: `0 · v` is ±0 for a finite `v`
-/// and NaN for ±∞ or NaN, and a NaN anywhere makes the sum NaN.
+/// The index of the first NaN or infinite entry, `None` when all are finite. A branch-free pass
+/// first (every call of every algorithm makes it): `0 · v` is ±0 for a finite `v` and NaN for
+/// ±∞ or NaN, and a NaN anywhere makes the sum NaN; the position only when something is wrong.
 #[inline]
-pub(crate) fn all_finite<T: Real>(x: &[T]) -> bool {
-    x.iter().fold(T::zero(), |sum, &v| sum + v * T::zero()) == T::zero()
+pub(crate) fn first_non_finite<T: Real>(x: &[T]) -> Option<usize> {
+    if x.iter().fold(T::zero(), |sum, &v| sum + v * T::zero()) == T::zero() {
+        return None;
+    }
+    position_of_non_finite(x)
 }
 
 #[cold]
-fn non_finite_error<T: Real>(x: &[T], what: &str) -> Error {
-    let i = x.iter().position(|v| !v.is_finite()).unwrap_or(0);
+fn position_of_non_finite<T: Real>(x: &[T]) -> Option<usize> {
+    x.iter().position(|v| !v.is_finite())
+}
+
+#[cold]
+fn non_finite_error<T: Real>(x: &[T], i: usize, what: &str) -> Error {
     Error::NonFinite {
         what: what.into(),
         index: i,

@@ -238,7 +238,7 @@ impl JointEffects {
                 lens, gains_n
             )));
         }
-        if !(self.saturate || self.damping || self.friction || self.position_limits) {
+        if self.total_torque_is_commanded() {
             tau.copy_from_slice(cmd);
             return Ok(());
         }

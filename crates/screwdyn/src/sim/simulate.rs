@@ -9,7 +9,7 @@ use crate::dynamics::energy::{kinetic_energy_given_twists, potential_energy_give
 use crate::dynamics::{forward_dynamics, ExternalWrenches, ForwardMethod};
 use crate::error::{Error, Result};
 use crate::kinematics::{forward_velocity, frame_pose};
-use crate::model::{all_finite, Model};
+use crate::model::{first_non_finite, Model};
 use crate::spatial::{Se3, Wrench};
 use crate::workspace::Workspace;
 
@@ -121,10 +121,8 @@ impl Plant<'_> {
 
     fn evaluate(&mut self, t: f64, q: &[f64], v: &[f64], qdd: &mut [f64]) -> Result<()> {
         self.controller.torque(t, q, v, &mut self.cmd)?;
-        if !all_finite(&self.cmd) {
-            let (i, x) = (self.cmd.iter().enumerate())
-                .find(|(_, x)| !x.is_finite())
-                .unwrap_or((0, &f64::NAN));
+        if let Some(i) = first_non_finite(&self.cmd) {
+            let x = self.cmd[i];
             return Err(Error::Numerical(format!(
                 "the controller returned a non-finite torque {x} for joint '{}' at t = {t:.6} s",
                 self.model.joints()[i].name
@@ -151,8 +149,7 @@ impl Plant<'_> {
         };
         let a = forward_dynamics(self.model, &mut self.ws, q, v, &self.tau, fext, self.method)?;
         qdd.copy_from_slice(a.as_slice());
-        if !all_finite(qdd) {
-            let i = qdd.iter().position(|x| !x.is_finite()).unwrap_or(0);
+        if let Some(i) = first_non_finite(qdd) {
             let cause = if self.effects.total_torque_is_commanded() {
                 "a fixed step too large for the robot's fastest motion, or a controller with \
                  gains too high for the step, does this"
