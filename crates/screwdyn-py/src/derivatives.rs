@@ -38,36 +38,44 @@ type Derivatives = fn(
     Option<&ExternalWrenches>,
 ) -> screwdyn::Result<()>;
 
-/// Runs `derivatives` on each of the (stacked) states `(x0, x1, x2)` and writes the three
-/// `nq × nq` matrices `pick` takes from the workspace, stacked as `(3, nq, nq)` per state.
+/// The external wrenches as the Python keywords give them (`fext`, `fext_world`,
+/// `tip_wrenches`).
+type WrenchDicts<'a, 'py> = [Option<&'a Bound<'py, PyDict>>; 3];
+
+/// Runs `derivatives` on each of the (stacked) states `(x0, x1, x2)` under the external
+/// wrenches `dicts` and writes the three `nq × nq` matrices `pick` takes from the workspace,
+/// stacked as `(3, nq, nq)` per state.
 fn three_matrices<'py>(
     py: Python<'py>,
     model: &PyModel,
     inputs: [(&ArrayIn<'py>, &'static str); 3],
-    ext: Option<ExternalWrenches>,
+    [fext, fext_world, tip_wrenches]: WrenchDicts<'_, 'py>,
     threads: Option<usize>,
     derivatives: Derivatives,
     pick: fn(&Workspace) -> [&DMatrix<f64>; 3],
 ) -> PyResult<Bound<'py, PyAny>> {
-    let m = &model.model;
-    let [x0, x1, x2] = inputs.map(|(x, name)| joint_states(m, x, name));
-    let (x0, x1, x2) = (x0?, x1?, x2?);
-    let n = m.nq();
-    run(
-        py,
-        m,
-        &model.scratch,
-        &[&x0, &x1, &x2],
-        &[3, n, n],
-        threads,
-        |m, s, r: &Rows<'_>, o| {
-            derivatives(m, &mut s.ws, r[0], r[1], r[2], ext.as_ref())?;
-            for (matrix, out) in pick(&s.ws).into_iter().zip(o.chunks_exact_mut(n * n)) {
-                convert::write_rows(matrix, out);
-            }
-            Ok(())
-        },
-    )
+    guard(|| {
+        let ext = model.wrenches(fext, fext_world, tip_wrenches)?;
+        let m = &model.model;
+        let [x0, x1, x2] = inputs.map(|(x, name)| joint_states(m, x, name));
+        let (x0, x1, x2) = (x0?, x1?, x2?);
+        let n = m.nq();
+        run(
+            py,
+            m,
+            &model.scratch,
+            &[&x0, &x1, &x2],
+            &[3, n, n],
+            threads,
+            |m, s, r: &Rows<'_>, o| {
+                derivatives(m, &mut s.ws, r[0], r[1], r[2], ext.as_ref())?;
+                for (matrix, out) in pick(&s.ws).into_iter().zip(o.chunks_exact_mut(n * n)) {
+                    convert::write_rows(matrix, out);
+                }
+                Ok(())
+            },
+        )
+    })
 }
 
 /// `∂τ/∂q`, `∂τ/∂q̇` and `M = ∂τ/∂q̈` stacked as `(3, nq, nq)` (`(N, 3, nq, nq)` for stacked
@@ -86,18 +94,15 @@ fn _rnea_derivatives<'py>(
     tip_wrenches: Option<&Bound<'py, PyDict>>,
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    guard(|| {
-        let ext = model.wrenches(fext, fext_world, tip_wrenches)?;
-        three_matrices(
-            py,
-            model,
-            [(&q, "q"), (&v, "v"), (&a, "a")],
-            ext,
-            threads,
-            |m, ws, q, v, a, ext| dynamics::rnea_derivatives(m, ws, q, v, a, ext).map(|_| ()),
-            |ws| [&ws.dtau_dq, &ws.dtau_dv, &ws.mass_matrix],
-        )
-    })
+    three_matrices(
+        py,
+        model,
+        [(&q, "q"), (&v, "v"), (&a, "a")],
+        [fext, fext_world, tip_wrenches],
+        threads,
+        |m, ws, q, v, a, ext| dynamics::rnea_derivatives(m, ws, q, v, a, ext).map(|_| ()),
+        |ws| [&ws.dtau_dq, &ws.dtau_dv, &ws.mass_matrix],
+    )
 }
 
 /// `∂q̈/∂q`, `∂q̈/∂q̇` and `M⁻¹ = ∂q̈/∂τ` stacked as `(3, nq, nq)` (`(N, 3, nq, nq)`).
@@ -115,18 +120,15 @@ fn _aba_derivatives<'py>(
     tip_wrenches: Option<&Bound<'py, PyDict>>,
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    guard(|| {
-        let ext = model.wrenches(fext, fext_world, tip_wrenches)?;
-        three_matrices(
-            py,
-            model,
-            [(&q, "q"), (&v, "v"), (&tau, "tau")],
-            ext,
-            threads,
-            |m, ws, q, v, tau, ext| dynamics::aba_derivatives(m, ws, q, v, tau, ext).map(|_| ()),
-            |ws| [&ws.dqdd_dq, &ws.dqdd_dv, &ws.mass_matrix_inverse],
-        )
-    })
+    three_matrices(
+        py,
+        model,
+        [(&q, "q"), (&v, "v"), (&tau, "tau")],
+        [fext, fext_world, tip_wrenches],
+        threads,
+        |m, ws, q, v, tau, ext| dynamics::aba_derivatives(m, ws, q, v, tau, ext).map(|_| ()),
+        |ws| [&ws.dqdd_dq, &ws.dqdd_dv, &ws.mass_matrix_inverse],
+    )
 }
 
 /// The regressor `Y(q, q̇, q̈)`, `(nq, 10 nq)` (`(N, nq, 10 nq)`).
