@@ -1,5 +1,7 @@
-//! Running a per-state library call over one state or `N` stacked states: the GIL is released
-//! and the states are spread over rayon's threads, each with its own [`Workspace`].
+//! Running a library call over one state or `N` stacked states: the GIL is released and the
+//! states are spread over rayon's threads, each with its own [`Workspace`] and
+//! [`BatchWorkspace`]. Per-state calls go through [`run`]; the library's batch functions
+//! ([`screwdyn::batch`]: RNEA, CRBA, ABA eight states at a time) through [`run_lanes`].
 
 use crate::convert::{batch_len, States};
 use crate::errors::in_state;
@@ -10,12 +12,14 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyFloat;
 use rayon::prelude::*;
+use screwdyn::batch::{BatchError, BatchWorkspace, Rows as LaneRows};
 use screwdyn::{Model, Workspace};
 use std::sync::Mutex;
 
-/// Per-thread buffers: the library's workspace and a Jacobian.
+/// Per-thread buffers: the library's workspaces and a Jacobian.
 pub struct Scratch {
     pub ws: Workspace,
+    pub batch: BatchWorkspace,
     pub jac: Matrix6xX<f64>,
 }
 
@@ -23,6 +27,7 @@ impl Scratch {
     pub fn new(model: &Model) -> Self {
         Scratch {
             ws: Workspace::new(model),
+            batch: BatchWorkspace::new(model),
             jac: Matrix6xX::zeros(model.nq()),
         }
     }
@@ -61,7 +66,6 @@ where
     F: Fn(&Model, &mut Scratch, &Rows<'_>, &mut [f64]) -> screwdyn::Result<()> + Sync,
 {
     assert!(args.len() <= 4, "a kernel takes at most four arguments");
-    let threads = check_threads(threads)?;
     let width: usize = out_shape.iter().product();
     let rows = |k: usize| {
         let mut r: Rows<'_> = [&[]; 4];
@@ -70,11 +74,103 @@ where
         }
         r
     };
+    run_chunks(
+        py,
+        model,
+        cache,
+        args,
+        out_shape,
+        threads,
+        |m, s, first, block| {
+            for (j, o) in block.chunks_mut(width).enumerate() {
+                kernel(m, s, &rows(first + j), o).map_err(|e| BatchError {
+                    state: Some(first + j),
+                    error: e,
+                })?;
+            }
+            Ok(())
+        },
+    )
+}
+
+/// Stacked states through the library batch function `f(model, batch_workspace, inputs, out)`
+/// (one of [`screwdyn::batch`]'s: eight states side by side), a single state through the
+/// per-call `one` (as [`run`]), shaped as [`run`] does. Each thread's share of the states is
+/// one call of `f`, and every state of a batch gets the same bits however the batch is split
+/// (threads, chunks, Dask partitions); a single state agrees with its row of a batch to
+/// round-off.
+#[allow(clippy::too_many_arguments)]
+pub fn run_lanes<'py, F, G>(
+    py: Python<'py>,
+    model: &Model,
+    cache: &Mutex<Option<Scratch>>,
+    args: &[&States<'_>],
+    out_shape: &[usize],
+    threads: Option<usize>,
+    f: F,
+    one: G,
+) -> PyResult<Bound<'py, PyAny>>
+where
+    F: Fn(&Model, &mut BatchWorkspace, &[LaneRows<'_>], &mut [f64]) -> Result<(), BatchError>
+        + Sync,
+    G: Fn(&Model, &mut Scratch, &Rows<'_>, &mut [f64]) -> screwdyn::Result<()> + Sync,
+{
+    assert!(
+        args.len() <= 3,
+        "a batch function takes at most three joint vectors"
+    );
+    if batch_len(args)?.is_none() {
+        return run(py, model, cache, args, out_shape, threads, one);
+    }
+    let width: usize = out_shape.iter().product();
+    run_chunks(
+        py,
+        model,
+        cache,
+        args,
+        out_shape,
+        threads,
+        |m, s, first, block| {
+            let states = block.len().checked_div(width).unwrap_or(0);
+            let mut inputs = [LaneRows::Same(&[]); 3];
+            for (input, a) in inputs.iter_mut().zip(args) {
+                *input = match a.n {
+                    Some(_) => {
+                        LaneRows::Stacked(&a.data[first * a.width..(first + states) * a.width])
+                    }
+                    None => LaneRows::Same(&a.data),
+                };
+            }
+            f(m, &mut s.batch, &inputs[..args.len()], block).map_err(|e| BatchError {
+                state: e.state.map(|k| first + k),
+                error: e.error,
+            })
+        },
+    )
+}
+
+/// The frame of [`run`] and [`run_lanes`]: allocates the result, releases the GIL and calls
+/// `chunk(model, scratch, first_state, out_block)` on consecutive blocks of states (all of them
+/// at once on one thread, [`CHUNK`] at a time over rayon's threads). Errors name the state.
+fn run_chunks<'py, F>(
+    py: Python<'py>,
+    model: &Model,
+    cache: &Mutex<Option<Scratch>>,
+    args: &[&States<'_>],
+    out_shape: &[usize],
+    threads: Option<usize>,
+    chunk: F,
+) -> PyResult<Bound<'py, PyAny>>
+where
+    F: Fn(&Model, &mut Scratch, usize, &mut [f64]) -> Result<(), BatchError> + Sync,
+{
+    let threads = check_threads(threads)?;
+    let width: usize = out_shape.iter().product();
     let n = batch_len(args)?;
     if n.is_none() && out_shape.is_empty() {
         // One state, a scalar result: a Python float.
         let mut out = [0.0];
-        single(model, cache, &rows(0), &mut out, &kernel)?;
+        single(model, cache, &mut out, &chunk)?;
         return Ok(PyFloat::new(py, out[0]).into_any());
     }
     let mut shape: Vec<usize> = n.into_iter().collect();
@@ -84,33 +180,24 @@ where
     // SAFETY: the array was just created, is C-contiguous and nothing else refers to it yet.
     let out = unsafe { arr.as_slice_mut() }.expect("a fresh array is contiguous");
     let Some(n) = n else {
-        single(model, cache, &rows(0), out, &kernel)?;
+        single(model, cache, out, &chunk)?;
         return Ok(arr.into_any());
     };
-    let result = py.detach(|| -> Result<(), (usize, screwdyn::Error)> {
+    let result = py.detach(|| -> Result<(), BatchError> {
         if width == 0 || n == 0 {
             return Ok(());
         }
         let sequential = threads == Some(1) || n <= CHUNK;
         if sequential {
             let mut s = Scratch::new(model);
-            for (k, o) in out.chunks_mut(width).enumerate() {
-                kernel(model, &mut s, &rows(k), o).map_err(|e| (k, e))?;
-            }
-            return Ok(());
+            return chunk(model, &mut s, 0, out);
         }
         let work = |out: &mut [f64]| {
             out.par_chunks_mut(CHUNK * width)
                 .enumerate()
                 .try_for_each_init(
                     || Scratch::new(model),
-                    |s, (c, block)| {
-                        for (j, o) in block.chunks_mut(width).enumerate() {
-                            let k = c * CHUNK + j;
-                            kernel(model, s, &rows(k), o).map_err(|e| (k, e))?;
-                        }
-                        Ok(())
-                    },
+                    |s, (c, block)| chunk(model, s, c * CHUNK, block),
                 )
         };
         match threads {
@@ -123,28 +210,28 @@ where
             _ => work(out),
         }
     });
-    result.map_err(|(k, e)| in_state(e, Some(k)))?;
+    result.map_err(|e| in_state(e.error, e.state))?;
     Ok(arr.into_any())
 }
 
-/// One state: reuses the model's cached workspace (no allocation), or a fresh one if another
-/// thread holds it.
+/// One state: reuses the model's cached workspaces (no allocation), or fresh ones if another
+/// thread holds them.
 fn single<F>(
     model: &Model,
     cache: &Mutex<Option<Scratch>>,
-    rows: &Rows<'_>,
     out: &mut [f64],
-    kernel: &F,
+    chunk: &F,
 ) -> PyResult<()>
 where
-    F: Fn(&Model, &mut Scratch, &Rows<'_>, &mut [f64]) -> screwdyn::Result<()> + Sync,
+    F: Fn(&Model, &mut Scratch, usize, &mut [f64]) -> Result<(), BatchError> + Sync,
 {
     let r = match cache.try_lock() {
         Ok(mut guard) => {
             let s = guard.get_or_insert_with(|| Scratch::new(model));
-            kernel(model, s, rows, out)
+            chunk(model, s, 0, out)
         }
-        Err(_) => kernel(model, &mut Scratch::new(model), rows, out),
+        Err(_) => chunk(model, &mut Scratch::new(model), 0, out),
     };
-    r.map_err(|e| in_state(e, None))
+    // A single state's error is not prefixed with a state number.
+    r.map_err(|e| in_state(e.error, None))
 }

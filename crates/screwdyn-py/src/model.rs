@@ -1,7 +1,7 @@
 //! `screwdyn.Model`: loading, properties, pickling, and every per-state algorithm of the
 //! library (kinematics, Jacobians, dynamics, energies), single or batched.
 
-use crate::batch::{run, Rows, Scratch};
+use crate::batch::{run, run_lanes, Rows, Scratch};
 use crate::convert::{self, fixed_states, joint_states, ArrayIn, States};
 use crate::errors::{call_err, guard, load_err, ModelError};
 use crate::{analysis, sim};
@@ -68,6 +68,22 @@ impl PyModel {
             let v = joint_states(&self.model, &v, "v")?;
             let tau = joint_states(&self.model, &tau, "tau")?;
             let nq = self.model.nq();
+            if ext.is_none() && how == dynamics::ForwardMethod::Aba {
+                // Without wrenches, the library's batch ABA (eight states side by side).
+                return run_lanes(
+                    py,
+                    &self.model,
+                    &self.scratch,
+                    &[&q, &v, &tau],
+                    &[nq],
+                    threads,
+                    |m, ws, r, o| screwdyn::batch::aba(m, ws, r[0], r[1], r[2], o),
+                    |m, s, r, o| {
+                        put(o, dynamics::aba(m, &mut s.ws, r[0], r[1], r[2])?);
+                        Ok(())
+                    },
+                );
+            }
             run(
                 py,
                 &self.model,
@@ -874,6 +890,22 @@ impl PyModel {
             let v = self.opt(&v, "v")?;
             let a = self.opt(&a, "a")?;
             let nq = self.model.nq();
+            if ext.is_none() {
+                // Without wrenches, the library's batch RNEA (eight states side by side).
+                return run_lanes(
+                    py,
+                    &self.model,
+                    &self.scratch,
+                    &[&q, &v, &a],
+                    &[nq],
+                    threads,
+                    |m, ws, r, o| screwdyn::batch::rnea(m, ws, r[0], r[1], r[2], o),
+                    |m, s, r, o| {
+                        put(o, dynamics::rnea(m, &mut s.ws, r[0], r[1], r[2])?);
+                        Ok(())
+                    },
+                );
+            }
             run(
                 py,
                 &self.model,
@@ -903,13 +935,14 @@ impl PyModel {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
             let nq = self.model.nq();
-            run(
+            run_lanes(
                 py,
                 &self.model,
                 &self.scratch,
                 &[&q],
                 &[nq, nq],
                 threads,
+                |m, ws, r, o| screwdyn::batch::crba(m, ws, r[0], o),
                 |m, s, r, o| {
                     convert::write_rows(dynamics::crba(m, &mut s.ws, r[0])?, o);
                     Ok(())
@@ -984,13 +1017,14 @@ impl PyModel {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
             let nq = self.model.nq();
-            run(
+            run_lanes(
                 py,
                 &self.model,
                 &self.scratch,
                 &[&q],
                 &[nq],
                 threads,
+                |m, ws, r, o| screwdyn::batch::gravity_torque(m, ws, r[0], o),
                 |m, s, r, o| {
                     put(o, dynamics::gravity_torque(m, &mut s.ws, r[0])?);
                     Ok(())
@@ -1012,13 +1046,14 @@ impl PyModel {
             let q = joint_states(&self.model, &q, "q")?;
             let v = joint_states(&self.model, &v, "v")?;
             let nq = self.model.nq();
-            run(
+            run_lanes(
                 py,
                 &self.model,
                 &self.scratch,
                 &[&q, &v],
                 &[nq],
                 threads,
+                |m, ws, r, o| screwdyn::batch::nonlinear_effects(m, ws, r[0], r[1], o),
                 |m, s, r, o| {
                     put(o, dynamics::nonlinear_effects(m, &mut s.ws, r[0], r[1])?);
                     Ok(())

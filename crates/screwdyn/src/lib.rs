@@ -17,6 +17,7 @@
 //! assert_eq!(tip.translation.x, 2.0);
 //! ```
 
+pub mod batch;
 pub mod builtin;
 pub mod dynamics;
 mod error;

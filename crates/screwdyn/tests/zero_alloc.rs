@@ -112,6 +112,39 @@ fn check(model: &Model) {
     assert_eq!(count, 0, "{} allocated {count} times", model.name());
 }
 
+/// The batch functions, on a batch of 11 states (a group of eight and three alone).
+fn check_batch(model: &Model) {
+    use screwdyn::batch::{self, BatchWorkspace, Rows};
+    let n = model.nq();
+    let mut ws = BatchWorkspace::new(model);
+    let q: Vec<f64> = (0..11 * n).map(|i| 0.1 * i as f64).collect();
+    let v: Vec<f64> = (0..11 * n).map(|i| 0.3 - 0.01 * i as f64).collect();
+    let mut out = vec![0.0; 11 * n * n];
+    let mut run = |ws: &mut BatchWorkspace| {
+        let (q, v) = (Rows::Stacked(&q), Rows::Stacked(&v));
+        batch::rnea(model, ws, q, v, v, &mut out[..11 * n]).unwrap();
+        batch::gravity_torque(model, ws, q, &mut out[..11 * n]).unwrap();
+        batch::nonlinear_effects(model, ws, q, v, &mut out[..11 * n]).unwrap();
+        batch::crba(model, ws, q, &mut out).unwrap();
+        batch::aba(model, ws, q, v, v, &mut out[..11 * n]).unwrap();
+    };
+    run(&mut ws);
+    let count = allocations(|| run(&mut ws));
+    assert_eq!(
+        count,
+        0,
+        "batches on {} allocated {count} times",
+        model.name()
+    );
+}
+
+#[test]
+fn batch_functions_do_not_allocate() {
+    check_batch(&builtin::planar2());
+    let mut rng = StdRng::seed_from_u64(42);
+    check_batch(&common::random_tree(&mut rng, 7, true));
+}
+
 #[test]
 fn per_call_algorithms_do_not_allocate() {
     // The counter must see allocations at all (guards against a vacuous pass).

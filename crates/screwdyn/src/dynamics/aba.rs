@@ -49,6 +49,17 @@ pub fn aba<'w, T: Real>(
     articulated_body(model, ws, q, v, tau, None)
 }
 
+/// The error of an articulated inertia `d` at joint `i` that is not positive.
+#[cold]
+pub(crate) fn singular<T: Real>(model: &Model<T>, i: usize, d: T) -> Error {
+    Error::Numerical(format!(
+        "forward dynamics failed: the articulated inertia seen by joint '{}' is {:?}, so the \
+         mass matrix is singular (is the chain beyond it massless?)",
+        model.joints()[i].name,
+        d
+    ))
+}
+
 /// [`aba`] with external wrenches on the bodies (and tip wrenches); public as
 /// [`forward_dynamics`](super::forward_dynamics) with [`ForwardMethod::Aba`](super::ForwardMethod::Aba).
 #[multiversion::multiversion(targets(
@@ -133,12 +144,7 @@ pub(crate) fn articulated_body<'w, T: Real>(
         let d = s.dot(&u);
         // Written to also catch NaN.
         if d.partial_cmp(&tiny) != Some(std::cmp::Ordering::Greater) {
-            return Err(Error::Numerical(format!(
-                "forward dynamics failed: the articulated inertia seen by joint '{}' is {:?}, so \
-                 the mass matrix is singular (is the chain beyond it massless?)",
-                model.joints()[i].name,
-                d
-            )));
+            return Err(singular(model, i, d));
         }
         let small_u = tau[i] - s.dot(&biases[i]);
         // One division per joint: U / D and u / D are what pass 3 and the parent need.

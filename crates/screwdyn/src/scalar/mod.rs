@@ -27,3 +27,4 @@ pub fn real<T: Real>(x: f64) -> T {
 
 mod sin_cos;
 pub use sin_cos::{sin_cos, sin_cos_f64};
+pub(crate) use sin_cos::{sin_cos_reduced_fully, SIN_COS_MEDIUM};

@@ -87,6 +87,38 @@ pub fn sin_cos_f64(x: f64) -> (f64, f64) {
     }
 }
 
+/// `(sin x, cos x)` for `|x| < SIN_COS_MEDIUM` without a branch: the full three-piece
+/// reduction for every angle (more accurate than needed for most, never less), the same
+/// polynomials, and the quadrant chosen by selects. The batch kernels take it lane by lane
+/// ([`crate::batch::Lanes::sin_cos`]); the result is within one ulp of the exact value, and may
+/// differ from [`sin_cos_f64`] in the last bit.
+#[inline(always)]
+pub(crate) fn sin_cos_reduced_fully(x: f64) -> (f64, f64) {
+    // n = round(2x/π): its low bits are the low bits of the mantissa of x 2/π + 1.5·2⁵².
+    let shifted = x * INV_PIO2 + TO_INT;
+    let quadrant = shifted.to_bits();
+    let f = shifted - TO_INT;
+    let mut r = x - f * PIO2_1;
+    let mut w = f * PIO2_1T;
+    for (piece, tail) in [(PIO2_2, PIO2_2T), (PIO2_3, PIO2_3T)] {
+        let t = r;
+        w = f * piece;
+        r = t - w;
+        w = f * tail - ((t - r) - w);
+    }
+    let y0 = r - w;
+    let y1 = (r - y0) - w;
+    let (s, c) = (kernel_sin(y0, y1), kernel_cos(y0, y1));
+    // Quadrant 1 and 3 swap the two; 2 and 3 negate sin, 1 and 2 negate cos.
+    let (s, c) = if quadrant & 1 == 0 { (s, c) } else { (c, s) };
+    let sign_s = if quadrant & 2 == 0 { 1.0 } else { -1.0 };
+    let sign_c = if (quadrant + 1) & 2 == 0 { 1.0 } else { -1.0 };
+    (s * sign_s, c * sign_c)
+}
+
+/// Below this magnitude [`sin_cos_reduced_fully`] is exact in its reduction (`2²⁰ π/2`).
+pub(crate) const SIN_COS_MEDIUM: f64 = MEDIUM;
+
 /// The biased exponent of `x`.
 #[inline(always)]
 fn exponent(x: f64) -> i64 {

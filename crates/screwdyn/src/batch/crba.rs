@@ -1,0 +1,63 @@
+//! The composite-rigid-body algorithm on [`Lanes`](super::Lanes): [`dynamics::crba`] for `L`
+//! states at once, everything in the base frame as there.
+//!
+//! [`dynamics::crba`]: crate::dynamics::crba
+
+use super::lanes::Lanes;
+use super::spatial::{dot6, Composite};
+use super::{Buffers, LaneJoint};
+use crate::model::Model;
+
+/// `M(q)` for the states in `b.q`; writes `b.out[..n²]` (symmetric, so row- and column-major
+/// alike).
+///
+/// Forward kinematics `H_i^0 = H_λ^0 H_i^λ(q_i)`; composite inertias
+/// `𝔍ᶜ_i = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i} + Σ_children 𝔍ᶜ_c` (backward); base-frame screws
+/// `s_i = Ad_{H_i^0} S_i`; then `M_ki = s_kᵀ 𝔍ᶜ_i s_i` for every `k` supporting `i` (seed 000's
+/// `M = Sᵀ Lᵀ 𝔍 L S`).
+#[inline(always)]
+pub(super) fn crba<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut Buffers<L>) {
+    let n = model.nbodies();
+    let (parents, bodies, joints) = (
+        &model.parents()[..n],
+        &model.body_composite[..n],
+        &joints[..n],
+    );
+    let q = &b.q[..n];
+    let (piw, ci, s) = (
+        &mut b.pose_in_world[..n],
+        &mut b.composite[..n],
+        &mut b.screw[..n],
+    );
+    for i in 0..n {
+        let h = joints[i].pose_in_parent(q[i]);
+        piw[i] = match parents[i] {
+            Some(p) => piw[p].compose(&h),
+            None => h,
+        };
+        ci[i] = Composite::transformed(&bodies[i], &piw[i]);
+        s[i] = joints[i].act(&piw[i]);
+    }
+    for i in (0..n).rev() {
+        if let Some(p) = parents[i] {
+            let c = ci[i];
+            ci[p].add(&c);
+        }
+    }
+    let m = &mut b.out[..n * n];
+    if !model.is_chain {
+        // Bodies on different branches do not couple.
+        m.fill(Lanes::zero());
+    }
+    for i in 0..n {
+        let f = ci[i].apply(&s[i]);
+        m[i * n + i] = dot6(&s[i], &f);
+        let mut k = i;
+        while let Some(p) = parents[k] {
+            k = p;
+            let mki = dot6(&s[k], &f);
+            m[i * n + k] = mki;
+            m[k * n + i] = mki;
+        }
+    }
+}
