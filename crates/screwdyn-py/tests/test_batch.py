@@ -58,8 +58,12 @@ def test_batch_equals_per_state_calls(ur5, name):
     assert batch.shape == single.shape
     assert batch.dtype == np.float64
     if name in LANES:
-        scale = np.maximum(1.0, np.abs(single).max(axis=tuple(range(1, single.ndim)), keepdims=True))
-        assert np.abs(batch - single).max() / scale.min() < 1e-12
+        # Per state, relative to its largest entry (ABA of random torques reaches q̈ ~ 10⁴ through
+        # an ill-conditioned M, hence the looser bound there).
+        rows = (n, -1)
+        err = np.abs(batch - single).reshape(rows).max(axis=1)
+        scale = np.maximum(1.0, np.abs(single).reshape(rows).max(axis=1))
+        assert (err / scale).max() < (1e-11 if name == "aba" else 1e-13)
     else:
         np.testing.assert_array_equal(batch, single)
     np.testing.assert_array_equal(f(ur5, q, v, a, threads=1), batch)
