@@ -8,23 +8,11 @@ mod common;
 mod pinocchio;
 
 use common::{assert_close, random_tree, random_vec};
-use nalgebra::{Matrix3, Vector3, Vector6};
-use pinocchio::{dmatrix, load_fixture, ROBOTS};
+use pinocchio::{dmatrix, load_fixture, rel, ROBOTS};
 use rand::rngs::StdRng;
 use rand::SeedableRng;
 use screwdyn::batch::{self, BatchWorkspace, Rows};
-use screwdyn::model::JointSpec;
-use screwdyn::spatial::{Se3, SpatialInertia};
-use screwdyn::{builtin, dynamics, Error, Model, ModelBuilder, Workspace};
-
-/// `max |got − want| / max(1, |want|)`.
-fn rel(got: &[f64], want: &[f64]) -> f64 {
-    assert_eq!(got.len(), want.len());
-    got.iter()
-        .zip(want)
-        .map(|(g, w)| (g - w).abs() / w.abs().max(1.0))
-        .fold(0.0, f64::max)
-}
+use screwdyn::{builtin, dynamics, Error, Model, Workspace};
 
 /// The batch results of the five functions for stacked `q`, `v`, `a` (ABA takes `a` as τ).
 struct Results {
@@ -284,23 +272,7 @@ fn errors_name_the_state_and_say_what_is_wrong() {
 
 #[test]
 fn a_singular_mass_matrix_names_the_state_and_the_joint_as_the_per_call_aba_does() {
-    // A link without mass or inertia at the end of the chain: D = 0 at its joint.
-    let mut b = ModelBuilder::new("ghost");
-    b.strict(false).link(
-        "l1",
-        "base",
-        JointSpec::revolute("j1").screw_in_child(Vector6::new(0., 0., 1., 0., 0., 0.)),
-        Se3::identity(),
-        SpatialInertia::new(1.0, Vector3::new(0.5, 0.0, 0.0), Matrix3::identity() * 0.01),
-    );
-    b.link(
-        "l2",
-        "l1",
-        JointSpec::revolute("j2").screw_in_child(Vector6::new(0., 0., 1., 0., 0., 0.)),
-        Se3::from_translation(Vector3::new(1.0, 0.0, 0.0)),
-        SpatialInertia::zero(),
-    );
-    let m = b.build().unwrap();
+    let m = common::massless_tip();
     let mut ws = BatchWorkspace::new(&m);
     for states in [1, 8, 11] {
         let q: Vec<f64> = (0..2 * states).map(|k| 0.1 * k as f64).collect();

@@ -289,22 +289,7 @@ fn bad_input_is_an_error_not_a_panic() {
 
 #[test]
 fn massless_chain_is_a_numerical_error() {
-    let mut b = ModelBuilder::new("ghost");
-    b.strict(false).link(
-        "l1",
-        "base",
-        JointSpec::revolute("j1").screw_in_child(Vector6::new(0., 0., 1., 0., 0., 0.)),
-        Se3::identity(),
-        SpatialInertia::new(1.0, Vector3::new(0.5, 0.0, 0.0), Matrix3::identity() * 0.01),
-    );
-    b.link(
-        "l2",
-        "l1",
-        JointSpec::revolute("j2").screw_in_child(Vector6::new(0., 0., 1., 0., 0., 0.)),
-        Se3::from_translation(Vector3::new(1.0, 0.0, 0.0)),
-        SpatialInertia::zero(),
-    );
-    let model = b.build().unwrap();
+    let model = common::massless_tip();
     let mut ws = Workspace::new(&model);
     for method in [
         ForwardMethod::Aba,

@@ -7,19 +7,11 @@
 mod pinocchio;
 
 use nalgebra::{DMatrix, DVector};
-use pinocchio::{dmatrix, load_fixture, ROBOTS};
+use pinocchio::{dmatrix, load_fixture, rel, ROBOTS};
 use screwdyn::dynamics::*;
 use screwdyn::Workspace;
 
 const TOL: f64 = 1e-9;
-
-fn rel(got: &[f64], want: &[f64]) -> f64 {
-    assert_eq!(got.len(), want.len());
-    got.iter()
-        .zip(want)
-        .map(|(g, w)| (g - w).abs() / w.abs().max(1.0))
-        .fold(0.0, f64::max)
-}
 
 #[test]
 fn rnea_crba_gravity_and_nonlinear_effects_match_pinocchio() {

@@ -62,7 +62,7 @@ pub(super) fn aba<const L: usize>(
         bias_acc[i] = ci;
     }
     // Pass 2: articulated inertias, from the leaves to the root.
-    let tiny = model.inertia_scale() * f64::EPSILON * 64.0;
+    let tiny = crate::dynamics::singular_threshold(model.inertia_scale());
     for i in (0..n).rev() {
         let s = screws[i];
         let (before, from_i) = inertias.split_at_mut(i);

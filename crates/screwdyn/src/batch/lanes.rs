@@ -13,7 +13,7 @@
 //! build is SSE2; plain arrays inlined into run-time-dispatched clones reach AVX-512 without
 //! giving up portable builds.
 
-use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
+use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 /// `L` doubles, one per state, with element-wise arithmetic (see the module documentation).
 ///
@@ -54,16 +54,6 @@ impl<const L: usize> Lanes<L> {
         let mut r = self;
         for x in r.0.iter_mut() {
             *x = f(*x);
-        }
-        r
-    }
-
-    /// `f` applied lane by lane to `self` and `o`.
-    #[inline(always)]
-    pub fn zip(self, o: Self, f: impl Fn(f64, f64) -> f64) -> Self {
-        let mut r = self;
-        for (x, y) in r.0.iter_mut().zip(o.0) {
-            *x = f(*x, y);
         }
         r
     }
@@ -174,8 +164,6 @@ lane_op!(Sub, sub, SubAssign, sub_assign, -);
 lane_op!(Mul, mul, MulAssign, mul_assign, *);
 lane_op!(Div, div, DivAssign, div_assign, /);
 
-use std::ops::{DivAssign, MulAssign};
-
 impl<const L: usize> Neg for Lanes<L> {
     type Output = Self;
     #[inline(always)]
@@ -187,13 +175,7 @@ impl<const L: usize> Neg for Lanes<L> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Units in the last place between `a` and `b` at the scale of `b`.
-    fn ulps(a: f64, b: f64) -> f64 {
-        let scale = b.abs().max(1e-300);
-        let ulp = f64::from_bits(scale.to_bits() & 0x7ff0_0000_0000_0000) * f64::EPSILON;
-        (a - b).abs() / ulp
-    }
+    use crate::scalar::ulps;
 
     /// Lane-wise sine and cosine are within 2 ulp of glibc's (each within one of the exact
     /// value) over a million angles, at multiples of π/2 and beyond the fast range.

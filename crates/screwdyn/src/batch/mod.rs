@@ -469,8 +469,7 @@ fn gather<const L: usize>(
             }
             bad += *d * 0.0;
         }
-        if bad.0.iter().any(|&x| x != 0.0) {
-            let k = bad.0.iter().position(|&x| x != 0.0).unwrap_or(0);
+        if let Some(k) = bad.0.iter().position(|&x| x != 0.0) {
             return Err(BatchError {
                 state: Some(first + k),
                 error: model

@@ -15,19 +15,11 @@ pub type V6<const L: usize> = [Lanes<L>; 6];
 /// A 6×6 matrix of lanes, `m[row][col]`.
 pub type M6<const L: usize> = [[Lanes<L>; 6]; 6];
 
-/// `V̇_base = (0, −g)`: gravity as the base frame's acceleration (seed 000).
+/// `V̇_base = (0, −g)` ([`crate::dynamics::base_acceleration`]) in every lane.
 #[inline(always)]
 pub fn gravity_twist<const L: usize>(model: &crate::Model) -> V6<L> {
-    let g = model.gravity();
-    let z = Lanes::zero();
-    [
-        z,
-        z,
-        z,
-        Lanes::splat(-g.x),
-        Lanes::splat(-g.y),
-        Lanes::splat(-g.z),
-    ]
+    let b = crate::dynamics::base_acceleration(model);
+    each!(6, |k| Lanes::splat(b[k]))
 }
 
 /// All lanes zero.

@@ -1,11 +1,12 @@
 //! Forward dynamics by Featherstone's articulated-body algorithm (O(n)), in the seeds' notation.
 
+use super::cholesky::singular_threshold;
 use super::inputs::checked_poses;
 use super::rnea::base_acceleration;
 use super::wrenches::ExternalWrenches;
 use crate::error::{Error, Result};
 use crate::model::Model;
-use crate::scalar::{real, Real};
+use crate::scalar::Real;
 use crate::spatial::{ad, ad_transpose, Twist};
 use crate::workspace::Workspace;
 use nalgebra::DVector;
@@ -134,7 +135,7 @@ pub(crate) fn articulated_body<'w, T: Real>(
         biases[i] = p;
     }
     // Pass 2: articulated inertias, from the leaves to the root.
-    let tiny = model.inertia_scale() * T::default_epsilon() * real(64.0);
+    let tiny = singular_threshold(model.inertia_scale());
     for i in (0..n).rev() {
         let s = screws[i];
         // 𝔍ᴬ_i read in place, next to its parent's (whose index is below i) being written.

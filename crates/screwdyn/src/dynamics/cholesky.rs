@@ -7,12 +7,19 @@ use crate::model::Model;
 use crate::scalar::Real;
 use nalgebra::DMatrix;
 
+/// The smallest pivot (a Cholesky diagonal, an articulated inertia `D_i`) taken as positive,
+/// for entries of size `scale`: 64 ulp of it. Below it the mass matrix counts as singular.
+#[inline]
+pub(crate) fn singular_threshold<T: Real>(scale: T) -> T {
+    scale * T::default_epsilon() * crate::scalar::real(64.0)
+}
+
 /// In-place Cholesky factorisation `M = L Lᵀ` of the symmetric matrix in `a` (lower triangle
 /// overwritten with `L`). `Err(pivot index)` when `M` is not positive definite.
 pub(crate) fn cholesky_in_place<T: Real>(a: &mut DMatrix<T>) -> std::result::Result<(), usize> {
     let n = a.nrows();
     let scale = (0..n).fold(T::zero(), |s, i| s.max(a[(i, i)].abs()));
-    let tiny = scale * T::default_epsilon() * crate::scalar::real(64.0);
+    let tiny = singular_threshold(scale);
     for j in 0..n {
         let mut d = a[(j, j)];
         for k in 0..j {

@@ -131,7 +131,7 @@ pub(crate) fn invert_mass_matrix<T: Real>(model: &Model<T>, ws: &mut Workspace<T
     ws.cholesky.copy_from(&ws.mass_matrix);
     let a = &mut ws.cholesky.as_mut_slice()[..n * n];
     let scale = (0..n).fold(T::zero(), |s, i| s.max(a[i * n + i].abs()));
-    let tiny = scale * T::default_epsilon() * crate::scalar::real(64.0);
+    let tiny = super::cholesky::singular_threshold(scale);
     // Right-looking Cholesky: column j of L, then update the trailing lower triangle.
     for j in 0..n {
         let d = a[j * n + j];

@@ -35,6 +35,7 @@ mod wrenches;
 
 pub use aba::aba;
 pub(crate) use aba::singular as singular_articulated_inertia;
+pub(crate) use cholesky::singular_threshold;
 pub use classic_newton_euler::{classic_newton_euler, ClassicLink};
 pub use closed_form::{closed_form, ClosedForm, MAX_CLOSED_FORM_JOINTS};
 pub use coriolis::coriolis_matrix;

@@ -26,5 +26,7 @@ pub fn real<T: Real>(x: f64) -> T {
 }
 
 mod sin_cos;
+#[cfg(test)]
+pub(crate) use sin_cos::ulps;
 pub use sin_cos::{sin_cos, sin_cos_f64};
 pub(crate) use sin_cos::{sin_cos_reduced_fully, SIN_COS_MEDIUM};

@@ -184,17 +184,19 @@ fn kernel_cos(x: f64, y: f64) -> f64 {
     w + (((1.0 - w) - hz) + (z * r - x * y))
 }
 
+/// Units in the last place between `a` and `b`, measured at the scale of `b` (at least that of
+/// 2⁻¹⁰⁰⁰ so that results near zero are compared absolutely): the tests' measure of `sin_cos`
+/// here and of the lanes' in `batch`.
+#[cfg(test)]
+pub(crate) fn ulps(a: f64, b: f64) -> f64 {
+    let scale = b.abs().max(1e-300);
+    let ulp = f64::from_bits(scale.to_bits() & 0x7ff0_0000_0000_0000) * f64::EPSILON;
+    (a - b).abs() / ulp
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Units in the last place between `a` and `b`, measured at the scale of `b` (at least that
-    /// of 2⁻¹⁰⁰⁰ so that results near zero are compared absolutely).
-    fn ulps(a: f64, b: f64) -> f64 {
-        let scale = b.abs().max(1e-300);
-        let ulp = f64::from_bits(scale.to_bits() & 0x7ff0_0000_0000_0000) * f64::EPSILON;
-        (a - b).abs() / ulp
-    }
 
     /// Both functions are within one ulp of the exact value, so they differ by at most two.
     fn agree(x: f64) {

@@ -119,3 +119,24 @@ pub fn assert_close(a: &[f64], b: &[f64], tol: f64, what: &str) {
         );
     }
 }
+
+/// A two-link arm whose second link has no mass and no inertia: `D = 0` at its joint, so the
+/// mass matrix is singular in every state.
+pub fn massless_tip() -> Model {
+    let mut b = ModelBuilder::new("ghost");
+    b.strict(false).link(
+        "l1",
+        "base",
+        JointSpec::revolute("j1").screw_in_child(Vector6::new(0., 0., 1., 0., 0., 0.)),
+        Se3::identity(),
+        SpatialInertia::new(1.0, Vector3::new(0.5, 0.0, 0.0), Matrix3::identity() * 0.01),
+    );
+    b.link(
+        "l2",
+        "l1",
+        JointSpec::revolute("j2").screw_in_child(Vector6::new(0., 0., 1., 0., 0., 0.)),
+        Se3::from_translation(Vector3::new(1.0, 0.0, 0.0)),
+        SpatialInertia::zero(),
+    );
+    b.build().unwrap()
+}

@@ -271,3 +271,13 @@ pub fn load_fixture(name: &str) -> (Model, Fixture) {
     let model = build_model(&fx);
     (model, fx)
 }
+
+/// `max |got − want| / max(1, |want|)` over the entries: the relative error the fixture tests
+/// bound.
+pub fn rel(got: &[f64], want: &[f64]) -> f64 {
+    assert_eq!(got.len(), want.len());
+    got.iter()
+        .zip(want)
+        .map(|(g, w)| (g - w).abs() / w.abs().max(1.0))
+        .fold(0.0, f64::max)
+}
