@@ -1,5 +1,6 @@
 //! Per-state time of the batch kernels against a loop over the per-call functions, one thread:
-//! `cargo run --release --example batch_bench -- [robot] [states]` (BENCHMARKS.md, "Batches").
+//! `cargo run --release --example batch_bench -- [robot] [states] [rnea|crba|aba] [batch]`
+//! (BENCHMARKS.md, "Batches"); `batch` times the batch alone, for profiling.
 
 use screwdyn::batch::{self, BatchWorkspace, Rows};
 use screwdyn::{dynamics, Workspace};
@@ -34,6 +35,8 @@ fn main() {
     println!("| algorithm | per-call loop | batch | ratio |");
     println!("| --- | ---: | ---: | ---: |");
     let only = args.next();
+    // A fourth argument `batch` times the batch alone (for profiling it).
+    let batch_only = args.next().as_deref() == Some("batch");
     for name in ["rnea", "crba", "aba"] {
         if only.as_deref().is_some_and(|o| o != name) {
             continue;
@@ -41,7 +44,7 @@ fn main() {
         let (mut t_loop, mut t_batch) = (Vec::new(), Vec::new());
         for _ in 0..5 {
             let t0 = Instant::now();
-            for k in 0..states {
+            for k in (0..states).take(if batch_only { 0 } else { states }) {
                 let r = k * nq..(k + 1) * nq;
                 match name {
                     "rnea" => {
@@ -83,6 +86,10 @@ fn main() {
             t[t.len() / 2] * 1e9 / states as f64
         };
         let (l, b) = (med(&mut t_loop), med(&mut t_batch));
-        println!("| {name} | {l:.0} | {b:.0} | {:.2}× |", l / b);
+        if batch_only {
+            println!("| {name} | – | {b:.0} | – |");
+        } else {
+            println!("| {name} | {l:.0} | {b:.0} | {:.2}× |", l / b);
+        }
     }
 }

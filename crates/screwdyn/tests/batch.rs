@@ -24,8 +24,12 @@ struct Results {
 }
 
 fn all(m: &Model, q: &[f64], v: &[f64], a: &[f64]) -> Results {
-    let (nq, states) = (m.nq(), q.len() / m.nq());
-    let mut ws = BatchWorkspace::new(m);
+    all_with(m, BatchWorkspace::new(m), q, v, a)
+}
+
+fn all_with(m: &Model, mut ws: BatchWorkspace, q: &[f64], v: &[f64], a: &[f64]) -> Results {
+    let nq = m.nq();
+    let states = q.len() / nq;
     let (q, v, a) = (Rows::Stacked(q), Rows::Stacked(v), Rows::Stacked(a));
     let mut r = Results {
         tau: vec![0.0; states * nq],
@@ -145,6 +149,57 @@ fn batches_agree_with_the_per_call_algorithms_on_every_kind_of_joint() {
                 &format!("{what}: q̈"),
             );
         }
+    }
+}
+
+/// Without FMA instructions the batch runs state by state through the per-call functions:
+/// their results to the bit, errors included.
+#[test]
+fn state_by_state_gives_the_per_call_bits() {
+    let mut rng = StdRng::seed_from_u64(5);
+    let mut models: Vec<Model> = ["ur5", "branched"]
+        .iter()
+        .map(|n| builtin::load(n).unwrap())
+        .collect();
+    models.push(random_tree(&mut rng, 5, true));
+    for m in &models {
+        let (nq, states) = (m.nq(), 11);
+        let q = random_vec(&mut rng, states * nq, 4.0);
+        let v = random_vec(&mut rng, states * nq, 2.0);
+        let a = random_vec(&mut rng, states * nq, 2.0);
+        let r = all_with(m, BatchWorkspace::state_by_state(m), &q, &v, &a);
+        let mut ws = Workspace::new(m);
+        let zeros = vec![0.0; nq];
+        for k in 0..states {
+            let row = k * nq..(k + 1) * nq;
+            let (qk, vk, ak) = (&q[row.clone()], &v[row.clone()], &a[row.clone()]);
+            let tau = dynamics::rnea(m, &mut ws, qk, vk, ak).unwrap().clone();
+            assert_eq!(r.tau[row.clone()], tau.as_slice()[..]);
+            let g = dynamics::rnea(m, &mut ws, qk, &zeros, &zeros)
+                .unwrap()
+                .clone();
+            assert_eq!(r.gravity[row.clone()], g.as_slice()[..]);
+            let h = dynamics::rnea(m, &mut ws, qk, vk, &zeros).unwrap().clone();
+            assert_eq!(r.nle[row.clone()], h.as_slice()[..]);
+            let mm = dynamics::crba(m, &mut ws, qk).unwrap().transpose();
+            assert_eq!(r.mass[k * nq * nq..(k + 1) * nq * nq], mm.as_slice()[..]);
+            let qdd = dynamics::aba(m, &mut ws, qk, vk, ak).unwrap().clone();
+            assert_eq!(r.qdd[row], qdd.as_slice()[..]);
+        }
+        let mut bad = q.clone();
+        bad[3 * nq + 1] = f64::NAN;
+        let mut out = vec![0.0; states * nq];
+        let e = batch::rnea(
+            m,
+            &mut BatchWorkspace::state_by_state(m),
+            Rows::Stacked(&bad),
+            Rows::Stacked(&v),
+            Rows::Stacked(&a),
+            &mut out,
+        )
+        .unwrap_err();
+        assert_eq!(e.state, Some(3), "{e}");
+        assert!(e.to_string().contains("q"), "{e}");
     }
 }
 

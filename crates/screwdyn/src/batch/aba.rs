@@ -3,6 +3,7 @@
 //!
 //! [`dynamics::aba`]: crate::dynamics::aba
 
+use super::joint::sin_cos_all;
 use super::lanes::Lanes;
 use super::spatial::{
     ad, ad_transpose, add6, body_inertia_in, dot6, gravity_twist, mul6, scale6, zero6,
@@ -32,6 +33,9 @@ pub(super) fn aba<const L: usize>(
     let n = model.nbodies();
     let (parents, bodies, joints) = (&model.parents()[..n], &model.bodies()[..n], &joints[..n]);
     let (q, v, tau) = (&b.q[..n], &b.v[..n], &b.a[..n]);
+    let sc = &mut b.sin_cos[..n];
+    sin_cos_all(joints, q, sc);
+    let sc = &*sc;
     let piw = &mut b.pose_in_world[..n];
     let screws = &mut b.screw[..n];
     let twists = &mut b.twist[..n];
@@ -43,7 +47,7 @@ pub(super) fn aba<const L: usize>(
     let small_u_over_d = &mut b.articulated_joint_force[..n];
     // Pass 1: poses, twists, velocity-product accelerations, inertias and bias wrenches.
     for i in 0..n {
-        let h = joints[i].pose_in_parent(q[i]);
+        let h = joints[i].pose_in_parent(q[i], sc[i]);
         piw[i] = match parents[i] {
             Some(p) => piw[p].compose(&h),
             None => h,
@@ -82,13 +86,11 @@ pub(super) fn aba<const L: usize>(
         if let Some(p) = parents[i] {
             let parent = &mut before[p];
             *parent = each!(6, |r| each!(6, |c| parent[r][c]
-                + (ia[r][c] - ud[r] * u[c])));
+                + (-ud[r]).mul_add(u[c], ia[r][c])));
             let ci = bias_acc[i];
-            let pa = add6(
-                &add6(&biases[i], &mul6(ia, &ci)),
-                &scale6(&ud, small_u - dot6(&u, &ci)),
-            );
-            biases[p] = add6(&biases[p], &pa);
+            let pa = add6(&biases[i], &mul6(ia, &ci));
+            let k = small_u - dot6(&u, &ci);
+            biases[p] = each!(6, |r| biases[p][r] + ud[r].mul_add(k, pa[r]));
         }
     }
     // Pass 3: accelerations, from the root to the leaves.
@@ -104,7 +106,7 @@ pub(super) fn aba<const L: usize>(
         );
         let qdd = small_u_over_d[i] - dot6(&u_over_d[i], &a_par);
         out[i] = qdd;
-        accels[i] = add6(&a_par, &scale6(&screws[i], qdd));
+        accels[i] = each!(6, |k| screws[i][k].mul_add(qdd, a_par[k]));
     }
     Ok(())
 }

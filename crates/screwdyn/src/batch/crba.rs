@@ -3,6 +3,7 @@
 //!
 //! [`dynamics::crba`]: crate::dynamics::crba
 
+use super::joint::sin_cos_all;
 use super::lanes::Lanes;
 use super::spatial::{dot6, Composite};
 use super::{Buffers, LaneJoint};
@@ -11,10 +12,11 @@ use crate::model::Model;
 /// `M(q)` for the states in `b.q`; writes `b.out[..n²]` (symmetric, so row- and column-major
 /// alike).
 ///
-/// Forward kinematics `H_i^0 = H_λ^0 H_i^λ(q_i)`; composite inertias
-/// `𝔍ᶜ_i = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i} + Σ_children 𝔍ᶜ_c` (backward); base-frame screws
-/// `s_i = Ad_{H_i^0} S_i`; then `M_ki = s_kᵀ 𝔍ᶜ_i s_i` for every `k` supporting `i` (seed 000's
-/// `M = Sᵀ Lᵀ 𝔍 L S`).
+/// Forward: kinematics `H_i^0 = H_λ^0 H_i^λ(q_i)`, base-frame screws `s_i = Ad_{H_i^0} S_i`
+/// and body inertias `Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i}`. Backward, from the leaves: the composite
+/// `𝔍ᶜ_i` (its body's inertia plus its children's composites) is whole when body `i` is
+/// reached, so `M_ki = s_kᵀ 𝔍ᶜ_i s_i` for every `k` supporting `i` (seed 000's
+/// `M = Sᵀ Lᵀ 𝔍 L S`), then `𝔍ᶜ_i` is added to its parent's.
 #[inline(always)]
 pub(super) fn crba<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut Buffers<L>) {
     let n = model.nbodies();
@@ -24,13 +26,16 @@ pub(super) fn crba<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut 
         &joints[..n],
     );
     let q = &b.q[..n];
+    let sc = &mut b.sin_cos[..n];
+    sin_cos_all(joints, q, sc);
+    let sc = &*sc;
     let (piw, ci, s) = (
         &mut b.pose_in_world[..n],
         &mut b.composite[..n],
         &mut b.screw[..n],
     );
     for i in 0..n {
-        let h = joints[i].pose_in_parent(q[i]);
+        let h = joints[i].pose_in_parent(q[i], sc[i]);
         piw[i] = match parents[i] {
             Some(p) => piw[p].compose(&h),
             None => h,
@@ -38,18 +43,13 @@ pub(super) fn crba<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut 
         ci[i] = Composite::transformed(&bodies[i], &piw[i]);
         s[i] = joints[i].act(&piw[i]);
     }
-    for i in (0..n).rev() {
-        if let Some(p) = parents[i] {
-            let c = ci[i];
-            ci[p].add(&c);
-        }
-    }
     let m = &mut b.out[..n * n];
     if !model.is_chain {
         // Bodies on different branches do not couple.
         m.fill(Lanes::zero());
     }
-    for i in 0..n {
+    // From the leaves: 𝔍ᶜ_i is whole once its children (higher indices) have been added to it.
+    for i in (0..n).rev() {
         let f = ci[i].apply(&s[i]);
         m[i * n + i] = dot6(&s[i], &f);
         let mut k = i;
@@ -58,6 +58,10 @@ pub(super) fn crba<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut 
             let mki = dot6(&s[k], &f);
             m[i * n + k] = mki;
             m[k * n + i] = mki;
+        }
+        if let Some(p) = parents[i] {
+            let c = ci[i];
+            ci[p].add(&c);
         }
     }
 }

@@ -71,12 +71,26 @@ impl LaneJoint {
             .collect()
     }
 
-    /// `H_i^{λ(i)}(q)` in every lane.
+    /// `(sin, cos)` of the joint's angle at `q` (`±q` about an axis, `|ω| q` for a screw; zeros
+    /// for a prismatic joint, which has none), for [`LaneJoint::pose_in_parent`].
     #[inline(always)]
-    pub fn pose_in_parent<const L: usize>(&self, q: Lanes<L>) -> Pose<L> {
+    pub fn sin_cos<const L: usize>(&self, q: Lanes<L>) -> (Lanes<L>, Lanes<L>) {
         match self {
-            LaneJoint::Axis { axis, sign, home } => {
-                let (s, c) = (q * *sign).sin_cos();
+            LaneJoint::Axis { sign, .. } => (q * *sign).sin_cos(),
+            LaneJoint::Screw { pose, .. } if pose.rate != 0.0 => (q * pose.rate).sin_cos(),
+            LaneJoint::Screw { .. } => (Lanes::zero(), Lanes::zero()),
+        }
+    }
+
+    /// `H_i^{λ(i)}(q)` in every lane, given `(s, c)` = [`LaneJoint::sin_cos`]`(q)`.
+    #[inline(always)]
+    pub fn pose_in_parent<const L: usize>(
+        &self,
+        q: Lanes<L>,
+        (s, c): (Lanes<L>, Lanes<L>),
+    ) -> Pose<L> {
+        match self {
+            LaneJoint::Axis { axis, home, .. } => {
                 // R(0) Rot_k(θ): columns (i, j) of R(0) turn (as JointMotion::pose_in_parent).
                 let r0 = &home.rotation;
                 let r = match axis {
@@ -90,7 +104,7 @@ impl LaneJoint {
                     p: [Lanes::splat(t.x), Lanes::splat(t.y), Lanes::splat(t.z)],
                 }
             }
-            LaneJoint::Screw { pose, .. } => pose.at(q),
+            LaneJoint::Screw { pose, .. } => pose.at(q, s, c),
         }
     }
 
@@ -108,7 +122,7 @@ impl LaneJoint {
     pub fn dot<const L: usize>(&self, w: &V6<L>) -> Lanes<L> {
         match self {
             LaneJoint::Axis { axis, sign, .. } => w[*axis] * *sign,
-            LaneJoint::Screw { screw, .. } => sum!(6, |k| w[k] * screw[k]),
+            LaneJoint::Screw { screw, .. } => dot!(6, |k| w[k], screw[k]),
         }
     }
 
@@ -152,6 +166,20 @@ impl LaneJoint {
             }
             LaneJoint::Screw { screw, .. } => h.act_screw(screw),
         }
+    }
+}
+
+/// [`LaneJoint::sin_cos`] of every joint, `out[i]` for joint `i`: taken before the recursions,
+/// in a loop of its own, so that the joints' sines and cosines, which depend on `q` alone,
+/// are computed side by side by the processor rather than each waiting in the chain of poses.
+#[inline(always)]
+pub(super) fn sin_cos_all<const L: usize>(
+    joints: &[LaneJoint],
+    q: &[Lanes<L>],
+    out: &mut [(Lanes<L>, Lanes<L>)],
+) {
+    for ((j, &q), o) in joints.iter().zip(q).zip(out) {
+        *o = j.sin_cos(q);
     }
 }
 
@@ -211,9 +239,9 @@ impl ScrewPose {
         }
     }
 
-    /// The pose at `q` in every lane.
+    /// The pose at `q` in every lane, given `s`, `c` = `sin`, `cos` of `|ω| q`.
     #[inline(always)]
-    fn at<const L: usize>(&self, q: Lanes<L>) -> Pose<L> {
+    fn at<const L: usize>(&self, q: Lanes<L>, s: Lanes<L>, c: Lanes<L>) -> Pose<L> {
         let [r0, r1, r2] = &self.r;
         let [p0, p1, p2, p3] = &self.p;
         if self.rate == 0.0 {
@@ -222,7 +250,6 @@ impl ScrewPose {
                 p: each!(3, |i| q * p1[i] + p0[i]),
             };
         }
-        let (s, c) = (q * self.rate).sin_cos();
         Pose {
             r: each33!(|i, j| s * r1[(i, j)] + c * r2[(i, j)] + r0[(i, j)]),
             p: each!(3, |i| q * p1[i] + s * p2[i] + c * p3[i] + p0[i]),

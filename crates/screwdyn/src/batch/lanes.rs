@@ -3,9 +3,10 @@
 //! The batch kernels are the scalar algorithms written once over `Lanes<L>`: every `+`, `−`,
 //! `×`, `÷` acts on the `L` states side by side. The type is a plain array, so the compiler turns
 //! each operation into SIMD instructions of whatever width the CPU-specific clone it is inlined
-//! into allows (8 doubles in one AVX-512 register, 2 × 4 with AVX2, 4 × 2 with SSE2), while the
+//! into allows (8 doubles in one AVX-512 register, 2 × 4 with AVX2), while the
 //! result of every lane stays bit-for-bit what the same operations give on one `f64`: the
-//! operations are IEEE additions and multiplications applied in the same order, never fused or
+//! operations are IEEE additions, multiplications and fused multiply–adds
+//! ([`Lanes::mul_add`], where the kernels ask for them) applied in the same order, never
 //! reassociated. So `Lanes<1>` (one state) and `Lanes<8>` (eight) give identical numbers.
 //!
 //! Why not a SIMD crate: `std::simd` is nightly-only, and the stable crates (`wide`, simba's
@@ -13,6 +14,7 @@
 //! build is SSE2; plain arrays inlined into run-time-dispatched clones reach AVX-512 without
 //! giving up portable builds.
 
+use crate::scalar::Reduction;
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 /// `L` doubles, one per state, with element-wise arithmetic (see the module documentation).
@@ -32,6 +34,13 @@ impl<const L: usize> Default for Lanes<L> {
     #[inline(always)]
     fn default() -> Self {
         Self::splat(0.0)
+    }
+}
+
+impl<const L: usize> From<f64> for Lanes<L> {
+    #[inline(always)]
+    fn from(x: f64) -> Self {
+        Self::splat(x)
     }
 }
 
@@ -58,10 +67,13 @@ impl<const L: usize> Lanes<L> {
         r
     }
 
-    /// `(sin x, cos x)` of every lane, each within one unit in the last place: the reduction
-    /// and polynomials of [`crate::scalar::sin_cos_f64`] without its branches (the full
-    /// three-piece Cody–Waite reduction for every angle), so that the lanes compute side by
-    /// side. Angles beyond `|x| ≥ 2²⁰ π/2` (≈ 1.6·10⁶ rad), ±∞ and NaN go to `f64::sin_cos`.
+    /// `(sin x, cos x)` of every lane, each within one unit in the last place: the Cody–Waite
+    /// reduction and fdlibm polynomials of [`crate::scalar::sin_cos_f64`], lane by lane, with
+    /// fused multiply–adds, and its branches taken for the whole group: the second and third
+    /// pieces of `π/2` only when some lane's first-piece remainder cancelled (an angle within
+    /// about 2⁻¹⁶ of a multiple of `π/2`), and then kept only in those lanes, so every lane's
+    /// result depends on that lane alone. Angles beyond `|x| ≥ 2²⁰ π/2` (≈ 1.6·10⁶ rad), ±∞
+    /// and NaN go to `f64::sin_cos`.
     ///
     /// ```
     /// use screwdyn::batch::Lanes;
@@ -73,19 +85,42 @@ impl<const L: usize> Lanes<L> {
     /// ```
     #[inline(always)]
     pub fn sin_cos(self) -> (Self, Self) {
-        let (mut s, mut c) = (Self::zero(), Self::zero());
-        let mut outside = false;
-        for l in 0..L {
-            let x = self.0[l];
-            let (sl, cl) = crate::scalar::sin_cos_reduced_fully(x);
-            s.0[l] = sl;
-            c.0[l] = cl;
+        let mut red = [Reduction::default(); L];
+        let (mut cancelled, mut outside) = (false, false);
+        for (r, &x) in red.iter_mut().zip(&self.0) {
+            *r = Reduction::first(x);
+            cancelled |= r.cancelled(x);
             outside |= beyond_fast_range(x);
+        }
+        if cancelled {
+            further_pieces(self, &mut red);
+        }
+        let (mut s, mut c) = (Self::zero(), Self::zero());
+        for ((s, c), r) in s.0.iter_mut().zip(&mut c.0).zip(&red) {
+            (*s, *c) = r.sin_cos();
         }
         if outside {
             fix_large(self, &mut s, &mut c);
         }
         (s, c)
+    }
+
+    /// `self a + b` in every lane, rounded once (a fused multiply–add, as [`f64::mul_add`]):
+    /// one instruction for the eight lanes in the AVX-512 and AVX2 clones.
+    ///
+    /// ```
+    /// use screwdyn::batch::Lanes;
+    /// let x = Lanes([0.1, 3.0]);
+    /// assert_eq!(x.mul_add(10.0, Lanes([-1.0, 1.0])).0, [0.1_f64.mul_add(10.0, -1.0), 31.0]);
+    /// ```
+    #[inline(always)]
+    pub fn mul_add(self, a: impl Into<Self>, b: Self) -> Self {
+        let a = a.into();
+        let mut r = self;
+        for ((r, &a), &b) in r.0.iter_mut().zip(&a.0).zip(&b.0) {
+            *r = r.mul_add(a, b);
+        }
+        r
     }
 
     /// The smallest lane, NaN if any lane is NaN.
@@ -102,6 +137,18 @@ impl<const L: usize> Lanes<L> {
 #[inline(always)]
 fn beyond_fast_range(x: f64) -> bool {
     x.abs() >= crate::scalar::SIN_COS_MEDIUM || x.is_nan()
+}
+
+/// The second and third pieces of `π/2` for the lanes of `x` whose first-piece remainder
+/// cancelled.
+#[cold]
+#[inline(never)]
+fn further_pieces<const L: usize>(x: Lanes<L>, red: &mut [Reduction; L]) {
+    for (r, &x) in red.iter_mut().zip(&x.0) {
+        if r.cancelled(x) {
+            *r = r.rest();
+        }
+    }
 }
 
 /// The lanes of `x` too large for the fast reduction, through `f64::sin_cos`.
@@ -168,7 +215,11 @@ impl<const L: usize> Neg for Lanes<L> {
     type Output = Self;
     #[inline(always)]
     fn neg(self) -> Self {
-        self.map(|x| -x)
+        let mut r = self.0;
+        for x in r.iter_mut() {
+            *x = -*x;
+        }
+        Lanes(r)
     }
 }
 

@@ -12,9 +12,11 @@
 //! a state computed in a group of eight, alone (the last states of a batch, or
 //! `N = 1`), on any thread or CPU gives the same bits. The results agree with the per-call
 //! functions of [`crate::dynamics`] to round-off (a few units in the last place), not bit for
-//! bit: the lanes use a branch-free `sin`/`cos` ([`Lanes::sin_cos`]) and, for the few joints
-//! that are not a plain rotation about a frame axis, another but equivalent form of
-//! `e^{[S]q}`.
+//! bit: the lanes fuse the multiply–adds of dot products ([`Lanes::mul_add`]), use their own
+//! `sin`/`cos` ([`Lanes::sin_cos`]) and, for the few joints that are not a plain rotation about
+//! a frame axis, another but equivalent form of `e^{[S]q}`. On a CPU without fused
+//! multiply–add instructions the states go one by one through the per-call functions
+//! ([`BatchWorkspace::state_by_state`]).
 //!
 //! **Inputs** are [`Rows`]: `N` joint vectors stored one after the other (a row-major
 //! `(N, nq)` array), or one vector for every state. **Outputs** are row-major too: `(N, nq)`
@@ -111,15 +113,25 @@ macro_rules! each33 {
     };
 }
 
-/// `e(0) + e(1) + …` over `3` or `6` terms, in index order, written out.
-macro_rules! sum {
-    (3, |$k:ident| $e:expr) => {
-        { let $k = 0; $e } + { let $k = 1; $e } + { let $k = 2; $e }
-    };
-    (6, |$k:ident| $e:expr) => {
-        { let $k = 0; $e } + { let $k = 1; $e } + { let $k = 2; $e }
-            + { let $k = 3; $e } + { let $k = 4; $e } + { let $k = 5; $e }
-    };
+/// `Σ_k a(k) b(k)` over `3` or `6` terms in index order, each product added with one rounding
+/// ([`Lanes::mul_add`]); `dot!(n, |k| a, b; c)` starts the sum from `c` instead of the first
+/// product. `a(k)` must be lanes, `b(k)` lanes or a number.
+macro_rules! dot {
+    (3, |$k:ident| $a:expr, $b:expr $(; $c:expr)?) => {{
+        let acc = dot!(@first $k, $a, $b $(; $c)?);
+        let acc = { let $k = 1; ($a).mul_add($b, acc) };
+        { let $k = 2; ($a).mul_add($b, acc) }
+    }};
+    (6, |$k:ident| $a:expr, $b:expr $(; $c:expr)?) => {{
+        let acc = dot!(@first $k, $a, $b $(; $c)?);
+        let acc = { let $k = 1; ($a).mul_add($b, acc) };
+        let acc = { let $k = 2; ($a).mul_add($b, acc) };
+        let acc = { let $k = 3; ($a).mul_add($b, acc) };
+        let acc = { let $k = 4; ($a).mul_add($b, acc) };
+        { let $k = 5; ($a).mul_add($b, acc) }
+    }};
+    (@first $k:ident, $a:expr, $b:expr) => {{ let $k = 0; $a * $b }};
+    (@first $k:ident, $a:expr, $b:expr; $c:expr) => {{ let $k = 0; ($a).mul_add($b, $c) }};
 }
 
 mod aba;
@@ -196,6 +208,8 @@ struct Buffers<const L: usize> {
     v: Vec<Lanes<L>>,
     /// `q̈` for RNEA, `τ` for ABA.
     a: Vec<Lanes<L>>,
+    /// The joints' `(sin, cos)` ([`joint::sin_cos_all`]).
+    sin_cos: Vec<(Lanes<L>, Lanes<L>)>,
     pose_in_parent: Vec<Pose<L>>,
     pose_in_world: Vec<Pose<L>>,
     twist: Vec<V6<L>>,
@@ -218,6 +232,7 @@ impl<const L: usize> Buffers<L> {
             q: vec![Lanes::zero(); n],
             v: vec![Lanes::zero(); n],
             a: vec![Lanes::zero(); n],
+            sin_cos: vec![(Lanes::zero(), Lanes::zero()); n],
             pose_in_parent: vec![Pose::default(); n],
             pose_in_world: vec![Pose::default(); n],
             twist: vec![[Lanes::zero(); 6]; n],
@@ -250,17 +265,49 @@ pub struct BatchWorkspace {
     made_from: Vec<(JointMotion<f64>, Se3<f64>)>,
     group: Box<Buffers<LANES>>,
     single: Box<Buffers<1>>,
+    /// On a CPU without fused multiply–add instructions, the per-call functions' workspace
+    /// (state by state) and a vector of zeros for the inputs a call leaves out.
+    per_state: Option<(Box<crate::Workspace>, Vec<f64>)>,
 }
 
 impl BatchWorkspace {
     /// The workspace for `model`.
     pub fn new(model: &Model) -> Self {
+        BatchWorkspace::made(model, !fma_in_hardware())
+    }
+
+    /// A workspace that runs every state through the per-call functions of
+    /// [`crate::dynamics`], as [`BatchWorkspace::new`] does on a CPU without fused
+    /// multiply–add instructions (where the lanes' `mul_add` would be a library call): the
+    /// results are the per-call functions', bit for bit.
+    ///
+    /// ```
+    /// use screwdyn::batch::{self, BatchWorkspace, Rows};
+    /// use screwdyn::{dynamics, Workspace};
+    /// let m = screwdyn::builtin::load("ur5").unwrap();
+    /// let mut ws = BatchWorkspace::state_by_state(&m);
+    /// let q = [0.1, -0.4, 0.7, 0.2, 1.1, -0.3];
+    /// let mut mm = [0.0; 36];
+    /// batch::crba(&m, &mut ws, Rows::Stacked(&q), &mut mm).unwrap();
+    /// assert_eq!(mm[..], dynamics::crba(&m, &mut Workspace::new(&m), &q).unwrap().as_slice()[..]);
+    /// ```
+    pub fn state_by_state(model: &Model) -> Self {
+        BatchWorkspace::made(model, true)
+    }
+
+    fn made(model: &Model, state_by_state: bool) -> Self {
         let n = model.nbodies();
         BatchWorkspace {
             joints: LaneJoint::of(model),
             made_from: made_from(model),
             group: Box::new(Buffers::new(n)),
             single: Box::new(Buffers::new(n)),
+            per_state: state_by_state.then(|| {
+                (
+                    Box::new(crate::Workspace::new(model)),
+                    vec![0.0; model.nq()],
+                )
+            }),
         }
     }
 
@@ -298,6 +345,25 @@ fn made_from(model: &Model) -> Vec<(JointMotion<f64>, Se3<f64>)> {
         .zip(model.joints())
         .map(|(m, j)| (*m, j.home))
         .collect()
+}
+
+/// Whether `f64::mul_add` is one instruction here: checked at run time on x86 (FMA came with
+/// AVX2, 2013), known for the architectures that always have it.
+fn fma_in_hardware() -> bool {
+    #[cfg(any(target_arch = "x86_64", target_arch = "x86"))]
+    {
+        std::arch::is_x86_feature_detected!("fma")
+    }
+    #[cfg(not(any(target_arch = "x86_64", target_arch = "x86")))]
+    {
+        cfg!(any(
+            target_arch = "aarch64",
+            target_arch = "riscv64",
+            target_arch = "powerpc64",
+            target_arch = "s390x",
+            target_arch = "loongarch64"
+        ))
+    }
 }
 
 /// Which algorithm a batch call runs.
@@ -482,7 +548,9 @@ fn gather<const L: usize>(
 }
 
 /// Writes result `m` of lane `l` to `out[l width + m]`, for the lanes `out` has room for. Not
-/// inlined: a scalar copy is as fast as what the clones would make of it (gathers).
+/// inlined: a scalar copy is as fast as what the clones would make of it (gathers), and as
+/// fast as an AVX-512 8×8 transpose with vector stores (measured: the stores straddle cache
+/// lines, rows being 36 doubles long for a 6-joint mass matrix).
 #[inline(never)]
 fn scatter<const L: usize>(b: &Buffers<L>, width: usize, out: &mut [f64]) {
     let results = &b.out[..width];
@@ -519,8 +587,12 @@ fn run(
         joints,
         group,
         single,
+        per_state,
         ..
     } = ws;
+    if let Some((one_ws, zeros)) = per_state {
+        return state_by_state(algorithm, model, one_ws, zeros, &inputs, width, out);
+    }
     if states >= LANES {
         fill_same(model, &inputs, group);
     }
@@ -548,6 +620,37 @@ fn run(
     for o in chunks.into_remainder().chunks_exact_mut(width) {
         one(algorithm, model, joints, single, &inputs, first, width, o)?;
         first += 1;
+    }
+    Ok(())
+}
+
+/// [`run`] without lanes: every state through the per-call function.
+fn state_by_state(
+    algorithm: Algorithm,
+    model: &Model,
+    ws: &mut crate::Workspace,
+    zeros: &[f64],
+    inputs: &Inputs<'_>,
+    width: usize,
+    out: &mut [f64],
+) -> Result<(), BatchError> {
+    let nq = model.nq();
+    for (k, o) in out.chunks_exact_mut(width).enumerate() {
+        let [q, v, a] = inputs.map(|(rows, _)| match rows {
+            Some(Rows::Stacked(x)) => &x[k * nq..(k + 1) * nq],
+            Some(Rows::Same(x)) => x,
+            None => zeros,
+        });
+        let result = match algorithm {
+            Algorithm::Rnea => crate::dynamics::rnea(model, ws, q, v, a).map(|t| t.as_slice()),
+            // Symmetric: column-major is row-major.
+            Algorithm::Crba => crate::dynamics::crba(model, ws, q).map(|m| m.as_slice()),
+            Algorithm::Aba => crate::dynamics::aba(model, ws, q, v, a).map(|t| t.as_slice()),
+        };
+        o.copy_from_slice(result.map_err(|error| BatchError {
+            state: Some(k),
+            error,
+        })?);
     }
     Ok(())
 }

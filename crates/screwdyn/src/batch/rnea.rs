@@ -3,6 +3,7 @@
 //!
 //! [`dynamics::rnea`]: crate::dynamics::rnea
 
+use super::joint::sin_cos_all;
 use super::spatial::{ad_transpose, add6, apply_body_inertia, gravity_twist, sub6, zero6};
 use super::{Buffers, LaneJoint};
 use crate::model::Model;
@@ -18,6 +19,9 @@ pub(super) fn rnea<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut 
     let n = model.nbodies();
     let (parents, bodies, joints) = (&model.parents()[..n], &model.bodies()[..n], &joints[..n]);
     let (q, v, a) = (&b.q[..n], &b.v[..n], &b.a[..n]);
+    let sc = &mut b.sin_cos[..n];
+    sin_cos_all(joints, q, sc);
+    let sc = &*sc;
     let (pip, twist, accel, wrench) = (
         &mut b.pose_in_parent[..n],
         &mut b.twist[..n],
@@ -27,7 +31,7 @@ pub(super) fn rnea<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut 
     let base = gravity_twist(model);
     for i in 0..n {
         let j = &joints[i];
-        let h = j.pose_in_parent(q[i]);
+        let h = j.pose_in_parent(q[i], sc[i]);
         let (mut vi, mut vdi) = match parents[i] {
             Some(p) => (h.inv_act_twist(&twist[p]), h.inv_act_twist(&accel[p])),
             None => (zero6(), h.inv_act_twist(&base)),

@@ -50,9 +50,9 @@ pub fn join<const L: usize>(a: V3<L>, b: V3<L>) -> V6<L> {
 #[inline(always)]
 pub fn cross<const L: usize>(a: &V3<L>, b: &V3<L>) -> V3<L> {
     [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
+        a[1].mul_add(b[2], -(a[2] * b[1])),
+        a[2].mul_add(b[0], -(a[0] * b[2])),
+        a[0].mul_add(b[1], -(a[1] * b[0])),
     ]
 }
 
@@ -60,9 +60,9 @@ pub fn cross<const L: usize>(a: &V3<L>, b: &V3<L>) -> V3<L> {
 #[inline(always)]
 pub fn cross_const<const L: usize>(a: &[f64; 3], b: &V3<L>) -> V3<L> {
     [
-        b[2] * a[1] - b[1] * a[2],
-        b[0] * a[2] - b[2] * a[0],
-        b[1] * a[0] - b[0] * a[1],
+        b[2].mul_add(a[1], -(b[1] * a[2])),
+        b[0].mul_add(a[2], -(b[2] * a[0])),
+        b[1].mul_add(a[0], -(b[0] * a[1])),
     ]
 }
 
@@ -85,10 +85,10 @@ macro_rules! vector_ops {
         pub fn $scale<const L: usize>(a: &[Lanes<L>; $n], x: Lanes<L>) -> [Lanes<L>; $n] {
             each!($n, |k| a[k] * x)
         }
-        #[doc = concat!("`aᵀ b` for ", stringify!($n), "-vectors, summed in index order.")]
+        #[doc = concat!("`aᵀ b` for ", stringify!($n), "-vectors, summed in index order (fused).")]
         #[inline(always)]
         pub fn $dot<const L: usize>(a: &[Lanes<L>; $n], b: &[Lanes<L>; $n]) -> Lanes<L> {
-            sum!($n, |k| a[k] * b[k])
+            dot!($n, |k| a[k], b[k])
         }
     };
 }
@@ -110,14 +110,14 @@ impl<const L: usize> Pose<L> {
     #[inline(always)]
     pub fn rotate(&self, x: &V3<L>) -> V3<L> {
         let r = &self.r;
-        each!(3, |i| r[i][0] * x[0] + r[i][1] * x[1] + r[i][2] * x[2])
+        each!(3, |i| dot!(3, |k| r[i][k], x[k]))
     }
 
     /// `Rᵀ x`.
     #[inline(always)]
     pub fn rotate_back(&self, x: &V3<L>) -> V3<L> {
         let r = &self.r;
-        each!(3, |i| r[0][i] * x[0] + r[1][i] * x[1] + r[2][i] * x[2])
+        each!(3, |i| dot!(3, |k| r[k][i], x[k]))
     }
 
     /// `H₁ H₂`: `(R₁ R₂, R₁ p₂ + p₁)` ([`Se3::compose`](crate::spatial::Se3::compose)).
@@ -125,8 +125,8 @@ impl<const L: usize> Pose<L> {
     pub fn compose(&self, o: &Pose<L>) -> Pose<L> {
         let (a, b) = (&self.r, &o.r);
         Pose {
-            r: each33!(|i, j| a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j]),
-            p: add3(&self.rotate(&o.p), &self.p),
+            r: each33!(|i, j| dot!(3, |k| a[i][k], b[k][j])),
+            p: each!(3, |i| dot!(3, |k| a[i][k], o.p[k]; self.p[i])),
         }
     }
 
@@ -135,10 +135,7 @@ impl<const L: usize> Pose<L> {
     #[inline(always)]
     pub fn act_point_const(&self, x: &[f64; 3]) -> V3<L> {
         let (r, p) = (&self.r, &self.p);
-        each!(3, |i| r[i][0] * x[0]
-            + r[i][1] * x[1]
-            + r[i][2] * x[2]
-            + p[i])
+        each!(3, |i| dot!(3, |k| r[i][k], x[k]; p[i]))
     }
 
     /// `Ad_{H⁻¹} V = (Rᵀ ω, Rᵀ (v − p × ω))` ([`Se3::inv_act_twist`](crate::spatial::Se3::inv_act_twist)).
@@ -164,8 +161,8 @@ impl<const L: usize> Pose<L> {
     #[inline(always)]
     pub fn act_screw(&self, s: &[f64; 6]) -> V6<L> {
         let r = &self.r;
-        let w: V3<L> = each!(3, |i| r[i][0] * s[0] + r[i][1] * s[1] + r[i][2] * s[2]);
-        let rv: V3<L> = each!(3, |i| r[i][0] * s[3] + r[i][1] * s[4] + r[i][2] * s[5]);
+        let w: V3<L> = each!(3, |i| dot!(3, |k| r[i][k], s[k]));
+        let rv: V3<L> = each!(3, |i| dot!(3, |k| r[i][k], s[3 + k]));
         join(w, add3(&cross(&self.p, &w), &rv))
     }
 }
@@ -200,10 +197,7 @@ pub fn apply_body_inertia<const L: usize>(j: &SpatialInertia<f64>, v: &V6<L>) ->
     let p: V3<L> = each!(3, |k| (v[3 + k] - cw[k]) * j.mass);
     let ic = &j.inertia_com;
     let cp = cross_const(&c, &p);
-    let l = each!(3, |i| w[0] * ic[(i, 0)]
-        + w[1] * ic[(i, 1)]
-        + w[2] * ic[(i, 2)]
-        + cp[i]);
+    let l = each!(3, |i| dot!(3, |k| w[k], ic[(i, k)]; cp[i]));
     join(l, p)
 }
 
@@ -236,18 +230,19 @@ impl<const L: usize> Composite<L> {
     pub fn transformed(j: &CompositeInertia<f64>, h: &Pose<L>) -> Composite<L> {
         let (r, p, m) = (&h.r, &h.p, j.mass);
         let fm = [j.first_moment.x, j.first_moment.y, j.first_moment.z];
-        let rh: V3<L> = each!(3, |i| r[i][0] * fm[0] + r[i][1] * fm[1] + r[i][2] * fm[2]);
+        let rh: V3<L> = each!(3, |i| dot!(3, |k| r[i][k], fm[k]));
         let io = &j.inertia_origin;
         // R I_o, then (R I_o Rᵀ)_ab = Σ_k (R I_o)_ak R_bk.
-        let ri = each33!(|a, k| r[a][0] * io[(0, k)] + r[a][1] * io[(1, k)] + r[a][2] * io[(2, k)]);
-        let diag = dot3(&rh, p) * 2.0 + dot3(p, p) * m;
-        // Entry (a, b) of R I_o Rᵀ − p h'ᵀ − h' pᵀ − m p pᵀ.
+        let ri = each33!(|a, b| dot!(3, |k| r[a][k], io[(k, b)]));
+        let diag = dot3(p, p).mul_add(m, dot3(&rh, p) * 2.0);
+        // Entry (a, b) of R I_o Rᵀ − p h'ᵀ − h' pᵀ − m p pᵀ, as R I_o Rᵀ − p (h' + m p)ᵀ − h' pᵀ.
+        let hmp: V3<L> = each!(3, |k| rh[k] + p[k] * m);
         macro_rules! entry {
             ($a:expr, $b:expr) => {
-                ri[$a][0] * r[$b][0] + ri[$a][1] * r[$b][1] + ri[$a][2] * r[$b][2]
-                    - p[$a] * rh[$b]
-                    - rh[$a] * p[$b]
-                    - p[$a] * p[$b] * m
+                (-rh[$a]).mul_add(
+                    p[$b],
+                    (-p[$a]).mul_add(hmp[$b], dot!(3, |k| ri[$a][k], r[$b][k])),
+                )
             };
         }
         let (i01, i02, i12) = (entry!(0, 1), entry!(0, 2), entry!(1, 2));
@@ -258,7 +253,7 @@ impl<const L: usize> Composite<L> {
         );
         Composite {
             mass: m,
-            first_moment: each!(3, |k| rh[k] + p[k] * m),
+            first_moment: hmp,
             inertia_origin: [[i00, i01, i02], [i01, i11, i12], [i02, i12, i22]],
         }
     }
@@ -270,11 +265,8 @@ impl<const L: usize> Composite<L> {
         let io = &self.inertia_origin;
         let hl = cross(&self.first_moment, &l);
         let hw = cross(&self.first_moment, &w);
-        let a = each!(3, |i| io[i][0] * w[0]
-            + io[i][1] * w[1]
-            + io[i][2] * w[2]
-            + hl[i]);
-        let f = each!(3, |k| l[k] * self.mass - hw[k]);
+        let a = each!(3, |i| dot!(3, |k| io[i][k], w[k]; hl[i]));
+        let f = each!(3, |k| l[k].mul_add(self.mass, -hw[k]));
         join(a, f)
     }
 }
@@ -294,10 +286,10 @@ pub fn body_inertia_in<const L: usize>(
     let ic = &j.inertia_com;
     let m = j.mass;
     // A = R I_c; R I_c Rᵀ: row a of A dotted with row b of R.
-    let a = each33!(|i, k| r[i][0] * ic[(0, k)] + r[i][1] * ic[(1, k)] + r[i][2] * ic[(2, k)]);
+    let a = each33!(|i, b| dot!(3, |k| r[i][k], ic[(k, b)]));
     macro_rules! rot {
         ($i:expr, $b:expr) => {
-            a[$i][0] * r[$b][0] + a[$i][1] * r[$b][1] + a[$i][2] * r[$b][2]
+            dot!(3, |k| a[$i][k], r[$b][k])
         };
     }
     let (i01, i02, i12) = (rot!(0, 1), rot!(0, 2), rot!(1, 2));
@@ -312,10 +304,7 @@ pub fn body_inertia_in<const L: usize>(
     let cw = cross(&c, &w);
     let p: V3<L> = each!(3, |k| (v[3 + k] - cw[k]) * m);
     let cp = cross(&c, &p);
-    let l: V3<L> = each!(3, |i| ic_w[i][0] * w[0]
-        + ic_w[i][1] * w[1]
-        + ic_w[i][2] * w[2]
-        + cp[i]);
+    let l: V3<L> = each!(3, |i| dot!(3, |k| ic_w[i][k], w[k]; cp[i]));
     // About the origin: I_o = I_c + m (|c|² 1 − c cᵀ), h = m c; [h] upper right, [h]ᵀ lower left.
     let cc = dot3(&c, &c) * m;
     let hm: V3<L> = each!(3, |k| c[k] * m);

@@ -29,4 +29,4 @@ mod sin_cos;
 #[cfg(test)]
 pub(crate) use sin_cos::ulps;
 pub use sin_cos::{sin_cos, sin_cos_f64};
-pub(crate) use sin_cos::{sin_cos_reduced_fully, SIN_COS_MEDIUM};
+pub(crate) use sin_cos::{Reduction, SIN_COS_MEDIUM};

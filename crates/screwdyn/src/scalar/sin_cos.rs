@@ -71,14 +71,14 @@ const MEDIUM: f64 = 1_647_099.0;
 pub fn sin_cos_f64(x: f64) -> (f64, f64) {
     let ax = x.abs();
     if ax <= std::f64::consts::FRAC_PI_4 {
-        return (kernel_sin(x, 0.0), kernel_cos(x, 0.0));
+        return (kernel_sin::<false>(x, 0.0), kernel_cos::<false>(x, 0.0));
     }
     // Huge angles, ±∞ and NaN (for which the comparison is false).
     if ax.partial_cmp(&MEDIUM) != Some(std::cmp::Ordering::Less) {
         return x.sin_cos();
     }
     let (n, y0, y1) = reduce(x);
-    let (s, c) = (kernel_sin(y0, y1), kernel_cos(y0, y1));
+    let (s, c) = (kernel_sin::<false>(y0, y1), kernel_cos::<false>(y0, y1));
     match n & 3 {
         0 => (s, c),
         1 => (c, -s),
@@ -87,36 +87,78 @@ pub fn sin_cos_f64(x: f64) -> (f64, f64) {
     }
 }
 
-/// `(sin x, cos x)` for `|x| < SIN_COS_MEDIUM` without a branch: the full three-piece
-/// reduction for every angle (more accurate than needed for most, never less), the same
-/// polynomials, and the quadrant chosen by selects. The batch kernels take it lane by lane
-/// ([`crate::batch::Lanes::sin_cos`]); the result is within one ulp of the exact value, and may
-/// differ from [`sin_cos_f64`] in the last bit.
-#[inline(always)]
-pub(crate) fn sin_cos_reduced_fully(x: f64) -> (f64, f64) {
-    // n = round(2x/π): its low bits are the low bits of the mantissa of x 2/π + 1.5·2⁵².
-    let shifted = x * INV_PIO2 + TO_INT;
-    let quadrant = shifted.to_bits();
-    let f = shifted - TO_INT;
-    let mut r = x - f * PIO2_1;
-    let mut w = f * PIO2_1T;
-    for (piece, tail) in [(PIO2_2, PIO2_2T), (PIO2_3, PIO2_3T)] {
-        let t = r;
-        w = f * piece;
-        r = t - w;
-        w = f * tail - ((t - r) - w);
-    }
-    let y0 = r - w;
-    let y1 = (r - y0) - w;
-    let (s, c) = (kernel_sin(y0, y1), kernel_cos(y0, y1));
-    // Quadrant 1 and 3 swap the two; 2 and 3 negate sin, 1 and 2 negate cos.
-    let (s, c) = if quadrant & 1 == 0 { (s, c) } else { (c, s) };
-    let sign_s = if quadrant & 2 == 0 { 1.0 } else { -1.0 };
-    let sign_c = if (quadrant + 1) & 2 == 0 { 1.0 } else { -1.0 };
-    (s * sign_s, c * sign_c)
+/// The angle `x = n π/2 + r − w` after the first piece of `π/2`, for the batch kernels'
+/// `sin`/`cos` ([`crate::batch::Lanes::sin_cos`]), which take the steps below lane by lane:
+/// [`Reduction::first`], [`Reduction::cancelled`], [`Reduction::rest`] for the lanes that need
+/// it, then [`Reduction::sin_cos`]. The same scheme as [`sin_cos_f64`] (the second and third
+/// pieces together, where that takes them one by one), with every product that is added
+/// fused ([`f64::mul_add`]): one instruction with FMA, and never less accurate. Within one ulp
+/// of the exact values for `|x| < SIN_COS_MEDIUM`; may differ from [`sin_cos_f64`] in the
+/// last bit.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Reduction {
+    /// `n + 1.5·2⁵²`, whose low mantissa bits are those of `n`.
+    shifted: f64,
+    /// `n` as a double.
+    n: f64,
+    /// The remainder so far, and the part `w` of it still to subtract.
+    r: f64,
+    w: f64,
 }
 
-/// Below this magnitude [`sin_cos_reduced_fully`] is exact in its reduction (`2²⁰ π/2`).
+impl Reduction {
+    /// `n = round(2x/π)`, `r = x − n P₁`, `w = n P₁ₜ` (Cody–Waite's first piece `P₁` of `π/2`
+    /// and its tail `P₁ₜ`).
+    #[inline(always)]
+    pub(crate) fn first(x: f64) -> Reduction {
+        let shifted = x.mul_add(INV_PIO2, TO_INT);
+        let n = shifted - TO_INT;
+        // n P₁ is exact (n below 2²⁰, P₁ of 33 bits), so fusing changes nothing here.
+        Reduction {
+            shifted,
+            n,
+            r: (-n).mul_add(PIO2_1, x),
+            w: n * PIO2_1T,
+        }
+    }
+
+    /// Whether `r − w` lost more than 16 bits to cancellation against `x` (as [`reduce`]
+    /// decides): then the first piece is not enough.
+    #[inline(always)]
+    pub(crate) fn cancelled(&self, x: f64) -> bool {
+        exponent(x) - exponent(self.r - self.w) > 16
+    }
+
+    /// The second and third pieces, from `x − n P₁` again.
+    #[inline(always)]
+    pub(crate) fn rest(self) -> Reduction {
+        let (n, mut r) = (self.n, self.r);
+        let mut w = self.w;
+        for (piece, tail) in [(PIO2_2, PIO2_2T), (PIO2_3, PIO2_3T)] {
+            let t = r;
+            w = n * piece;
+            r = t - w;
+            w = n.mul_add(tail, -((t - r) - w));
+        }
+        Reduction { r, w, ..self }
+    }
+
+    /// `(sin x, cos x)` from the reduced angle: the polynomials, then the quadrant by selects.
+    #[inline(always)]
+    pub(crate) fn sin_cos(self) -> (f64, f64) {
+        let y0 = self.r - self.w;
+        let y1 = (self.r - y0) - self.w;
+        let (s, c) = (kernel_sin::<true>(y0, y1), kernel_cos::<true>(y0, y1));
+        // Quadrant 1 and 3 swap the two; 2 and 3 negate sin, 1 and 2 negate cos.
+        let quadrant = self.shifted.to_bits();
+        let (s, c) = if quadrant & 1 == 0 { (s, c) } else { (c, s) };
+        let sign_s = if quadrant & 2 == 0 { 1.0 } else { -1.0 };
+        let sign_c = if (quadrant + 1) & 2 == 0 { 1.0 } else { -1.0 };
+        (s * sign_s, c * sign_c)
+    }
+}
+
+/// Below this magnitude [`Reduction`] is exact (`2²⁰ π/2`).
 pub(crate) const SIN_COS_MEDIUM: f64 = MEDIUM;
 
 /// The biased exponent of `x`.
@@ -149,10 +191,20 @@ fn reduce(x: f64) -> (i64, f64, f64) {
     (n, y0, y1)
 }
 
-/// `sin(x + y)` for `|x| ≤ π/4`, `y` a tail below half an ulp of `x`: an odd polynomial of
-/// degree 13 (fdlibm's `__kernel_sin`).
+/// `a b + c`, fused (one rounding) when `FUSED`.
 #[inline(always)]
-fn kernel_sin(x: f64, y: f64) -> f64 {
+fn madd<const FUSED: bool>(a: f64, b: f64, c: f64) -> f64 {
+    if FUSED {
+        a.mul_add(b, c)
+    } else {
+        a * b + c
+    }
+}
+
+/// `sin(x + y)` for `|x| ≤ π/4`, `y` a tail below half an ulp of `x`: an odd polynomial of
+/// degree 13 (fdlibm's `__kernel_sin`), its products and sums fused when `FUSED`.
+#[inline(always)]
+fn kernel_sin<const FUSED: bool>(x: f64, y: f64) -> f64 {
     const S1: f64 = -1.666_666_666_666_663_2e-1;
     const S2: f64 = 8.333_333_333_322_49e-3;
     const S3: f64 = -1.984_126_982_985_795e-4;
@@ -161,15 +213,17 @@ fn kernel_sin(x: f64, y: f64) -> f64 {
     const S6: f64 = 1.589_690_995_211_55e-10;
     let z = x * x;
     let v = z * x;
-    let r = S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)));
+    let m = madd::<FUSED>;
+    let r = m(z, m(z, m(z, m(z, S6, S5), S4), S3), S2);
     // sin(x + y) ≈ sin x + y cos x, with cos x ≈ 1 − z/2 to the accuracy y needs.
-    x - ((z * (0.5 * y - v * r) - y) - v * S1)
+    x - m(-v, S1, m(z, m(-v, r, 0.5 * y), -y))
 }
 
 /// `cos(x + y)` for `|x| ≤ π/4`: an even polynomial of degree 14 (fdlibm's `__kernel_cos`),
-/// with `1 − z/2` added in two parts so no bit of it is lost.
+/// with `1 − z/2` added in two parts so no bit of it is lost; products and sums fused when
+/// `FUSED`.
 #[inline(always)]
-fn kernel_cos(x: f64, y: f64) -> f64 {
+fn kernel_cos<const FUSED: bool>(x: f64, y: f64) -> f64 {
     const C1: f64 = 4.166_666_666_666_66e-2;
     const C2: f64 = -1.388_888_888_887_411e-3;
     const C3: f64 = 2.480_158_728_947_673e-5;
@@ -178,10 +232,11 @@ fn kernel_cos(x: f64, y: f64) -> f64 {
     const C6: f64 = -1.135_964_755_778_819_5e-11;
     let z = x * x;
     let w = z * z;
-    let r = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6));
+    let m = madd::<FUSED>;
+    let r = m(z, m(z, m(z, C3, C2), C1), w * w * m(z, m(z, C6, C5), C4));
     let hz = 0.5 * z;
     let w = 1.0 - hz;
-    w + (((1.0 - w) - hz) + (z * r - x * y))
+    w + (((1.0 - w) - hz) + m(z, r, -(x * y)))
 }
 
 /// Units in the last place between `a` and `b`, measured at the scale of `b` (at least that of
