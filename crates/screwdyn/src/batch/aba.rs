@@ -33,9 +33,7 @@ pub(super) fn aba<const L: usize>(
     let n = model.nbodies();
     let (parents, bodies, joints) = (&model.parents()[..n], &model.bodies()[..n], &joints[..n]);
     let (q, v, tau) = (&b.q[..n], &b.v[..n], &b.a[..n]);
-    let sc = &mut b.sin_cos[..n];
-    sin_cos_all(joints, q, sc);
-    let sc = &*sc;
+    let sc = sin_cos_all(joints, q, &mut b.sin_cos);
     let piw = &mut b.pose_in_world[..n];
     let screws = &mut b.screw[..n];
     let twists = &mut b.twist[..n];

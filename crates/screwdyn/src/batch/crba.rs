@@ -26,9 +26,7 @@ pub(super) fn crba<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut 
         &joints[..n],
     );
     let q = &b.q[..n];
-    let sc = &mut b.sin_cos[..n];
-    sin_cos_all(joints, q, sc);
-    let sc = &*sc;
+    let sc = sin_cos_all(joints, q, &mut b.sin_cos);
     let (piw, ci, s) = (
         &mut b.pose_in_world[..n],
         &mut b.composite[..n],

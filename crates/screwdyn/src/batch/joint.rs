@@ -169,18 +169,21 @@ impl LaneJoint {
     }
 }
 
-/// [`LaneJoint::sin_cos`] of every joint, `out[i]` for joint `i`: taken before the recursions,
-/// in a loop of its own, so that the joints' sines and cosines, which depend on `q` alone,
-/// are computed side by side by the processor rather than each waiting in the chain of poses.
+/// [`LaneJoint::sin_cos`] of every joint, written to `out[i]` for joint `i` and returned:
+/// taken before the recursions, in a loop of its own, so that the joints' sines and cosines,
+/// which depend on `q` alone, are computed side by side by the processor rather than each
+/// waiting in the chain of poses.
 #[inline(always)]
-pub(super) fn sin_cos_all<const L: usize>(
+pub(super) fn sin_cos_all<'o, const L: usize>(
     joints: &[LaneJoint],
     q: &[Lanes<L>],
-    out: &mut [(Lanes<L>, Lanes<L>)],
-) {
-    for ((j, &q), o) in joints.iter().zip(q).zip(out) {
+    out: &'o mut [(Lanes<L>, Lanes<L>)],
+) -> &'o [(Lanes<L>, Lanes<L>)] {
+    let out = &mut out[..joints.len()];
+    for ((j, &q), o) in joints.iter().zip(q).zip(out.iter_mut()) {
         *o = j.sin_cos(q);
     }
+    out
 }
 
 /// `R` with columns `I`, `J` turned by the angle whose sine and cosine are `s`, `c`; the third

@@ -57,16 +57,6 @@ impl<const L: usize> Lanes<L> {
         Self::splat(0.0)
     }
 
-    /// `f` applied to every lane.
-    #[inline(always)]
-    pub fn map(self, f: impl Fn(f64) -> f64) -> Self {
-        let mut r = self;
-        for x in r.0.iter_mut() {
-            *x = f(*x);
-        }
-        r
-    }
-
     /// `(sin x, cos x)` of every lane, each within one unit in the last place: the Cody–Waite
     /// reduction and fdlibm polynomials of [`crate::scalar::sin_cos_f64`], lane by lane, with
     /// fused multiply–adds, and its branches taken for the whole group: the second and third
@@ -88,7 +78,7 @@ impl<const L: usize> Lanes<L> {
         let mut red = [Reduction::default(); L];
         let (mut cancelled, mut outside) = (false, false);
         for (r, &x) in red.iter_mut().zip(&self.0) {
-            *r = Reduction::first(x);
+            *r = Reduction::first::<true>(x);
             cancelled |= r.cancelled(x);
             outside |= beyond_fast_range(x);
         }

@@ -19,9 +19,7 @@ pub(super) fn rnea<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut 
     let n = model.nbodies();
     let (parents, bodies, joints) = (&model.parents()[..n], &model.bodies()[..n], &joints[..n]);
     let (q, v, a) = (&b.q[..n], &b.v[..n], &b.a[..n]);
-    let sc = &mut b.sin_cos[..n];
-    sin_cos_all(joints, q, sc);
-    let sc = &*sc;
+    let sc = sin_cos_all(joints, q, &mut b.sin_cos);
     let (pip, twist, accel, wrench) = (
         &mut b.pose_in_parent[..n],
         &mut b.twist[..n],

@@ -108,17 +108,31 @@ pub(crate) struct Reduction {
 
 impl Reduction {
     /// `n = round(2x/π)`, `r = x − n P₁`, `w = n P₁ₜ` (Cody–Waite's first piece `P₁` of `π/2`
-    /// and its tail `P₁ₜ`).
+    /// and its tail `P₁ₜ`), fused when `FUSED`.
     #[inline(always)]
-    pub(crate) fn first(x: f64) -> Reduction {
-        let shifted = x.mul_add(INV_PIO2, TO_INT);
+    pub(crate) fn first<const FUSED: bool>(x: f64) -> Reduction {
+        let shifted = madd::<FUSED>(x, INV_PIO2, TO_INT);
         let n = shifted - TO_INT;
         // n P₁ is exact (n below 2²⁰, P₁ of 33 bits), so fusing changes nothing here.
         Reduction {
             shifted,
             n,
-            r: (-n).mul_add(PIO2_1, x),
+            r: madd::<FUSED>(-n, PIO2_1, x),
             w: n * PIO2_1T,
+        }
+    }
+
+    /// The next piece `P` of `π/2` and its tail `Pₜ`, from `t = r`: `w = n P`, `r = t − w`,
+    /// then `w = n Pₜ − ((t − r) − w)`, the part of `n (P + Pₜ)` still to subtract.
+    #[inline(always)]
+    fn next_piece<const FUSED: bool>(self, piece: f64, tail: f64) -> Reduction {
+        let (n, t) = (self.n, self.r);
+        let w = n * piece;
+        let r = t - w;
+        Reduction {
+            r,
+            w: madd::<FUSED>(n, tail, -((t - r) - w)),
+            ..self
         }
     }
 
@@ -132,15 +146,8 @@ impl Reduction {
     /// The second and third pieces, from `x − n P₁` again.
     #[inline(always)]
     pub(crate) fn rest(self) -> Reduction {
-        let (n, mut r) = (self.n, self.r);
-        let mut w = self.w;
-        for (piece, tail) in [(PIO2_2, PIO2_2T), (PIO2_3, PIO2_3T)] {
-            let t = r;
-            w = n * piece;
-            r = t - w;
-            w = n.mul_add(tail, -((t - r) - w));
-        }
-        Reduction { r, w, ..self }
+        self.next_piece::<true>(PIO2_2, PIO2_2T)
+            .next_piece::<true>(PIO2_3, PIO2_3T)
     }
 
     /// `(sin x, cos x)` from the reduced angle: the polynomials, then the quadrant by selects.
@@ -170,25 +177,19 @@ fn exponent(x: f64) -> i64 {
 /// `x = n π/2 + y₀ + y₁` with `|y₀ + y₁| ≤ π/4` (Cody–Waite, up to three pieces of `π/2`).
 #[inline(always)]
 fn reduce(x: f64) -> (i64, f64, f64) {
-    let f = x * INV_PIO2 + TO_INT - TO_INT;
-    let n = f as i64;
-    let mut r = x - f * PIO2_1;
-    let mut w = f * PIO2_1T;
-    let mut y0 = r - w;
+    let mut red = Reduction::first::<false>(x);
+    let mut y0 = red.r - red.w;
     let ex = exponent(x);
     // While the last subtraction cancelled more than 16 (then 49) bits, take the next piece.
     for (piece, tail, cancelled) in [(PIO2_2, PIO2_2T, 16), (PIO2_3, PIO2_3T, 49)] {
         if ex - exponent(y0) <= cancelled {
             break;
         }
-        let t = r;
-        w = f * piece;
-        r = t - w;
-        w = f * tail - ((t - r) - w);
-        y0 = r - w;
+        red = red.next_piece::<false>(piece, tail);
+        y0 = red.r - red.w;
     }
-    let y1 = (r - y0) - w;
-    (n, y0, y1)
+    let y1 = (red.r - y0) - red.w;
+    (red.n as i64, y0, y1)
 }
 
 /// `a b + c`, fused (one rounding) when `FUSED`.
