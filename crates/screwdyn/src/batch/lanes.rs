@@ -75,19 +75,20 @@ impl<const L: usize> Lanes<L> {
     /// ```
     #[inline(always)]
     pub fn sin_cos(self) -> (Self, Self) {
-        let mut red = [Reduction::default(); L];
+        let mut red = Reductions::<L>::default();
         let (mut cancelled, mut outside) = (false, false);
-        for (r, &x) in red.iter_mut().zip(&self.0) {
-            *r = Reduction::first::<true>(x);
+        for (l, &x) in self.0.iter().enumerate() {
+            let r = Reduction::first::<true>(x);
             cancelled |= r.cancelled(x);
             outside |= beyond_fast_range(x);
+            red.set(l, r);
         }
         if cancelled {
             further_pieces(self, &mut red);
         }
         let (mut s, mut c) = (Self::zero(), Self::zero());
-        for ((s, c), r) in s.0.iter_mut().zip(&mut c.0).zip(&red) {
-            (*s, *c) = r.sin_cos();
+        for (l, (s, c)) in s.0.iter_mut().zip(&mut c.0).enumerate() {
+            (*s, *c) = red.get(l).sin_cos();
         }
         if outside {
             fix_large(self, &mut s, &mut c);
@@ -133,11 +134,50 @@ fn beyond_fast_range(x: f64) -> bool {
 /// cancelled.
 #[cold]
 #[inline(never)]
-fn further_pieces<const L: usize>(x: Lanes<L>, red: &mut [Reduction; L]) {
-    for (r, &x) in red.iter_mut().zip(&x.0) {
+fn further_pieces<const L: usize>(x: Lanes<L>, red: &mut Reductions<L>) {
+    for (l, &x) in x.0.iter().enumerate() {
+        let r = red.get(l);
         if r.cancelled(x) {
-            *r = r.rest();
+            red.set(l, r.rest());
         }
+    }
+}
+
+/// The [`Reduction`]s of `L` lanes, field by field, so that each field stays in one vector
+/// register (an array of the structs made the compiler shuffle them in and out).
+struct Reductions<const L: usize> {
+    shifted: [f64; L],
+    n: [f64; L],
+    r: [f64; L],
+    w: [f64; L],
+}
+
+impl<const L: usize> Default for Reductions<L> {
+    #[inline(always)]
+    fn default() -> Self {
+        Reductions {
+            shifted: [0.0; L],
+            n: [0.0; L],
+            r: [0.0; L],
+            w: [0.0; L],
+        }
+    }
+}
+
+impl<const L: usize> Reductions<L> {
+    #[inline(always)]
+    fn get(&self, l: usize) -> Reduction {
+        Reduction {
+            shifted: self.shifted[l],
+            n: self.n[l],
+            r: self.r[l],
+            w: self.w[l],
+        }
+    }
+
+    #[inline(always)]
+    fn set(&mut self, l: usize, red: Reduction) {
+        (self.shifted[l], self.n[l], self.r[l], self.w[l]) = (red.shifted, red.n, red.r, red.w);
     }
 }
 

@@ -98,12 +98,12 @@ pub fn sin_cos_f64(x: f64) -> (f64, f64) {
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Reduction {
     /// `n + 1.5·2⁵²`, whose low mantissa bits are those of `n`.
-    shifted: f64,
+    pub(crate) shifted: f64,
     /// `n` as a double.
-    n: f64,
+    pub(crate) n: f64,
     /// The remainder so far, and the part `w` of it still to subtract.
-    r: f64,
-    w: f64,
+    pub(crate) r: f64,
+    pub(crate) w: f64,
 }
 
 impl Reduction {
