@@ -9,9 +9,13 @@ Both libraries load the same robot file, models/ur5.urdf. Measured:
 
 1. per-call time from Python of rnea / crba / aba for one state, screwdyn (`ur5.rnea(q, v, a)`)
    against Pinocchio (`pin.rnea(model, data, q, v, a)`), median of repeated loops, the two alternating;
-2. batch throughput on N = 10⁶ UR5 states: screwdyn's batched call (all cores, GIL released)
-   against a Python loop over Pinocchio and against screwdyn's own single-thread loop in Rust
-   (`threads=1`).
+2. batch throughput on N = 10⁶ UR5 states, in rounds (`--rounds`) so that every ratio compares
+   times taken within a few seconds of each other: screwdyn's batched call (all cores, GIL
+   released) into a fresh array, the same call into a reused array (`out=`), and with
+   `threads=1` (each the median of three calls), then a Python loop over Pinocchio that
+   discards its results (`pin.crba(model, data, Q[k])`) and one that stores them in a
+   preallocated array (`out[k] = pin.crba(model, data, Q[k])`, what a user who keeps them
+   writes). Reported: the medians over the rounds of the times and of the per-round ratios.
 
 Without Pinocchio in the current interpreter, the script creates .venv-pybench/ in the
 repository root (git-ignored), installs `pin`, numpy and screwdyn (`pip install
@@ -71,6 +75,7 @@ def main():
     ap.add_argument("--states", type=int, default=1_000_000)
     ap.add_argument("--calls", type=int, default=20_000)
     ap.add_argument("--repeats", type=int, default=7)
+    ap.add_argument("--rounds", type=int, default=3, help="rounds of the batch comparison")
     ap.add_argument("--no-venv", action="store_true")
     ap.add_argument("--json", type=pathlib.Path, help="also write the results as JSON")
     args = ap.parse_args()
@@ -120,26 +125,44 @@ def main():
     Q, V, A = rng.uniform(-3, 3, (n, 6)), rng.normal(size=(n, 6)), rng.normal(size=(n, 6))
     T = ur5.rnea(Q, V, A)
     batch = {}
-    for name, ours, theirs_one, args_n in [
-        ("rnea", lambda th: ur5.rnea(Q, V, A, threads=th), lambda k: pin.rnea(model, data, Q[k], V[k], A[k]), (Q, V, A)),
-        ("crba", lambda th: ur5.crba(Q, threads=th), lambda k: pin.crba(model, data, Q[k]), (Q,)),
-        ("aba", lambda th: ur5.aba(Q, V, T, threads=th), lambda k: pin.aba(model, data, Q[k], V[k], T[k]), (Q, V, T)),
+    for name, ours, theirs_one, shape in [
+        ("rnea", lambda th, out=None: ur5.rnea(Q, V, A, threads=th, out=out),
+         lambda k: pin.rnea(model, data, Q[k], V[k], A[k]), (n, 6)),
+        ("crba", lambda th, out=None: ur5.crba(Q, threads=th, out=out),
+         lambda k: pin.crba(model, data, Q[k]), (n, 6, 6)),
+        ("aba", lambda th, out=None: ur5.aba(Q, V, T, threads=th, out=out),
+         lambda k: pin.aba(model, data, Q[k], V[k], T[k]), (n, 6)),
     ]:
-        # All cores and one thread alternate (5 repeats, median of per-repeat ratios); the
-        # Python loop over Pinocchio (seconds per pass) runs once.
-        t_all, t_one = alternating([lambda: ours(None), lambda: ours(1)], 5)
-        t0 = time.perf_counter()
-        # Python loop over Pinocchio on the same states (rows are NumPy views, as a user writes it)
-        for k in range(n):
-            theirs_one(k)
-        t_pin = time.perf_counter() - t0
+        out = np.empty(shape)
+        rounds = []
+        for _ in range(args.rounds):
+            # screwdyn: all cores into a fresh array, all cores into `out`, one thread (fresh);
+            # three calls each, alternating, median.
+            fresh, reused, one = (statistics.median(t) for t in alternating(
+                [lambda: ours(None), lambda: ours(None, out), lambda: ours(1)], 3))
+            # Python loops over Pinocchio on the same states (rows are NumPy views, as a user
+            # writes it): results discarded, then stored.
+            t0 = time.perf_counter()
+            for k in range(n):
+                theirs_one(k)
+            pin_loop = time.perf_counter() - t0
+            t0 = time.perf_counter()
+            for k in range(n):
+                out[k] = theirs_one(k)
+            pin_store = time.perf_counter() - t0
+            rounds.append((fresh, reused, one, pin_loop, pin_store))
+        med = lambda f: statistics.median(f(*r) for r in rounds)  # noqa: E731
         batch[name] = {
             "states": n,
-            "screwdyn_all_cores_s": statistics.median(t_all),
-            "screwdyn_one_thread_s": statistics.median(t_one),
-            "pinocchio_python_loop_s": t_pin,
-            "vs_pinocchio_loop": t_pin / statistics.median(t_all),
-            "vs_single_thread": ratio(t_one, t_all),
+            "rounds": args.rounds,
+            "screwdyn_all_cores_s": med(lambda f, u, o, p, s: f),
+            "screwdyn_all_cores_out_s": med(lambda f, u, o, p, s: u),
+            "screwdyn_one_thread_s": med(lambda f, u, o, p, s: o),
+            "pinocchio_python_loop_s": med(lambda f, u, o, p, s: p),
+            "pinocchio_python_loop_storing_s": med(lambda f, u, o, p, s: s),
+            "vs_pinocchio_loop": med(lambda f, u, o, p, s: p / f),
+            "out_vs_pinocchio_loop_storing": med(lambda f, u, o, p, s: s / u),
+            "vs_single_thread": med(lambda f, u, o, p, s: o / f),
         }
 
     info = {
@@ -160,14 +183,17 @@ def main():
     for k, r in per_call.items():
         print(f"| {k} | {r['screwdyn_ns']:.0f} | {r['pinocchio_ns']:.0f} | {r['ratio']:.2f} "
               f"| {r['screwdyn_best_ns']:.0f} | {r['pinocchio_best_ns']:.0f} | {r['best_ratio']:.2f} |")
-    print(f"\nBatch of {n} states (seconds)\n")
-    print("| function | screwdyn, all cores | screwdyn, 1 thread | Python loop over pinocchio "
-          "| vs pinocchio loop | vs 1 thread |")
-    print("| --- | ---: | ---: | ---: | ---: | ---: |")
+    print(f"\nBatch of {n} states (seconds; medians over {args.rounds} rounds of times and of "
+          "per-round ratios)\n")
+    print("| function | screwdyn, all cores | screwdyn, all cores, `out=` | screwdyn, 1 thread "
+          "| pinocchio loop | pinocchio loop storing | vs pinocchio loop | `out=` vs loop storing "
+          "| vs 1 thread |")
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     for k, r in batch.items():
-        print(f"| {k} | {r['screwdyn_all_cores_s']:.3f} | {r['screwdyn_one_thread_s']:.3f} | "
-              f"{r['pinocchio_python_loop_s']:.3f} | {r['vs_pinocchio_loop']:.1f}× | "
-              f"{r['vs_single_thread']:.2f}× |")
+        print(f"| {k} | {r['screwdyn_all_cores_s']:.3f} | {r['screwdyn_all_cores_out_s']:.3f} | "
+              f"{r['screwdyn_one_thread_s']:.3f} | {r['pinocchio_python_loop_s']:.3f} | "
+              f"{r['pinocchio_python_loop_storing_s']:.3f} | {r['vs_pinocchio_loop']:.1f}× | "
+              f"{r['out_vs_pinocchio_loop_storing']:.1f}× | {r['vs_single_thread']:.2f}× |")
     if args.json:
         args.json.write_text(json.dumps(info, indent=2))
 

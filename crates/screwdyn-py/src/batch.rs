@@ -2,12 +2,13 @@
 //! states are spread over rayon's threads, each with its own [`Workspace`] and
 //! [`BatchWorkspace`]. Per-state calls go through [`run`]; the library's batch functions
 //! ([`screwdyn::batch`]: RNEA, CRBA, ABA eight states at a time) through [`run_lanes`].
+//! Results go to a fresh array, or to the caller's `out=` array ([`Batch`]).
 
 use crate::convert::{batch_len, States};
 use crate::errors::in_state;
 use nalgebra::Matrix6xX;
 use numpy::ndarray::IxDyn;
-use numpy::{PyArrayDyn, PyArrayMethods};
+use numpy::{PyArrayDyn, PyArrayMethods, PyReadwriteArrayDyn};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyFloat;
@@ -33,6 +34,22 @@ impl Scratch {
     }
 }
 
+/// How a call runs: on `threads` threads (`None`: rayon's pool over all cores; `1`: the
+/// calling thread), into `out` (a float64 array of the result's shape, NumPy's `out=`
+/// convention) or, when `None`, into a fresh array.
+#[derive(Clone, Copy)]
+pub struct Batch<'a, 'py> {
+    pub threads: Option<usize>,
+    pub out: Option<&'a Bound<'py, PyAny>>,
+}
+
+impl Batch<'_, '_> {
+    /// On `threads` threads, into a fresh array.
+    pub fn threads(threads: Option<usize>) -> Self {
+        Batch { threads, out: None }
+    }
+}
+
 /// The rows of the arguments for one state (up to four arguments).
 pub type Rows<'a> = [&'a [f64]; 4];
 
@@ -51,15 +68,15 @@ pub fn check_threads(threads: Option<usize>) -> PyResult<Option<usize>> {
 
 /// Calls `kernel(model, scratch, rows, out)` for every state of `args` and returns the results,
 /// shaped `out_shape` for single arguments and `(N, *out_shape)` for stacked ones. Single
-/// arguments are broadcast against stacked ones. Batches run with the GIL released, on
-/// `threads` threads (`None`: rayon's pool over all cores; `1`: the calling thread).
+/// arguments are broadcast against stacked ones. Batches run with the GIL released, as `how`
+/// says ([`Batch`]).
 pub fn run<'py, F>(
     py: Python<'py>,
     model: &Model,
     cache: &Mutex<Option<Scratch>>,
     args: &[&States<'_>],
     out_shape: &[usize],
-    threads: Option<usize>,
+    how: Batch<'_, 'py>,
     kernel: F,
 ) -> PyResult<Bound<'py, PyAny>>
 where
@@ -80,7 +97,7 @@ where
         cache,
         args,
         out_shape,
-        threads,
+        how,
         |m, s, first, block| {
             for (j, o) in block.chunks_mut(width).enumerate() {
                 kernel(m, s, &rows(first + j), o).map_err(|e| BatchError {
@@ -106,7 +123,7 @@ pub fn run_lanes<'py, F, G>(
     cache: &Mutex<Option<Scratch>>,
     args: &[&States<'_>],
     out_shape: &[usize],
-    threads: Option<usize>,
+    how: Batch<'_, 'py>,
     f: F,
     one: G,
 ) -> PyResult<Bound<'py, PyAny>>
@@ -120,7 +137,7 @@ where
         "a batch function takes at most three joint vectors"
     );
     if batch_len(args)?.is_none() {
-        return run(py, model, cache, args, out_shape, threads, one);
+        return run(py, model, cache, args, out_shape, how, one);
     }
     let width: usize = out_shape.iter().product();
     run_chunks(
@@ -129,7 +146,7 @@ where
         cache,
         args,
         out_shape,
-        threads,
+        how,
         |m, s, first, block| {
             let states = block.len().checked_div(width).unwrap_or(0);
             let mut inputs = [LaneRows::Same(&[]); 3];
@@ -149,7 +166,8 @@ where
     )
 }
 
-/// The frame of [`run`] and [`run_lanes`]: allocates the result, releases the GIL and calls
+/// The frame of [`run`] and [`run_lanes`]: takes the result array (fresh, or `how.out` once
+/// its type, shape and layout are checked), releases the GIL and calls
 /// `chunk(model, scratch, first_state, out_block)` on consecutive blocks of states (all of them
 /// at once on one thread, [`CHUNK`] at a time over rayon's threads). Errors name the state.
 fn run_chunks<'py, F>(
@@ -158,16 +176,16 @@ fn run_chunks<'py, F>(
     cache: &Mutex<Option<Scratch>>,
     args: &[&States<'_>],
     out_shape: &[usize],
-    threads: Option<usize>,
+    how: Batch<'_, 'py>,
     chunk: F,
 ) -> PyResult<Bound<'py, PyAny>>
 where
     F: Fn(&Model, &mut Scratch, usize, &mut [f64]) -> Result<(), BatchError> + Sync,
 {
-    let threads = check_threads(threads)?;
+    let threads = check_threads(how.threads)?;
     let width: usize = out_shape.iter().product();
     let n = batch_len(args)?;
-    if n.is_none() && out_shape.is_empty() {
+    if n.is_none() && out_shape.is_empty() && how.out.is_none() {
         // One state, a scalar result: a Python float.
         let mut out = [0.0];
         single(model, cache, &mut out, &chunk)?;
@@ -175,13 +193,11 @@ where
     }
     let mut shape: Vec<usize> = n.into_iter().collect();
     shape.extend_from_slice(out_shape);
-    // The result is written straight into a fresh NumPy array (no copy, no reshape).
-    let arr = PyArrayDyn::<f64>::zeros(py, IxDyn(&shape), false);
-    // SAFETY: the array was just created, is C-contiguous and nothing else refers to it yet.
-    let out = unsafe { arr.as_slice_mut() }.expect("a fresh array is contiguous");
+    let mut target = Target::new(py, how.out, &shape)?;
+    let out = target.slice();
     let Some(n) = n else {
         single(model, cache, out, &chunk)?;
-        return Ok(arr.into_any());
+        return Ok(target.into_result());
     };
     let result = py.detach(|| -> Result<(), BatchError> {
         if width == 0 || n == 0 {
@@ -211,7 +227,44 @@ where
         }
     });
     result.map_err(|e| in_state(e.error, e.state))?;
-    Ok(arr.into_any())
+    Ok(target.into_result())
+}
+
+/// Where a call writes its result: a fresh array, or the caller's `out=` array, borrowed for
+/// writing (rust-numpy's borrow check refuses an `out` that shares memory with an input).
+enum Target<'py> {
+    Fresh(Bound<'py, PyArrayDyn<f64>>),
+    Given(Bound<'py, PyAny>, PyReadwriteArrayDyn<'py, f64>),
+}
+
+impl<'py> Target<'py> {
+    fn new(py: Python<'py>, out: Option<&Bound<'py, PyAny>>, shape: &[usize]) -> PyResult<Self> {
+        Ok(match out {
+            // The result is written straight into a fresh NumPy array (no copy, no reshape).
+            None => Target::Fresh(PyArrayDyn::<f64>::zeros(py, IxDyn(shape), false)),
+            Some(o) => Target::Given(o.clone(), crate::convert::out_array(o, shape)?),
+        })
+    }
+
+    /// The array's values, row-major.
+    fn slice(&mut self) -> &mut [f64] {
+        match self {
+            // SAFETY: the array was just created, is C-contiguous and nothing else refers to
+            // it yet.
+            Target::Fresh(a) => unsafe { a.as_slice_mut() }.expect("a fresh array is contiguous"),
+            Target::Given(_, a) => a
+                .as_slice_mut()
+                .expect("out_array checked that out is C-contiguous"),
+        }
+    }
+
+    /// What the call returns: the array (`out` itself when given, as NumPy's functions do).
+    fn into_result(self) -> Bound<'py, PyAny> {
+        match self {
+            Target::Fresh(a) => a.into_any(),
+            Target::Given(o, _) => o,
+        }
+    }
 }
 
 /// One state: reuses the model's cached workspaces (no allocation), or fresh ones if another

@@ -1,7 +1,10 @@
 //! NumPy in, NumPy out: shape checks with clear messages, stacked states, output arrays.
 
-use numpy::{AllowTypeChange, PyArrayLikeDyn, PyArrayMethods, PyUntypedArrayMethods};
-use pyo3::exceptions::PyValueError;
+use numpy::{
+    AllowTypeChange, BorrowError, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods, PyReadwriteArrayDyn,
+    PyUntypedArray, PyUntypedArrayMethods,
+};
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use screwdyn::Model;
 use std::borrow::Cow;
@@ -11,6 +14,7 @@ pub type ArrayIn<'py> = PyArrayLikeDyn<'py, f64, AllowTypeChange>;
 
 fn shape_text(shape: &[usize]) -> String {
     match shape {
+        [] => "()".into(),
         [n] => format!("({n},)"),
         _ => format!(
             "({})",
@@ -163,6 +167,46 @@ pub fn batch_len(args: &[&States<'_>]) -> PyResult<Option<usize>> {
         }
     }
     Ok(n.map(|(k, _)| k))
+}
+
+/// The `out=` argument of a call whose result has `shape`, borrowed for writing: a float64,
+/// C-contiguous, writeable NumPy array of exactly that shape that shares no memory with the
+/// call's array inputs. Anything else is refused with a sentence saying what was expected
+/// (`TypeError` for a non-array or another dtype, `ValueError` for the rest).
+pub fn out_array<'py>(
+    out: &Bound<'py, PyAny>,
+    shape: &[usize],
+) -> PyResult<PyReadwriteArrayDyn<'py, f64>> {
+    let expected = shape_text(shape);
+    let Ok(untyped) = out.cast::<PyUntypedArray>() else {
+        return Err(PyTypeError::new_err(format!(
+            "out must be a NumPy float64 array of shape {expected}, got {}",
+            out.get_type().name()?
+        )));
+    };
+    let Ok(arr) = out.cast::<PyArrayDyn<f64>>() else {
+        return Err(PyTypeError::new_err(format!(
+            "out has dtype {}, expected float64 (shape {expected})",
+            untyped.dtype()
+        )));
+    };
+    if arr.shape() != shape {
+        return Err(PyValueError::new_err(format!(
+            "out has shape {}, expected {expected}",
+            shape_text(arr.shape())
+        )));
+    }
+    if !arr.is_c_contiguous() {
+        return Err(PyValueError::new_err(
+            "out must be C-contiguous (a fresh np.empty array or a contiguous slice of rows)",
+        ));
+    }
+    arr.try_readwrite().map_err(|e| {
+        PyValueError::new_err(match e {
+            BorrowError::NotWriteable => "out is read-only".to_string(),
+            _ => "out shares memory with an input argument; pass a separate array".to_string(),
+        })
+    })
 }
 
 /// A float64 NumPy array of `shape` that takes ownership of `data` (no copy).

@@ -3,7 +3,7 @@
 //! batched. The Python layer (`screwdyn/__init__.py`) attaches them to `Model` and splits the
 //! stacked results into tuples.
 
-use crate::batch::{run, Rows};
+use crate::batch::{run, Batch, Rows};
 use crate::convert::{self, joint_states, vector, ArrayIn};
 use crate::errors::{call_err, guard};
 use crate::model::PyModel;
@@ -66,7 +66,7 @@ fn three_matrices<'py>(
             &model.scratch,
             &[&x0, &x1, &x2],
             &[3, n, n],
-            threads,
+            Batch::threads(threads),
             |m, s, r: &Rows<'_>, o| {
                 derivatives(m, &mut s.ws, r[0], r[1], r[2], ext.as_ref())?;
                 for (matrix, out) in pick(&s.ws).into_iter().zip(o.chunks_exact_mut(n * n)) {
@@ -154,7 +154,7 @@ fn _regressor<'py>(
             &model.scratch,
             &[&q, &v, &a],
             &[n, dynamics::PARAMETERS_PER_BODY * m.nbodies()],
-            threads,
+            Batch::threads(threads),
             |m, s, r: &Rows<'_>, o| {
                 convert::write_rows(dynamics::regressor(m, &mut s.ws, r[0], r[1], r[2])?, o);
                 Ok(())

@@ -1,7 +1,7 @@
 //! `screwdyn.Model`: loading, properties, pickling, and every per-state algorithm of the
 //! library (kinematics, Jacobians, dynamics, energies), single or batched.
 
-use crate::batch::{run, run_lanes, Rows, Scratch};
+use crate::batch::{run, run_lanes, Batch, Rows, Scratch};
 use crate::convert::{self, fixed_states, joint_states, ArrayIn, States};
 use crate::errors::{call_err, guard, load_err, ModelError};
 use crate::{analysis, sim};
@@ -31,7 +31,8 @@ enum Source {
 /// `(ω, v)` and `(m, f)`; units are SI and radians. Every per-state method takes one state
 /// (`q` of shape `(nq,)`) or `N` stacked states (`(N, nq)`) and returns stacked results then,
 /// computed in Rust over all cores with the GIL released (`threads=1` for the calling thread
-/// only). A single argument is broadcast against stacked ones.
+/// only). A single argument is broadcast against stacked ones. `out=` (NumPy's convention)
+/// writes the result into a float64, C-contiguous array of its exact shape, and returns it.
 #[pyclass(name = "Model", module = "screwdyn._screwdyn")]
 pub struct PyModel {
     pub model: Model,
@@ -61,6 +62,7 @@ impl PyModel {
         fext_world: Option<&Bound<'py, PyDict>>,
         tip_wrenches: Option<&Bound<'py, PyDict>>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let ext = self.wrenches(fext, fext_world, tip_wrenches)?;
@@ -76,7 +78,7 @@ impl PyModel {
                     &self.scratch,
                     &[&q, &v, &tau],
                     &[nq],
-                    threads,
+                    Batch { threads, out },
                     |m, ws, r, o| screwdyn::batch::aba(m, ws, r[0], r[1], r[2], o),
                     |m, s, r, o| {
                         put(o, dynamics::aba(m, &mut s.ws, r[0], r[1], r[2])?);
@@ -90,7 +92,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q, &v, &tau],
                 &[nq],
-                threads,
+                Batch { threads, out },
                 |m, s, r, o| {
                     put(
                         o,
@@ -626,13 +628,14 @@ impl PyModel {
 
     /// Pose `H_f^0(q)` of a frame (name or index) in the base frame: a `(4, 4)` homogeneous
     /// matrix, `(N, 4, 4)` for stacked `q`.
-    #[pyo3(signature = (q, frame, *, threads = None))]
+    #[pyo3(signature = (q, frame, *, threads = None, out = None))]
     fn frame_pose<'py>(
         &self,
         py: Python<'py>,
         q: ArrayIn<'py>,
         frame: &Bound<'py, PyAny>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let f = self.frame(frame)?;
@@ -643,7 +646,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q],
                 &[4, 4],
-                threads,
+                Batch { threads, out },
                 |m, s, r, o| {
                     kinematics::forward_kinematics(m, &mut s.ws, r[0])?;
                     convert::write_pose(&kinematics::frame_pose(m, &s.ws, f)?, o);
@@ -670,7 +673,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q],
                 &[nf, 4, 4],
-                threads,
+                Batch::threads(threads),
                 |m, s, r, o| {
                     kinematics::forward_kinematics(m, &mut s.ws, r[0])?;
                     for (f, of) in o.chunks_mut(16).enumerate() {
@@ -696,7 +699,7 @@ impl PyModel {
     /// `reference="world"` (the space Jacobian `J^{0,0}`, Pinocchio's WORLD), `"local"` (the body
     /// Jacobian `J_f^{f,0}`) or `"world-aligned"` (the frame origin's velocity in base axes,
     /// Pinocchio's LOCAL_WORLD_ALIGNED).
-    #[pyo3(signature = (q, frame, reference = "world", *, threads = None))]
+    #[pyo3(signature = (q, frame, reference = "world", *, threads = None, out = None))]
     fn frame_jacobian<'py>(
         &self,
         py: Python<'py>,
@@ -704,6 +707,7 @@ impl PyModel {
         frame: &Bound<'py, PyAny>,
         reference: &str,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let f = self.frame(frame)?;
@@ -716,7 +720,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q],
                 &[6, nq],
-                threads,
+                Batch { threads, out },
                 |m, s, r, o| {
                     kinematics::compute_joint_jacobians(m, &mut s.ws, r[0])?;
                     kinematics::frame_jacobian(m, &s.ws, f, rf, &mut s.jac)?;
@@ -729,13 +733,14 @@ impl PyModel {
 
     /// Seed 001's body Jacobian `J_i^{i,0}(q)` of a link (name or index), `(6, nq)`: block row `i`
     /// of the closed form's `J = L S`.
-    #[pyo3(signature = (q, link, *, threads = None))]
+    #[pyo3(signature = (q, link, *, threads = None, out = None))]
     fn link_jacobian<'py>(
         &self,
         py: Python<'py>,
         q: ArrayIn<'py>,
         link: &Bound<'py, PyAny>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let b = self.link(link)?;
@@ -747,7 +752,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q],
                 &[6, nq],
-                threads,
+                Batch { threads, out },
                 |m, s, r, o| {
                     kinematics::compute_joint_jacobians(m, &mut s.ws, r[0])?;
                     kinematics::link_jacobian(m, &s.ws, b, &mut s.jac)?;
@@ -760,7 +765,7 @@ impl PyModel {
 
     /// Twist `(ω, v)` of a frame at `(q, v)` in `reference` (world, local or world-aligned),
     /// shape `(6,)` or `(N, 6)`.
-    #[pyo3(signature = (q, v, frame, reference = "world", *, threads = None))]
+    #[pyo3(signature = (q, v, frame, reference = "world", *, threads = None, out = None))]
     #[allow(clippy::too_many_arguments)]
     fn frame_twist<'py>(
         &self,
@@ -770,6 +775,7 @@ impl PyModel {
         frame: &Bound<'py, PyAny>,
         reference: &str,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let f = self.frame(frame)?;
@@ -782,7 +788,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q, &v],
                 &[6],
-                threads,
+                Batch { threads, out },
                 |m, s, r, o| {
                     kinematics::forward_velocity(m, &mut s.ws, r[0], r[1])?;
                     o.copy_from_slice(kinematics::frame_twist(m, &s.ws, f, rf)?.as_slice());
@@ -794,7 +800,7 @@ impl PyModel {
 
     /// Acceleration of a frame at `(q, v, a)`: the derivative of `frame_twist`'s components in
     /// `reference` (world-aligned: the classical acceleration of the frame origin), `(6,)`.
-    #[pyo3(signature = (q, v, a, frame, reference = "world", *, threads = None))]
+    #[pyo3(signature = (q, v, a, frame, reference = "world", *, threads = None, out = None))]
     #[allow(clippy::too_many_arguments)]
     fn frame_acceleration<'py>(
         &self,
@@ -805,6 +811,7 @@ impl PyModel {
         frame: &Bound<'py, PyAny>,
         reference: &str,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let f = self.frame(frame)?;
@@ -818,7 +825,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q, &v, &a],
                 &[6],
-                threads,
+                Batch { threads, out },
                 |m, s, r, o| {
                     kinematics::forward_acceleration(m, &mut s.ws, r[0], r[1], r[2])?;
                     o.copy_from_slice(kinematics::frame_acceleration(m, &s.ws, f, rf)?.as_slice());
@@ -830,7 +837,7 @@ impl PyModel {
 
     /// `J̇(q, v) v` of a frame in `reference`: the frame acceleration at zero joint acceleration
     /// (the drift term of `ẍ = J q̈ + J̇ q̇`), `(6,)`.
-    #[pyo3(signature = (q, v, frame, reference = "world", *, threads = None))]
+    #[pyo3(signature = (q, v, frame, reference = "world", *, threads = None, out = None))]
     #[allow(clippy::too_many_arguments)]
     fn frame_jdot_qdot<'py>(
         &self,
@@ -840,6 +847,7 @@ impl PyModel {
         frame: &Bound<'py, PyAny>,
         reference: &str,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let f = self.frame(frame)?;
@@ -852,7 +860,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q, &v],
                 &[6],
-                threads,
+                Batch { threads, out },
                 |m, s, r, o| {
                     let x = kinematics::frame_jdot_qdot(m, &mut s.ws, r[0], r[1], f, rf)?;
                     o.copy_from_slice(x.as_slice());
@@ -871,7 +879,7 @@ impl PyModel {
     /// environment on the link, in the link frame; `fext_world={link: (6,)}` — the same in the
     /// base frame (moment about the base origin); `tip_wrenches={frame: (6,)}` — the wrench the
     /// frame applies to the environment, in that frame. Wrenches are `(m, f)`, moment first.
-    #[pyo3(signature = (q, v = None, a = None, *, fext = None, fext_world = None, tip_wrenches = None, threads = None))]
+    #[pyo3(signature = (q, v = None, a = None, *, fext = None, fext_world = None, tip_wrenches = None, threads = None, out = None))]
     #[allow(clippy::too_many_arguments)]
     fn rnea<'py>(
         &self,
@@ -883,6 +891,7 @@ impl PyModel {
         fext_world: Option<&Bound<'py, PyDict>>,
         tip_wrenches: Option<&Bound<'py, PyDict>>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let ext = self.wrenches(fext, fext_world, tip_wrenches)?;
@@ -898,7 +907,7 @@ impl PyModel {
                     &self.scratch,
                     &[&q, &v, &a],
                     &[nq],
-                    threads,
+                    Batch { threads, out },
                     |m, ws, r, o| screwdyn::batch::rnea(m, ws, r[0], r[1], r[2], o),
                     |m, s, r, o| {
                         put(o, dynamics::rnea(m, &mut s.ws, r[0], r[1], r[2])?);
@@ -912,7 +921,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q, &v, &a],
                 &[nq],
-                threads,
+                Batch { threads, out },
                 |m, s, r: &Rows<'_>, o| {
                     put(
                         o,
@@ -925,12 +934,13 @@ impl PyModel {
     }
 
     /// Joint-space mass matrix `M(q)` by the composite-rigid-body algorithm, `(nq, nq)`.
-    #[pyo3(signature = (q, *, threads = None))]
+    #[pyo3(signature = (q, *, threads = None, out = None))]
     fn crba<'py>(
         &self,
         py: Python<'py>,
         q: ArrayIn<'py>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
@@ -941,7 +951,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q],
                 &[nq, nq],
-                threads,
+                Batch { threads, out },
                 |m, ws, r, o| screwdyn::batch::crba(m, ws, r[0], o),
                 |m, s, r, o| {
                     convert::write_rows(dynamics::crba(m, &mut s.ws, r[0])?, o);
@@ -952,12 +962,13 @@ impl PyModel {
     }
 
     /// `M(q)⁻¹` (CRBA and a Cholesky factorisation), `(nq, nq)`.
-    #[pyo3(signature = (q, *, threads = None))]
+    #[pyo3(signature = (q, *, threads = None, out = None))]
     fn mass_matrix_inverse<'py>(
         &self,
         py: Python<'py>,
         q: ArrayIn<'py>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
@@ -968,7 +979,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q],
                 &[nq, nq],
-                threads,
+                Batch { threads, out },
                 |m, s, r, o| {
                     convert::write_rows(dynamics::mass_matrix_inverse(m, &mut s.ws, r[0])?, o);
                     Ok(())
@@ -979,13 +990,14 @@ impl PyModel {
 
     /// The Coriolis matrix `C(q, v)` whose `Ṁ − 2C` is skew-symmetric (Christoffel symbols of
     /// the first kind), `(nq, nq)`.
-    #[pyo3(signature = (q, v, *, threads = None))]
+    #[pyo3(signature = (q, v, *, threads = None, out = None))]
     fn coriolis_matrix<'py>(
         &self,
         py: Python<'py>,
         q: ArrayIn<'py>,
         v: ArrayIn<'py>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
@@ -997,7 +1009,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q, &v],
                 &[nq, nq],
-                threads,
+                Batch { threads, out },
                 |m, s, r, o| {
                     convert::write_rows(dynamics::coriolis_matrix(m, &mut s.ws, r[0], r[1])?, o);
                     Ok(())
@@ -1007,12 +1019,13 @@ impl PyModel {
     }
 
     /// Gravity torques `g(q)` (N·m / N), `(nq,)`.
-    #[pyo3(signature = (q, *, threads = None))]
+    #[pyo3(signature = (q, *, threads = None, out = None))]
     fn gravity_torque<'py>(
         &self,
         py: Python<'py>,
         q: ArrayIn<'py>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
@@ -1023,7 +1036,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q],
                 &[nq],
-                threads,
+                Batch { threads, out },
                 |m, ws, r, o| screwdyn::batch::gravity_torque(m, ws, r[0], o),
                 |m, s, r, o| {
                     put(o, dynamics::gravity_torque(m, &mut s.ws, r[0])?);
@@ -1034,13 +1047,14 @@ impl PyModel {
     }
 
     /// Nonlinear effects `C(q, v) v + g(q)`, `(nq,)`.
-    #[pyo3(signature = (q, v, *, threads = None))]
+    #[pyo3(signature = (q, v, *, threads = None, out = None))]
     fn nonlinear_effects<'py>(
         &self,
         py: Python<'py>,
         q: ArrayIn<'py>,
         v: ArrayIn<'py>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
@@ -1052,7 +1066,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q, &v],
                 &[nq],
-                threads,
+                Batch { threads, out },
                 |m, ws, r, o| screwdyn::batch::nonlinear_effects(m, ws, r[0], r[1], o),
                 |m, s, r, o| {
                     put(o, dynamics::nonlinear_effects(m, &mut s.ws, r[0], r[1])?);
@@ -1065,7 +1079,7 @@ impl PyModel {
     /// Forward dynamics `a = M⁻¹ (τ − C v − g + Σ J_iᵀ W_ext,i)`: `method="aba"` (Featherstone's
     /// articulated-body algorithm), `"crba"` (CRBA + Cholesky) or `"walker-orin"` (seed 004 §6.4).
     /// External wrenches as in `rnea`. A singular mass matrix raises ValueError naming the joint.
-    #[pyo3(signature = (q, v, tau, *, method = "aba", fext = None, fext_world = None, tip_wrenches = None, threads = None))]
+    #[pyo3(signature = (q, v, tau, *, method = "aba", fext = None, fext_world = None, tip_wrenches = None, threads = None, out = None))]
     #[allow(clippy::too_many_arguments)]
     fn forward_dynamics<'py>(
         &self,
@@ -1078,14 +1092,26 @@ impl PyModel {
         fext_world: Option<&Bound<'py, PyDict>>,
         tip_wrenches: Option<&Bound<'py, PyDict>>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let how = self::method(method)?;
-        self.forward(py, q, v, tau, how, fext, fext_world, tip_wrenches, threads)
+        self.forward(
+            py,
+            q,
+            v,
+            tau,
+            how,
+            fext,
+            fext_world,
+            tip_wrenches,
+            threads,
+            out,
+        )
     }
 
     /// Forward dynamics by the articulated-body algorithm (Featherstone): `forward_dynamics(…,
     /// method="aba")`, q̈ (rad/s²) of shape `(nq,)` or `(N, nq)`. External wrenches as in `rnea`.
-    #[pyo3(signature = (q, v, tau, *, fext = None, fext_world = None, tip_wrenches = None, threads = None))]
+    #[pyo3(signature = (q, v, tau, *, fext = None, fext_world = None, tip_wrenches = None, threads = None, out = None))]
     #[allow(clippy::too_many_arguments)]
     fn aba<'py>(
         &self,
@@ -1097,19 +1123,32 @@ impl PyModel {
         fext_world: Option<&Bound<'py, PyDict>>,
         tip_wrenches: Option<&Bound<'py, PyDict>>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let how = dynamics::ForwardMethod::Aba;
-        self.forward(py, q, v, tau, how, fext, fext_world, tip_wrenches, threads)
+        self.forward(
+            py,
+            q,
+            v,
+            tau,
+            how,
+            fext,
+            fext_world,
+            tip_wrenches,
+            threads,
+            out,
+        )
     }
 
     /// Kinetic energy `½ Σ V_iᵀ 𝔍_i V_i` (J): a float, `(N,)` for stacked states.
-    #[pyo3(signature = (q, v, *, threads = None))]
+    #[pyo3(signature = (q, v, *, threads = None, out = None))]
     fn kinetic_energy<'py>(
         &self,
         py: Python<'py>,
         q: ArrayIn<'py>,
         v: ArrayIn<'py>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
@@ -1120,7 +1159,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q, &v],
                 &[],
-                threads,
+                Batch { threads, out },
                 |m, s, r, o| {
                     o[0] = dynamics::kinetic_energy(m, &mut s.ws, r[0], r[1])?;
                     Ok(())
@@ -1130,12 +1169,13 @@ impl PyModel {
     }
 
     /// Potential energy `−Σ m_i gᵀ c_i` (J), zero at the base origin.
-    #[pyo3(signature = (q, *, threads = None))]
+    #[pyo3(signature = (q, *, threads = None, out = None))]
     fn potential_energy<'py>(
         &self,
         py: Python<'py>,
         q: ArrayIn<'py>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
@@ -1145,7 +1185,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q],
                 &[],
-                threads,
+                Batch { threads, out },
                 |m, s, r, o| {
                     o[0] = dynamics::potential_energy(m, &mut s.ws, r[0])?;
                     Ok(())
@@ -1155,13 +1195,14 @@ impl PyModel {
     }
 
     /// Kinetic plus potential energy (J).
-    #[pyo3(signature = (q, v, *, threads = None))]
+    #[pyo3(signature = (q, v, *, threads = None, out = None))]
     fn total_energy<'py>(
         &self,
         py: Python<'py>,
         q: ArrayIn<'py>,
         v: ArrayIn<'py>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
@@ -1172,7 +1213,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q, &v],
                 &[],
-                threads,
+                Batch { threads, out },
                 |m, s, r, o| {
                     o[0] = dynamics::total_energy(m, &mut s.ws, r[0], r[1])?;
                     Ok(())
@@ -1182,13 +1223,14 @@ impl PyModel {
     }
 
     /// Mechanical power `τᵀ v` (W).
-    #[pyo3(signature = (tau, v, *, threads = None))]
+    #[pyo3(signature = (tau, v, *, threads = None, out = None))]
     fn power<'py>(
         &self,
         py: Python<'py>,
         tau: ArrayIn<'py>,
         v: ArrayIn<'py>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let tau = joint_states(&self.model, &tau, "tau")?;
@@ -1199,7 +1241,7 @@ impl PyModel {
                 &self.scratch,
                 &[&tau, &v],
                 &[],
-                threads,
+                Batch { threads, out },
                 |m, _s, r, o| {
                     o[0] = dynamics::power(m, r[0], r[1])?;
                     Ok(())
@@ -1209,12 +1251,13 @@ impl PyModel {
     }
 
     /// Centre of mass of the moving links in the base frame (m), `(3,)`.
-    #[pyo3(signature = (q, *, threads = None))]
+    #[pyo3(signature = (q, *, threads = None, out = None))]
     fn center_of_mass<'py>(
         &self,
         py: Python<'py>,
         q: ArrayIn<'py>,
         threads: Option<usize>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
@@ -1224,7 +1267,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q],
                 &[3],
-                threads,
+                Batch { threads, out },
                 |m, s, r, o| {
                     o.copy_from_slice(dynamics::center_of_mass(m, &mut s.ws, r[0])?.as_slice());
                     Ok(())

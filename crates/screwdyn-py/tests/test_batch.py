@@ -112,3 +112,62 @@ def test_shapes_lists_and_broadcasting(ur5):
 def test_rnea_defaults_to_zero_velocity_and_acceleration(ur5):
     q = states(1)[0][0]
     np.testing.assert_array_equal(ur5.rnea(q), ur5.gravity_torque(q))
+
+
+@pytest.mark.parametrize("name", list(CALLS))
+def test_out_receives_exactly_the_fresh_result(ur5, name):
+    # out= starts as NaN, so an entry the call did not write would show; the call returns out
+    # itself, single state and stacked, on one thread and on all.
+    f = CALLS[name]
+    q, v, a = states(1500)
+    fresh = f(ur5, q, v, a)
+    for threads in (None, 1):
+        out = np.full(fresh.shape, np.nan)
+        assert f(ur5, q, v, a, threads=threads, out=out) is out
+        np.testing.assert_array_equal(out, fresh)
+    one = np.asarray(f(ur5, q[0], v[0], a[0]))
+    out = np.full(one.shape, np.nan)  # a 0-d array for the scalar results (energies, power)
+    assert f(ur5, q[0], v[0], a[0], out=out) is out
+    np.testing.assert_array_equal(out, one)
+
+
+def test_out_on_a_branched_tree_gets_the_zeros_of_uncoupled_bodies():
+    tree = screwdyn.load("builtin:branched")
+    q = rng.uniform(-2, 2, (100, tree.nq))
+    fresh = tree.crba(q)
+    assert (fresh == 0).any()  # bodies on different branches do not couple
+    out = np.full(fresh.shape, np.nan)
+    np.testing.assert_array_equal(tree.crba(q, out=out), fresh)
+
+
+def test_out_as_a_block_of_rows_of_a_bigger_array(ur5):
+    # A long log processed chunk after chunk into one preallocated result.
+    q, v, a = states(3000)
+    tau = np.empty((3000, 6))
+    for k in range(0, 3000, 1000):
+        ur5.rnea(q[k:k + 1000], v[k:k + 1000], a[k:k + 1000], out=tau[k:k + 1000])
+    np.testing.assert_array_equal(tau, ur5.rnea(q, v, a))
+
+
+def test_bad_out_is_refused_with_a_sentence(ur5):
+    q, v, a = states(10)
+    cases = [
+        ([[0.0] * 6] * 6, TypeError, r"out must be a NumPy float64 array of shape \(10, 6, 6\), got list"),
+        (np.zeros((10, 6, 6), np.float32), TypeError, "out has dtype float32, expected float64"),
+        (np.zeros((9, 6, 6)), ValueError, r"out has shape \(9, 6, 6\), expected \(10, 6, 6\)"),
+        (np.zeros((10, 6, 6)).transpose(0, 2, 1), ValueError, "out must be C-contiguous"),
+    ]
+    frozen = np.zeros((10, 6, 6))
+    frozen.setflags(write=False)
+    cases.append((frozen, ValueError, "out is read-only"))
+    for out, error, message in cases:
+        with pytest.raises(error, match=message):
+            ur5.crba(q, out=out)
+    # out may not share memory with an input (the result would overwrite what is being read)
+    with pytest.raises(ValueError, match="out shares memory with an input argument"):
+        ur5.rnea(q, v, a, out=q)
+    with pytest.raises(ValueError, match="out shares memory with an input argument"):
+        ur5.rnea(q, v, a, out=a[:, :])
+    # a scalar result of one state wants a 0-d array
+    with pytest.raises(ValueError, match=r"out has shape \(1,\), expected \(\)"):
+        ur5.kinetic_energy(q[0], v[0], out=np.zeros(1))

@@ -72,3 +72,10 @@ def test_unknown_function_is_refused():
     arm = screwdyn.load("builtin:planar2")
     with pytest.raises(ValueError, match="unknown batch function 'fk'"):
         sdask.map_states(arm, "fk", da.zeros((4, 2)))
+
+
+def test_out_is_refused_for_dask():
+    ur5 = screwdyn.load("builtin:ur5")
+    q = da.zeros((10, 6), chunks=5)
+    with pytest.raises(ValueError, match="out= does not apply to Dask"):
+        sdask.map_states(ur5, "crba", q, out=np.empty((10, 6, 6)))

@@ -59,9 +59,11 @@ def _dims(shape: Sequence[Any], nq: int) -> Tuple[int, ...]:
     return tuple(nq if d == "n" else d for d in shape)
 
 
-def _spec(name: str):
+def _spec(name: str, kwargs: Dict[str, Any]):
     if name not in FUNCTIONS:
         raise ValueError(f"unknown batch function '{name}' (known: {', '.join(FUNCTIONS)})")
+    if "out" in kwargs:
+        raise ValueError("out= does not apply to Dask: every partition makes its own result")
     return FUNCTIONS[name]
 
 
@@ -81,7 +83,7 @@ def map_states(model: Model, name: str, *arrays, **kwargs):
     ``threads=``…) are passed to the function. The model is pickled into the task graph."""
     import dask.array as da
 
-    args, shape, _ = _spec(name)
+    args, shape, _ = _spec(name, kwargs)
     if len(arrays) != len(args):
         raise ValueError(f"{name} takes {len(args)} stacked arrays ({', '.join(args)}), got {len(arrays)}")
     nq = model.nq
@@ -118,7 +120,7 @@ def _columns(key: str, shape: Tuple[int, ...], names: List[str]) -> List[str]:
 def _frame_block(df, model: Model, name: str, kwargs: Dict[str, Any]):
     import pandas as pd
 
-    args, shape, key = _spec(name)
+    args, shape, key = _spec(name, kwargs)
     names = model.joint_names
     stacked = []
     for a in args:
@@ -138,7 +140,7 @@ def map_dataframe(model: Model, name: str, df, **kwargs):
     (``q.<joint>``, ``v.<joint>``, ``a.<joint>``, ``tau.<joint>``; a missing column is zero),
     partition by partition. Returns a DataFrame with the same index and the result columns
     (``tau.<joint>``, ``qdd.<joint>``, ``mass_matrix.<row>.<col>``, ``kinetic_energy``…)."""
-    args, shape, key = _spec(name)
+    args, shape, key = _spec(name, kwargs)
     try:
         import dask.dataframe as dd
     except ImportError:  # pragma: no cover
