@@ -11,11 +11,11 @@ Both libraries load the same robot file, models/ur5.urdf. Measured:
    against Pinocchio (`pin.rnea(model, data, q, v, a)`), median of repeated loops, the two alternating;
 2. batch throughput on N = 10⁶ UR5 states, in rounds (`--rounds`) so that every ratio compares
    times taken within a few seconds of each other: screwdyn's batched call (all cores, GIL
-   released) into a fresh array, the same call into a reused array (`out=`), and with
-   `threads=1` (each the median of three calls), then a Python loop over Pinocchio that
-   discards its results (`pin.crba(model, data, Q[k])`) and one that stores them in a
-   preallocated array (`out[k] = pin.crba(model, data, Q[k])`, what a user who keeps them
-   writes). Reported: the medians over the rounds of the times and of the per-round ratios.
+   released) and with `threads=1` (our own single-thread Rust loop), each into a fresh array
+   and into a reused one (`out=`), each the median of three calls, alternating; then a Python
+   loop over Pinocchio that discards its results (`pin.crba(model, data, Q[k])`) and one that
+   stores them in a preallocated array (`out[k] = pin.crba(model, data, Q[k])`, what a user
+   who keeps them writes). Reported: the medians over the rounds of the times and of the per-round ratios.
 
 Without Pinocchio in the current interpreter, the script creates .venv-pybench/ in the
 repository root (git-ignored), installs `pin`, numpy and screwdyn (`pip install
@@ -136,10 +136,10 @@ def main():
         out = np.empty(shape)
         rounds = []
         for _ in range(args.rounds):
-            # screwdyn: all cores into a fresh array, all cores into `out`, one thread (fresh);
-            # three calls each, alternating, median.
-            fresh, reused, one = (statistics.median(t) for t in alternating(
-                [lambda: ours(None), lambda: ours(None, out), lambda: ours(1)], 3))
+            # screwdyn, three calls each, alternating, median: all cores and one thread, each
+            # into a fresh array and into `out`.
+            fresh, reused, one, one_reused = (statistics.median(t) for t in alternating(
+                [lambda: ours(None), lambda: ours(None, out), lambda: ours(1), lambda: ours(1, out)], 3))
             # Python loops over Pinocchio on the same states (rows are NumPy views, as a user
             # writes it): results discarded, then stored.
             t0 = time.perf_counter()
@@ -150,19 +150,24 @@ def main():
             for k in range(n):
                 out[k] = theirs_one(k)
             pin_store = time.perf_counter() - t0
-            rounds.append((fresh, reused, one, pin_loop, pin_store))
-        med = lambda f: statistics.median(f(*r) for r in rounds)  # noqa: E731
+            rounds.append({"all_cores": fresh, "all_cores_out": reused, "one_thread": one,
+                           "one_thread_out": one_reused, "pinocchio_loop": pin_loop,
+                           "pinocchio_loop_storing": pin_store})
+        med = lambda f: statistics.median(f(r) for r in rounds)  # noqa: E731
         batch[name] = {
             "states": n,
-            "rounds": args.rounds,
-            "screwdyn_all_cores_s": med(lambda f, u, o, p, s: f),
-            "screwdyn_all_cores_out_s": med(lambda f, u, o, p, s: u),
-            "screwdyn_one_thread_s": med(lambda f, u, o, p, s: o),
-            "pinocchio_python_loop_s": med(lambda f, u, o, p, s: p),
-            "pinocchio_python_loop_storing_s": med(lambda f, u, o, p, s: s),
-            "vs_pinocchio_loop": med(lambda f, u, o, p, s: p / f),
-            "out_vs_pinocchio_loop_storing": med(lambda f, u, o, p, s: s / u),
-            "vs_single_thread": med(lambda f, u, o, p, s: o / f),
+            "screwdyn_all_cores_s": med(lambda r: r["all_cores"]),
+            "screwdyn_all_cores_out_s": med(lambda r: r["all_cores_out"]),
+            "screwdyn_one_thread_s": med(lambda r: r["one_thread"]),
+            "screwdyn_one_thread_out_s": med(lambda r: r["one_thread_out"]),
+            "pinocchio_python_loop_s": med(lambda r: r["pinocchio_loop"]),
+            "pinocchio_python_loop_storing_s": med(lambda r: r["pinocchio_loop_storing"]),
+            "vs_pinocchio_loop": med(lambda r: r["pinocchio_loop"] / r["all_cores"]),
+            "out_vs_pinocchio_loop": med(lambda r: r["pinocchio_loop"] / r["all_cores_out"]),
+            "out_vs_pinocchio_loop_storing": med(lambda r: r["pinocchio_loop_storing"] / r["all_cores_out"]),
+            "vs_single_thread": med(lambda r: r["one_thread"] / r["all_cores"]),
+            "out_vs_single_thread_out": med(lambda r: r["one_thread_out"] / r["all_cores_out"]),
+            "rounds_s": rounds,
         }
 
     info = {
@@ -185,15 +190,17 @@ def main():
               f"| {r['screwdyn_best_ns']:.0f} | {r['pinocchio_best_ns']:.0f} | {r['best_ratio']:.2f} |")
     print(f"\nBatch of {n} states (seconds; medians over {args.rounds} rounds of times and of "
           "per-round ratios)\n")
-    print("| function | screwdyn, all cores | screwdyn, all cores, `out=` | screwdyn, 1 thread "
-          "| pinocchio loop | pinocchio loop storing | vs pinocchio loop | `out=` vs loop storing "
-          "| vs 1 thread |")
-    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+    print("| function | screwdyn, all cores (fresh / `out=`) | screwdyn, 1 thread (fresh / `out=`) "
+          "| pinocchio loop (discarding / storing) | vs pinocchio loop (fresh / `out=`) "
+          "| `out=` vs loop storing | vs 1 thread (fresh / `out=`) |")
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
     for k, r in batch.items():
-        print(f"| {k} | {r['screwdyn_all_cores_s']:.3f} | {r['screwdyn_all_cores_out_s']:.3f} | "
-              f"{r['screwdyn_one_thread_s']:.3f} | {r['pinocchio_python_loop_s']:.3f} | "
-              f"{r['pinocchio_python_loop_storing_s']:.3f} | {r['vs_pinocchio_loop']:.1f}× | "
-              f"{r['out_vs_pinocchio_loop_storing']:.1f}× | {r['vs_single_thread']:.2f}× |")
+        print(f"| {k} | {r['screwdyn_all_cores_s']:.3f} / {r['screwdyn_all_cores_out_s']:.3f} | "
+              f"{r['screwdyn_one_thread_s']:.3f} / {r['screwdyn_one_thread_out_s']:.3f} | "
+              f"{r['pinocchio_python_loop_s']:.3f} / {r['pinocchio_python_loop_storing_s']:.3f} | "
+              f"{r['vs_pinocchio_loop']:.1f}× / {r['out_vs_pinocchio_loop']:.1f}× | "
+              f"{r['out_vs_pinocchio_loop_storing']:.1f}× | "
+              f"{r['vs_single_thread']:.2f}× / {r['out_vs_single_thread_out']:.2f}× |")
     if args.json:
         args.json.write_text(json.dumps(info, indent=2))
 

@@ -1,8 +1,8 @@
 //! NumPy in, NumPy out: shape checks with clear messages, stacked states, output arrays.
 
 use numpy::{
-    AllowTypeChange, BorrowError, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods, PyReadwriteArrayDyn,
-    PyUntypedArray, PyUntypedArrayMethods,
+    AllowTypeChange, BorrowError, PyArray1, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods,
+    PyReadwriteArrayDyn, PyUntypedArray, PyUntypedArrayMethods,
 };
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -11,6 +11,64 @@ use std::borrow::Cow;
 
 /// Anything NumPy can turn into a float64 array (arrays, lists, tuples, scalars).
 pub type ArrayIn<'py> = PyArrayLikeDyn<'py, f64, AllowTypeChange>;
+
+/// A joint-space argument (`q`, `v`, `a`, `tau`…) as the per-state methods take it: a float64
+/// vector, the one state of most calls, is copied at once (rust-numpy's safe `to_vec`, under
+/// the GIL), which costs less than registering and releasing a borrow of it; anything else
+/// (stacked states, lists, other dtypes, strided views) is converted as [`ArrayIn`] and
+/// borrowed for the call.
+pub enum StateIn<'py> {
+    Vector(Vec<f64>, [usize; 1]),
+    Array(ArrayIn<'py>),
+}
+
+impl<'py> FromPyObject<'_, 'py> for StateIn<'py> {
+    type Error = PyErr;
+
+    fn extract(ob: Borrowed<'_, 'py, PyAny>) -> PyResult<Self> {
+        if let Ok(v) = ob.cast::<PyArray1<f64>>() {
+            if let Ok(x) = v.to_vec() {
+                let n = x.len();
+                return Ok(StateIn::Vector(x, [n]));
+            }
+        }
+        Ok(StateIn::Array(ob.extract()?))
+    }
+}
+
+/// The shape and row-major values of an array argument, whichever way it came in.
+pub trait Values {
+    fn shape(&self) -> &[usize];
+    /// The values in row-major (C) order, borrowed where they already are.
+    fn values(&self) -> Cow<'_, [f64]>;
+}
+
+impl Values for ArrayIn<'_> {
+    fn shape(&self) -> &[usize] {
+        let arr: &Bound<'_, PyArrayDyn<f64>> = self;
+        arr.shape()
+    }
+
+    fn values(&self) -> Cow<'_, [f64]> {
+        contiguous(self)
+    }
+}
+
+impl Values for StateIn<'_> {
+    fn shape(&self) -> &[usize] {
+        match self {
+            StateIn::Vector(_, shape) => shape,
+            StateIn::Array(a) => Values::shape(a),
+        }
+    }
+
+    fn values(&self) -> Cow<'_, [f64]> {
+        match self {
+            StateIn::Vector(x, _) => Cow::Borrowed(x),
+            StateIn::Array(a) => contiguous(a),
+        }
+    }
+}
 
 fn shape_text(shape: &[usize]) -> String {
     match shape {
@@ -71,11 +129,11 @@ fn contiguous<'a>(arr: &'a ArrayIn<'_>) -> Cow<'a, [f64]> {
 /// with the library's sentence (`q has 3 values, the model has 6 joints: …`).
 pub fn joint_states<'a>(
     model: &Model,
-    arr: &'a ArrayIn<'_>,
+    arr: &'a impl Values,
     name: &'static str,
 ) -> PyResult<States<'a>> {
-    let shape = arr.shape().to_vec();
-    let data = contiguous(arr);
+    let shape = arr.shape();
+    let data = arr.values();
     let nq = model.nq();
     match shape.len() {
         1 => {
@@ -98,7 +156,7 @@ pub fn joint_states<'a>(
                     .unwrap_or_default();
                 return Err(PyValueError::new_err(format!(
                     "{name} has shape {}, expected (N, {nq}) with one row per state: {e}",
-                    shape_text(&shape)
+                    shape_text(shape)
                 )));
             }
             Ok(States {
@@ -110,21 +168,21 @@ pub fn joint_states<'a>(
         }
         _ => Err(PyValueError::new_err(format!(
             "{name} has shape {}, expected ({nq},) for one state or (N, {nq}) for N stacked states",
-            shape_text(&shape)
+            shape_text(shape)
         ))),
     }
 }
 
 /// A fixed-width argument (a wrench `(6,)`, a point `(3,)`), single or stacked `(N, width)`.
 pub fn fixed_states<'a>(
-    arr: &'a ArrayIn<'_>,
+    arr: &'a impl Values,
     name: &'static str,
     width: usize,
     stackable: bool,
 ) -> PyResult<States<'a>> {
-    let shape = arr.shape().to_vec();
-    let data = contiguous(arr);
-    match shape.as_slice() {
+    let shape = arr.shape();
+    let data = arr.values();
+    match shape {
         [w] if *w == width => Ok(States {
             name,
             data,
@@ -139,7 +197,7 @@ pub fn fixed_states<'a>(
         }),
         _ => Err(PyValueError::new_err(format!(
             "{name} has shape {}, expected ({width},){}",
-            shape_text(&shape),
+            shape_text(shape),
             if stackable {
                 format!(" or (N, {width})")
             } else {

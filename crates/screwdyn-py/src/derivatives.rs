@@ -4,7 +4,7 @@
 //! stacked results into tuples.
 
 use crate::batch::{run, Batch, Rows};
-use crate::convert::{self, joint_states, vector, ArrayIn};
+use crate::convert::{self, joint_states, vector, StateIn};
 use crate::errors::{call_err, guard};
 use crate::model::PyModel;
 use nalgebra::DMatrix;
@@ -48,7 +48,7 @@ type WrenchDicts<'a, 'py> = [Option<&'a Bound<'py, PyDict>>; 3];
 fn three_matrices<'py>(
     py: Python<'py>,
     model: &PyModel,
-    inputs: [(&ArrayIn<'py>, &'static str); 3],
+    inputs: [(&StateIn<'py>, &'static str); 3],
     [fext, fext_world, tip_wrenches]: WrenchDicts<'_, 'py>,
     threads: Option<usize>,
     derivatives: Derivatives,
@@ -86,9 +86,9 @@ fn three_matrices<'py>(
 fn _rnea_derivatives<'py>(
     py: Python<'py>,
     model: &PyModel,
-    q: ArrayIn<'py>,
-    v: ArrayIn<'py>,
-    a: ArrayIn<'py>,
+    q: StateIn<'py>,
+    v: StateIn<'py>,
+    a: StateIn<'py>,
     fext: Option<&Bound<'py, PyDict>>,
     fext_world: Option<&Bound<'py, PyDict>>,
     tip_wrenches: Option<&Bound<'py, PyDict>>,
@@ -112,9 +112,9 @@ fn _rnea_derivatives<'py>(
 fn _aba_derivatives<'py>(
     py: Python<'py>,
     model: &PyModel,
-    q: ArrayIn<'py>,
-    v: ArrayIn<'py>,
-    tau: ArrayIn<'py>,
+    q: StateIn<'py>,
+    v: StateIn<'py>,
+    tau: StateIn<'py>,
     fext: Option<&Bound<'py, PyDict>>,
     fext_world: Option<&Bound<'py, PyDict>>,
     tip_wrenches: Option<&Bound<'py, PyDict>>,
@@ -137,9 +137,9 @@ fn _aba_derivatives<'py>(
 fn _regressor<'py>(
     py: Python<'py>,
     model: &PyModel,
-    q: ArrayIn<'py>,
-    v: ArrayIn<'py>,
-    a: ArrayIn<'py>,
+    q: StateIn<'py>,
+    v: StateIn<'py>,
+    a: StateIn<'py>,
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyAny>> {
     guard(|| {
@@ -236,10 +236,10 @@ fn _base_parameters<'py>(
 fn _identify<'py>(
     py: Python<'py>,
     model: &PyModel,
-    q: ArrayIn<'py>,
-    v: ArrayIn<'py>,
-    a: ArrayIn<'py>,
-    tau: ArrayIn<'py>,
+    q: StateIn<'py>,
+    v: StateIn<'py>,
+    a: StateIn<'py>,
+    tau: StateIn<'py>,
     friction: bool,
     states: usize,
     seed: u64,

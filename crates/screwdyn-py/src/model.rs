@@ -2,7 +2,7 @@
 //! library (kinematics, Jacobians, dynamics, energies), single or batched.
 
 use crate::batch::{run, run_lanes, Batch, Rows, Scratch};
-use crate::convert::{self, fixed_states, joint_states, ArrayIn, States};
+use crate::convert::{self, fixed_states, joint_states, ArrayIn, StateIn, States};
 use crate::errors::{call_err, guard, load_err, ModelError};
 use crate::{analysis, sim};
 use nalgebra::{Vector3, Vector6};
@@ -54,9 +54,9 @@ impl PyModel {
     fn forward<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
-        v: ArrayIn<'py>,
-        tau: ArrayIn<'py>,
+        q: StateIn<'py>,
+        v: StateIn<'py>,
+        tau: StateIn<'py>,
         how: dynamics::ForwardMethod,
         fext: Option<&Bound<'py, PyDict>>,
         fext_world: Option<&Bound<'py, PyDict>>,
@@ -180,7 +180,7 @@ impl PyModel {
     /// An optional joint-space argument; `None` is the zero vector.
     pub fn opt<'a>(
         &self,
-        arr: &'a Option<ArrayIn<'_>>,
+        arr: &'a Option<StateIn<'_>>,
         name: &'static str,
     ) -> PyResult<States<'a>> {
         match arr {
@@ -632,7 +632,7 @@ impl PyModel {
     fn frame_pose<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
+        q: StateIn<'py>,
         frame: &Bound<'py, PyAny>,
         threads: Option<usize>,
         out: Option<&Bound<'py, PyAny>>,
@@ -661,7 +661,7 @@ impl PyModel {
     fn frame_poses<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
+        q: StateIn<'py>,
         threads: Option<usize>,
     ) -> PyResult<Bound<'py, PyDict>> {
         guard(|| {
@@ -703,7 +703,7 @@ impl PyModel {
     fn frame_jacobian<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
+        q: StateIn<'py>,
         frame: &Bound<'py, PyAny>,
         reference: &str,
         threads: Option<usize>,
@@ -737,7 +737,7 @@ impl PyModel {
     fn link_jacobian<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
+        q: StateIn<'py>,
         link: &Bound<'py, PyAny>,
         threads: Option<usize>,
         out: Option<&Bound<'py, PyAny>>,
@@ -770,8 +770,8 @@ impl PyModel {
     fn frame_twist<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
-        v: ArrayIn<'py>,
+        q: StateIn<'py>,
+        v: StateIn<'py>,
         frame: &Bound<'py, PyAny>,
         reference: &str,
         threads: Option<usize>,
@@ -805,9 +805,9 @@ impl PyModel {
     fn frame_acceleration<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
-        v: ArrayIn<'py>,
-        a: ArrayIn<'py>,
+        q: StateIn<'py>,
+        v: StateIn<'py>,
+        a: StateIn<'py>,
         frame: &Bound<'py, PyAny>,
         reference: &str,
         threads: Option<usize>,
@@ -842,8 +842,8 @@ impl PyModel {
     fn frame_jdot_qdot<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
-        v: ArrayIn<'py>,
+        q: StateIn<'py>,
+        v: StateIn<'py>,
         frame: &Bound<'py, PyAny>,
         reference: &str,
         threads: Option<usize>,
@@ -884,9 +884,9 @@ impl PyModel {
     fn rnea<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
-        v: Option<ArrayIn<'py>>,
-        a: Option<ArrayIn<'py>>,
+        q: StateIn<'py>,
+        v: Option<StateIn<'py>>,
+        a: Option<StateIn<'py>>,
         fext: Option<&Bound<'py, PyDict>>,
         fext_world: Option<&Bound<'py, PyDict>>,
         tip_wrenches: Option<&Bound<'py, PyDict>>,
@@ -938,7 +938,7 @@ impl PyModel {
     fn crba<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
+        q: StateIn<'py>,
         threads: Option<usize>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
@@ -966,7 +966,7 @@ impl PyModel {
     fn mass_matrix_inverse<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
+        q: StateIn<'py>,
         threads: Option<usize>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
@@ -994,8 +994,8 @@ impl PyModel {
     fn coriolis_matrix<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
-        v: ArrayIn<'py>,
+        q: StateIn<'py>,
+        v: StateIn<'py>,
         threads: Option<usize>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
@@ -1023,7 +1023,7 @@ impl PyModel {
     fn gravity_torque<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
+        q: StateIn<'py>,
         threads: Option<usize>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
@@ -1051,8 +1051,8 @@ impl PyModel {
     fn nonlinear_effects<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
-        v: ArrayIn<'py>,
+        q: StateIn<'py>,
+        v: StateIn<'py>,
         threads: Option<usize>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
@@ -1084,9 +1084,9 @@ impl PyModel {
     fn forward_dynamics<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
-        v: ArrayIn<'py>,
-        tau: ArrayIn<'py>,
+        q: StateIn<'py>,
+        v: StateIn<'py>,
+        tau: StateIn<'py>,
         method: &str,
         fext: Option<&Bound<'py, PyDict>>,
         fext_world: Option<&Bound<'py, PyDict>>,
@@ -1116,9 +1116,9 @@ impl PyModel {
     fn aba<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
-        v: ArrayIn<'py>,
-        tau: ArrayIn<'py>,
+        q: StateIn<'py>,
+        v: StateIn<'py>,
+        tau: StateIn<'py>,
         fext: Option<&Bound<'py, PyDict>>,
         fext_world: Option<&Bound<'py, PyDict>>,
         tip_wrenches: Option<&Bound<'py, PyDict>>,
@@ -1145,8 +1145,8 @@ impl PyModel {
     fn kinetic_energy<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
-        v: ArrayIn<'py>,
+        q: StateIn<'py>,
+        v: StateIn<'py>,
         threads: Option<usize>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
@@ -1173,7 +1173,7 @@ impl PyModel {
     fn potential_energy<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
+        q: StateIn<'py>,
         threads: Option<usize>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
@@ -1199,8 +1199,8 @@ impl PyModel {
     fn total_energy<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
-        v: ArrayIn<'py>,
+        q: StateIn<'py>,
+        v: StateIn<'py>,
         threads: Option<usize>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
@@ -1227,8 +1227,8 @@ impl PyModel {
     fn power<'py>(
         &self,
         py: Python<'py>,
-        tau: ArrayIn<'py>,
-        v: ArrayIn<'py>,
+        tau: StateIn<'py>,
+        v: StateIn<'py>,
         threads: Option<usize>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
@@ -1255,7 +1255,7 @@ impl PyModel {
     fn center_of_mass<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
+        q: StateIn<'py>,
         threads: Option<usize>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
@@ -1285,8 +1285,8 @@ impl PyModel {
     fn _closed_form<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
-        v: Option<ArrayIn<'py>>,
+        q: StateIn<'py>,
+        v: Option<StateIn<'py>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
@@ -1301,7 +1301,7 @@ impl PyModel {
     }
 
     /// Lagrangian coefficients `D_ij`, `D_ijk`, `D_i` (seed 004) as a dict of arrays.
-    fn _lagrange<'py>(&self, py: Python<'py>, q: ArrayIn<'py>) -> PyResult<Bound<'py, PyDict>> {
+    fn _lagrange<'py>(&self, py: Python<'py>, q: StateIn<'py>) -> PyResult<Bound<'py, PyDict>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
             analysis::lagrange(py, &self.model, q.single("lagrange_coefficients")?)
@@ -1312,7 +1312,7 @@ impl PyModel {
     fn mass_matrix_derivatives<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
+        q: StateIn<'py>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let q = joint_states(&self.model, &q, "q")?;
@@ -1374,9 +1374,9 @@ impl PyModel {
     fn _rnea_trace<'py>(
         &self,
         py: Python<'py>,
-        q: ArrayIn<'py>,
-        v: Option<ArrayIn<'py>>,
-        a: Option<ArrayIn<'py>>,
+        q: StateIn<'py>,
+        v: Option<StateIn<'py>>,
+        a: Option<StateIn<'py>>,
         fext: Option<&Bound<'py, PyDict>>,
         fext_world: Option<&Bound<'py, PyDict>>,
         tip_wrenches: Option<&Bound<'py, PyDict>>,
@@ -1405,8 +1405,8 @@ impl PyModel {
     fn _simulate<'py>(
         &self,
         py: Python<'py>,
-        q0: ArrayIn<'py>,
-        v0: ArrayIn<'py>,
+        q0: StateIn<'py>,
+        v0: StateIn<'py>,
         controller: &Bound<'py, PyAny>,
         disturbances: &Bound<'py, PyList>,
         duration: f64,

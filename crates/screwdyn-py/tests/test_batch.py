@@ -171,3 +171,18 @@ def test_bad_out_is_refused_with_a_sentence(ur5):
     # a scalar result of one state wants a 0-d array
     with pytest.raises(ValueError, match=r"out has shape \(1,\), expected \(\)"):
         ur5.kinetic_energy(q[0], v[0], out=np.zeros(1))
+
+
+def test_one_state_in_any_layout_or_dtype(ur5):
+    # A float64 vector is copied at once, anything else converted: the same numbers either way.
+    q, v, a = (x[0] for x in states(1))
+    expected = ur5.rnea(q, v, a)
+    strided = np.empty(12)
+    strided[::2] = q
+    for qq in (strided[::2], q.astype(">f8"), q.tolist(), np.asfortranarray(q)):
+        np.testing.assert_array_equal(ur5.rnea(qq, v, a), expected)
+    np.testing.assert_array_equal(ur5.rnea(q.astype(np.float32), v, a),
+                                  ur5.rnea(q.astype(np.float32).astype(float), v, a))
+    # a one-state out= may even be an input: the inputs are read before anything is written
+    qc = q.copy()
+    np.testing.assert_array_equal(ur5.rnea(qc, v, a, out=qc), expected)
