@@ -61,8 +61,7 @@ impl PyModel {
         fext: Option<&Bound<'py, PyDict>>,
         fext_world: Option<&Bound<'py, PyDict>>,
         tip_wrenches: Option<&Bound<'py, PyDict>>,
-        threads: Option<usize>,
-        out: Option<&Bound<'py, PyAny>>,
+        batch: Batch<'_, 'py>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             let ext = self.wrenches(fext, fext_world, tip_wrenches)?;
@@ -78,7 +77,7 @@ impl PyModel {
                     &self.scratch,
                     &[&q, &v, &tau],
                     &[nq],
-                    Batch { threads, out },
+                    batch,
                     |m, ws, r, o| screwdyn::batch::aba(m, ws, r[0], r[1], r[2], o),
                     |m, s, r, o| {
                         put(o, dynamics::aba(m, &mut s.ws, r[0], r[1], r[2])?);
@@ -92,7 +91,7 @@ impl PyModel {
                 &self.scratch,
                 &[&q, &v, &tau],
                 &[nq],
-                Batch { threads, out },
+                batch,
                 |m, s, r, o| {
                     put(
                         o,
@@ -1095,18 +1094,8 @@ impl PyModel {
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let how = self::method(method)?;
-        self.forward(
-            py,
-            q,
-            v,
-            tau,
-            how,
-            fext,
-            fext_world,
-            tip_wrenches,
-            threads,
-            out,
-        )
+        let batch = Batch { threads, out };
+        self.forward(py, q, v, tau, how, fext, fext_world, tip_wrenches, batch)
     }
 
     /// Forward dynamics by the articulated-body algorithm (Featherstone): `forward_dynamics(…,
@@ -1125,19 +1114,8 @@ impl PyModel {
         threads: Option<usize>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let how = dynamics::ForwardMethod::Aba;
-        self.forward(
-            py,
-            q,
-            v,
-            tau,
-            how,
-            fext,
-            fext_world,
-            tip_wrenches,
-            threads,
-            out,
-        )
+        let (how, batch) = (dynamics::ForwardMethod::Aba, Batch { threads, out });
+        self.forward(py, q, v, tau, how, fext, fext_world, tip_wrenches, batch)
     }
 
     /// Kinetic energy `½ Σ V_iᵀ 𝔍_i V_i` (J): a float, `(N,)` for stacked states.
