@@ -26,7 +26,11 @@ impl<'py> FromPyObject<'_, 'py> for StateIn<'py> {
     type Error = PyErr;
 
     fn extract(ob: Borrowed<'_, 'py, PyAny>) -> PyResult<Self> {
-        if let Ok(v) = ob.cast::<PyArray1<f64>>() {
+        if let Some(v) = ob
+            .cast::<PyArray1<f64>>()
+            .ok()
+            .filter(|v| is_aligned(v.data()))
+        {
             if let Ok(x) = v.to_vec() {
                 let n = x.len();
                 return Ok(StateIn::Vector(x, [n]));
@@ -118,11 +122,46 @@ impl States<'_> {
 
 /// The values in row-major (C) order: borrowed when the array is C-contiguous, else copied in
 /// logical order (`as_slice` alone would accept a Fortran-ordered array in memory order).
+/// NumPy allows a float64 buffer that is not 8-byte aligned (a view into a byte buffer, an
+/// array unpickled by Dask); a slice or view of it would be undefined behaviour, so it is read
+/// element by element.
 fn contiguous<'a>(arr: &'a ArrayIn<'_>) -> Cow<'a, [f64]> {
+    if !is_aligned(arr.data()) {
+        return Cow::Owned(unaligned_values(arr));
+    }
     match arr.as_slice() {
         Ok(s) if arr.is_c_contiguous() => Cow::Borrowed(s),
         _ => Cow::Owned(arr.as_array().iter().copied().collect()),
     }
+}
+
+/// Whether a NumPy data pointer may be read as `f64`s in place.
+fn is_aligned(data: *const f64) -> bool {
+    data.is_aligned()
+}
+
+/// The values of an unaligned array in logical order, by unaligned loads at its strides.
+fn unaligned_values(arr: &ArrayIn<'_>) -> Vec<f64> {
+    let (shape, strides) = (arr.shape(), arr.strides());
+    let count: usize = shape.iter().product();
+    let base = arr.data() as *const u8;
+    let mut index = vec![0usize; shape.len()];
+    let mut out = Vec::with_capacity(count);
+    for _ in 0..count {
+        let offset: isize = index.iter().zip(strides).map(|(&i, &s)| i as isize * s).sum();
+        // SAFETY: the array is borrowed read-only and `index` stays within `shape`, so the
+        // element at `offset` bytes from the data pointer lies inside its buffer.
+        out.push(unsafe { base.offset(offset).cast::<f64>().read_unaligned() });
+        // The next index, the last axis fastest.
+        for axis in (0..shape.len()).rev() {
+            index[axis] += 1;
+            if index[axis] < shape[axis] {
+                break;
+            }
+            index[axis] = 0;
+        }
+    }
+    out
 }
 
 /// A joint-space argument of `model`: shape `(nq,)` or `(N, nq)`. A wrong length is reported

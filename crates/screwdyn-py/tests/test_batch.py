@@ -186,3 +186,21 @@ def test_one_state_in_any_layout_or_dtype(ur5):
     # a one-state out= may even be an input: the inputs are read before anything is written
     qc = q.copy()
     np.testing.assert_array_equal(ur5.rnea(qc, v, a, out=qc), expected)
+
+
+def test_unaligned_float64_buffers(ur5):
+    # NumPy allows float64 data at an odd address (a view into a byte buffer; Dask hands such
+    # arrays to its workers after unpickling): the values are read, not the address trusted.
+    q, v, a = states(5)
+    expected = ur5.rnea(q, v, a)
+
+    def unaligned(x):
+        buf = np.zeros(x.nbytes + 1, dtype=np.uint8)
+        y = np.ndarray(x.shape, dtype=np.float64, buffer=buf, offset=1)
+        y[...] = x
+        assert not y.flags.aligned
+        return y
+
+    np.testing.assert_array_equal(ur5.rnea(unaligned(q), unaligned(v), unaligned(a)), expected)
+    np.testing.assert_array_equal(ur5.rnea(unaligned(q[0]), v[0], a[0]), expected[0])
+    np.testing.assert_array_equal(ur5.rnea(unaligned(q)[::2], v[::2], a[::2]), expected[::2])

@@ -297,7 +297,7 @@ impl CodeUnit {
             self.cols
         ));
         line(
-            "Convention: twists and wrenches angular first (seeds 000-004), SI units, radians; \
+            "Convention: twists and wrenches angular first (docs/notation.md), SI units, radians; \
              gravity from the model."
                 .into(),
         );
@@ -317,176 +317,207 @@ impl CodeUnit {
 
     /// The code in `lang`.
     pub fn emit(&self, lang: Language) -> String {
-        let live = dag::live_nodes(&self.graph, &self.outputs);
         let nodes = self.graph.borrow().nodes.clone();
-        let pos = self.param_positions();
-        let names: Vec<String> = self.param_names();
-        let (uq, uv, ua) = self.quantity.uses();
-        let one_based = lang == Language::Matlab;
-        let index = |arr: &str, k: usize| {
-            if one_based {
-                format!("{arr}({})", k + 1)
-            } else {
-                format!("{arr}[{k}]")
-            }
+        let names = self.param_names();
+        let spelling = Spelling {
+            lang,
+            nodes: &nodes,
+            param_positions: self.param_positions(),
+            param_names: &names,
         };
-        let operand = |id: u32| -> String {
-            match nodes[id as usize] {
-                Op::Const(b) => literal(f64::from_bits(b)),
-                Op::In(Input::Q(k)) => index("q", usize::from(k)),
-                Op::In(Input::V(k)) => index("v", usize::from(k)),
-                Op::In(Input::A(k)) => index("a", usize::from(k)),
-                Op::In(Input::Param(k)) => {
-                    let p = pos[usize::from(k)];
-                    if lang == Language::Python {
-                        names[p].clone()
-                    } else {
-                        index("params", p)
-                    }
-                }
-                _ => format!("x{id}"),
-            }
-        };
-        let out_expr = |o: &Sx| -> String {
-            match o {
-                Sx::C(c) => literal(*c),
-                Sx::N(_, id) => operand(*id),
-            }
-        };
-        // The outputs as nested row lists, `[[M11, M12], [M21, M22]]` (Python and Rust).
-        let nested_rows = || -> String {
-            let rows: Vec<String> = (0..self.rows)
-                .map(|r| {
-                    let cols: Vec<String> = (0..self.cols)
-                        .map(|c| out_expr(&self.outputs[r * self.cols + c]))
-                        .collect();
-                    format!("[{}]", cols.join(", "))
-                })
-                .collect();
-            format!("[{}]", rows.join(", "))
-        };
-        let (cos, sin) = match lang {
-            Language::Python => ("math.cos", "math.sin"),
-            _ => ("cos", "sin"),
-        };
+        // One assignment per live intermediate node, in evaluation order.
         let mut body = String::new();
-        let indent = "    ";
-        for &id in &live {
-            let rhs = match nodes[id as usize] {
-                Op::Const(_) | Op::In(_) => continue,
-                Op::Cos(k) | Op::Sin(k) => {
-                    let q = index("q", usize::from(k));
-                    let is_cos = matches!(nodes[id as usize], Op::Cos(_));
-                    match lang {
-                        Language::Rust => {
-                            format!("{q}.{}()", if is_cos { "cos" } else { "sin" })
-                        }
-                        _ => format!("{}({q})", if is_cos { cos } else { sin }),
-                    }
-                }
-                Op::Add(a, b) => format!("{} + {}", operand(a), operand(b)),
-                Op::Sub(a, b) => format!("{} - {}", operand(a), operand(b)),
-                Op::Mul(a, b) => format!("{} * {}", operand(a), operand(b)),
-                Op::Neg(a) => format!("-{}", operand(a)),
-            };
-            let _ = match lang {
-                Language::C => writeln!(body, "{indent}const double x{id} = {rhs};"),
-                Language::Python => writeln!(body, "{indent}x{id} = {rhs}"),
-                Language::Rust => writeln!(body, "{indent}let x{id}: f64 = {rhs};"),
-                Language::Matlab => writeln!(body, "{indent}x{id} = {rhs};"),
-            };
-        }
-        let fname = self.quantity.function_name();
-        let n = self.joints.len();
-        let has_params = !names.is_empty();
-        let mut s = String::new();
-        match lang {
-            Language::C => {
-                s.push_str(&self.header("//"));
-                s.push_str("#include <math.h>\n\n");
-                let mut args: Vec<String> = Vec::new();
-                for (used, name) in [(uq, "q"), (uv, "v"), (ua, "a")] {
-                    if used {
-                        args.push(format!("const double *{name}"));
-                    }
-                }
-                if has_params {
-                    args.push("const double *params".into());
-                }
-                args.push("double *out".into());
-                let _ = writeln!(s, "void {fname}({}) {{", args.join(", "));
-                s.push_str(&body);
-                for (k, o) in self.outputs.iter().enumerate() {
-                    let _ = writeln!(s, "{indent}out[{k}] = {};", out_expr(o));
-                }
-                s.push_str("}\n");
+        for id in dag::live_nodes(&self.graph, &self.outputs) {
+            if let Some(statement) = spelling.statement(id) {
+                let _ = writeln!(body, "{INDENT}{statement}");
             }
-            Language::Python => {
-                s.push_str(&self.header("#"));
-                s.push_str("import math\n\n\n");
-                let mut args: Vec<String> = Vec::new();
-                for (used, name) in [(uq, "q"), (uv, "v"), (ua, "a")] {
-                    if used {
-                        args.push(name.into());
-                    }
-                }
-                if has_params {
+        }
+        let args = self.arguments(lang, &names).join(", ");
+        let fname = self.quantity.function_name();
+        match lang {
+            Language::C => self.emit_c(&spelling, fname, &args, &body),
+            Language::Python => self.emit_python(&spelling, fname, &args, &body),
+            Language::Rust => self.emit_rust(&spelling, fname, &args, &body),
+            Language::Matlab => self.emit_matlab(&spelling, fname, &args, &body),
+        }
+    }
+
+    /// The function's parameters in `lang`: the used state vectors, then the parameters (and
+    /// in C the output array).
+    fn arguments(&self, lang: Language, names: &[String]) -> Vec<String> {
+        let (uq, uv, ua) = self.quantity.uses();
+        let n = self.joints.len();
+        let mut args: Vec<String> = [(uq, "q"), (uv, "v"), (ua, "a")]
+            .into_iter()
+            .filter(|(used, _)| *used)
+            .map(|(_, name)| match lang {
+                Language::C => format!("const double *{name}"),
+                Language::Rust => format!("{name}: &[f64; {n}]"),
+                Language::Python | Language::Matlab => name.to_string(),
+            })
+            .collect();
+        if !names.is_empty() {
+            match lang {
+                Language::C => args.push("const double *params".into()),
+                Language::Rust => args.push(format!("params: &[f64; {}]", names.len())),
+                Language::Matlab => args.push("params".into()),
+                // Python takes the parameters by name, after the state vectors.
+                Language::Python => {
                     args.push("*".into());
                     args.extend(names.iter().cloned());
                 }
-                let _ = writeln!(s, "def {fname}({}):", args.join(", "));
-                s.push_str(&body);
-                let _ = writeln!(s, "{indent}return {}", nested_rows());
-            }
-            Language::Rust => {
-                s.push_str(&self.header("//"));
-                let mut args: Vec<String> = Vec::new();
-                for (used, name) in [(uq, "q"), (uv, "v"), (ua, "a")] {
-                    if used {
-                        args.push(format!("{name}: &[f64; {n}]"));
-                    }
-                }
-                if has_params {
-                    args.push(format!("params: &[f64; {}]", names.len()));
-                }
-                let _ = writeln!(
-                    s,
-                    "#[allow(clippy::all, unused_parens)]\npub fn {fname}({}) -> [[f64; {}]; {}] {{",
-                    args.join(", "),
-                    self.cols,
-                    self.rows
-                );
-                s.push_str(&body);
-                let _ = writeln!(s, "{indent}{}\n}}", nested_rows());
-            }
-            Language::Matlab => {
-                let mut args: Vec<&str> = Vec::new();
-                for (used, name) in [(uq, "q"), (uv, "v"), (ua, "a")] {
-                    if used {
-                        args.push(name);
-                    }
-                }
-                if has_params {
-                    args.push("params");
-                }
-                let _ = writeln!(s, "function out = {fname}({})", args.join(", "));
-                s.push_str(&self.header("%"));
-                s.push_str(&body);
-                let _ = writeln!(s, "{indent}out = zeros({}, {});", self.rows, self.cols);
-                for r in 0..self.rows {
-                    for c in 0..self.cols {
-                        let _ = writeln!(
-                            s,
-                            "{indent}out({}, {}) = {};",
-                            r + 1,
-                            c + 1,
-                            out_expr(&self.outputs[r * self.cols + c])
-                        );
-                    }
-                }
-                s.push_str("end\n");
             }
         }
+        if lang == Language::C {
+            args.push("double *out".into());
+        }
+        args
+    }
+
+    /// The outputs as nested row lists, `[[M11, M12], [M21, M22]]` (Python and Rust).
+    fn nested_rows(&self, spelling: &Spelling) -> String {
+        let rows: Vec<String> = (0..self.rows)
+            .map(|r| {
+                let cols: Vec<String> = (0..self.cols)
+                    .map(|c| spelling.output(&self.outputs[r * self.cols + c]))
+                    .collect();
+                format!("[{}]", cols.join(", "))
+            })
+            .collect();
+        format!("[{}]", rows.join(", "))
+    }
+
+    /// C: `void f(const double *q, …, double *out)` filling `out` row by row.
+    fn emit_c(&self, spelling: &Spelling, fname: &str, args: &str, body: &str) -> String {
+        let mut s = self.header("//");
+        s.push_str("#include <math.h>\n\n");
+        let _ = writeln!(s, "void {fname}({args}) {{");
+        s.push_str(body);
+        for (k, o) in self.outputs.iter().enumerate() {
+            let _ = writeln!(s, "{INDENT}out[{k}] = {};", spelling.output(o));
+        }
+        s.push_str("}\n");
         s
+    }
+
+    /// Python: `def f(q, …, *, params…)` returning nested lists.
+    fn emit_python(&self, spelling: &Spelling, fname: &str, args: &str, body: &str) -> String {
+        let mut s = self.header("#");
+        s.push_str("import math\n\n\n");
+        let _ = writeln!(s, "def {fname}({args}):");
+        s.push_str(body);
+        let _ = writeln!(s, "{INDENT}return {}", self.nested_rows(spelling));
+        s
+    }
+
+    /// Rust: `pub fn f(q: &[f64; n], …) -> [[f64; cols]; rows]`.
+    fn emit_rust(&self, spelling: &Spelling, fname: &str, args: &str, body: &str) -> String {
+        let mut s = self.header("//");
+        let _ = writeln!(
+            s,
+            "#[allow(clippy::all, unused_parens)]\npub fn {fname}({args}) -> [[f64; {}]; {}] {{",
+            self.cols, self.rows
+        );
+        s.push_str(body);
+        let _ = writeln!(s, "{INDENT}{}\n}}", self.nested_rows(spelling));
+        s
+    }
+
+    /// MATLAB/Octave: `function out = f(q, …)` filling a rows × cols matrix, 1-based.
+    fn emit_matlab(&self, spelling: &Spelling, fname: &str, args: &str, body: &str) -> String {
+        let mut s = String::new();
+        let _ = writeln!(s, "function out = {fname}({args})");
+        s.push_str(&self.header("%"));
+        s.push_str(body);
+        let _ = writeln!(s, "{INDENT}out = zeros({}, {});", self.rows, self.cols);
+        for r in 0..self.rows {
+            for c in 0..self.cols {
+                let value = spelling.output(&self.outputs[r * self.cols + c]);
+                let _ = writeln!(s, "{INDENT}out({}, {}) = {value};", r + 1, c + 1);
+            }
+        }
+        s.push_str("end\n");
+        s
+    }
+}
+
+/// The indentation of a generated function's body.
+const INDENT: &str = "    ";
+
+/// How one language spells the pieces of the expression graph: array elements, operands,
+/// outputs and the assignment of an intermediate node.
+struct Spelling<'a> {
+    lang: Language,
+    nodes: &'a [Op],
+    /// The position of each parameter in the emitted parameter list.
+    param_positions: Vec<usize>,
+    param_names: &'a [String],
+}
+
+impl Spelling<'_> {
+    /// `arr[k]`, or `arr(k + 1)` in MATLAB.
+    fn index(&self, arr: &str, k: usize) -> String {
+        if self.lang == Language::Matlab {
+            format!("{arr}({})", k + 1)
+        } else {
+            format!("{arr}[{k}]")
+        }
+    }
+
+    /// A node used as an operand: a literal, an input element or an intermediate `x<id>`.
+    fn operand(&self, id: u32) -> String {
+        match self.nodes[id as usize] {
+            Op::Const(b) => literal(f64::from_bits(b)),
+            Op::In(Input::Q(k)) => self.index("q", usize::from(k)),
+            Op::In(Input::V(k)) => self.index("v", usize::from(k)),
+            Op::In(Input::A(k)) => self.index("a", usize::from(k)),
+            Op::In(Input::Param(k)) => {
+                let p = self.param_positions[usize::from(k)];
+                if self.lang == Language::Python {
+                    self.param_names[p].clone()
+                } else {
+                    self.index("params", p)
+                }
+            }
+            _ => format!("x{id}"),
+        }
+    }
+
+    /// An output entry: a constant or a node.
+    fn output(&self, o: &Sx) -> String {
+        match o {
+            Sx::C(c) => literal(*c),
+            Sx::N(_, id) => self.operand(*id),
+        }
+    }
+
+    /// The assignment `x<id> = …` of an intermediate node; `None` for constants and inputs.
+    fn statement(&self, id: u32) -> Option<String> {
+        let rhs = match self.nodes[id as usize] {
+            Op::Const(_) | Op::In(_) => return None,
+            Op::Cos(k) | Op::Sin(k) => {
+                let q = self.index("q", usize::from(k));
+                let f = if matches!(self.nodes[id as usize], Op::Cos(_)) {
+                    "cos"
+                } else {
+                    "sin"
+                };
+                match self.lang {
+                    Language::Rust => format!("{q}.{f}()"),
+                    Language::Python => format!("math.{f}({q})"),
+                    Language::C | Language::Matlab => format!("{f}({q})"),
+                }
+            }
+            Op::Add(a, b) => format!("{} + {}", self.operand(a), self.operand(b)),
+            Op::Sub(a, b) => format!("{} - {}", self.operand(a), self.operand(b)),
+            Op::Mul(a, b) => format!("{} * {}", self.operand(a), self.operand(b)),
+            Op::Neg(a) => format!("-{}", self.operand(a)),
+        };
+        Some(match self.lang {
+            Language::C => format!("const double x{id} = {rhs};"),
+            Language::Python => format!("x{id} = {rhs}"),
+            Language::Rust => format!("let x{id}: f64 = {rhs};"),
+            Language::Matlab => format!("x{id} = {rhs};"),
+        })
     }
 }
