@@ -31,7 +31,7 @@ pub use profile::{
     MAX_PROFILE_SAMPLES,
 };
 pub use record::{
-    csv_field, sample_columns, CsvSampleWriter, JsonSampleWriter, Recording, Sample, SampleSink,
+    sample_columns, CsvSampleWriter, JsonSampleWriter, Recording, Sample, SampleSink,
 };
 pub use simulate::{simulate, simulate_into, step_plan, Disturbance, RunSummary, SimOptions};
 pub use trajectory::{Quintic, Trajectory, Trapezoid, Waypoints};
