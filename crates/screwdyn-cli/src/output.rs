@@ -158,9 +158,7 @@ impl Value {
         match self {
             Value::Scalar(x) => csv_cell(w, cells, num.csv(*x)),
             Value::Count(n) => csv_cell(w, cells, &n.to_string()),
-            Value::Vector(_, x) => x
-                .iter()
-                .try_for_each(|x| csv_cell(w, cells, num.csv(*x))),
+            Value::Vector(_, x) => x.iter().try_for_each(|x| csv_cell(w, cells, num.csv(*x))),
             Value::Matrix(_, _, m) => {
                 for r in 0..m.nrows() {
                     for c in 0..m.ncols() {

@@ -343,45 +343,18 @@ fn sim_options(a: &SimulateArgs, m: &Model) -> Result<SimOptions, CliError> {
         .method
         .parse()
         .map_err(|e: String| CliError::input(format!("--method: {e}")))?;
-    if !(a.dt > 0.0 && a.dt.is_finite()) {
-        return Err(CliError::input(format!(
-            "--dt must be positive (got {})",
-            a.dt
-        )));
-    }
-    let t = a.limit_time_constant;
-    if !(t > 0.0 && t.is_finite()) {
-        return Err(CliError::input(format!(
-            "--limit-time-constant must be positive (got {t})"
-        )));
-    }
-    let zeta = a.limit_damping_ratio;
-    if !(zeta >= 0.0 && zeta.is_finite()) {
-        return Err(CliError::input(format!(
-            "--limit-damping-ratio must be non-negative (got {zeta})"
-        )));
-    }
-    if !(a.duration >= 0.0 && a.duration.is_finite()) {
-        return Err(CliError::input(format!(
-            "--duration must be a non-negative number (got {})",
-            a.duration
-        )));
-    }
-    if a.record_every == 0 {
-        return Err(CliError::input("--record-every must be at least 1"));
-    }
     let opts = SimOptions {
         duration: a.duration,
         dt: a.dt,
         integrator,
         method,
-        effects: if a.no_effects {
-            JointEffects::none()
-        } else {
-            JointEffects {
-                limit_time_constant: a.limit_time_constant,
-                limit_damping_ratio: a.limit_damping_ratio,
-                ..JointEffects::default()
+        effects: JointEffects {
+            limit_time_constant: a.limit_time_constant,
+            limit_damping_ratio: a.limit_damping_ratio,
+            ..if a.no_effects {
+                JointEffects::none()
+            } else {
+                JointEffects::default()
             }
         },
         record_every: a.record_every,
@@ -391,7 +364,24 @@ fn sim_options(a: &SimulateArgs, m: &Model) -> Result<SimOptions, CliError> {
             .map(|f| m.frame_id(f))
             .collect::<Result<Vec<_>, _>>()?,
     };
+    opts.validate(m).map_err(in_flag_words)?;
     Ok(opts)
+}
+
+/// A library error about a setting (`dt must be positive (got 0); …`) worded with the flag
+/// that sets it (`--dt must be positive (got 0); …`); other errors as they are.
+fn in_flag_words(e: screwdyn::Error) -> CliError {
+    if let screwdyn::Error::InvalidArgument(message) = &e {
+        if let Some((field, rest)) = message.split_once(" must be ") {
+            let is_field = |c: char| c.is_ascii_lowercase() || c == '_' || c == '.';
+            if !field.is_empty() && field.chars().all(is_field) {
+                // `effects.limit_time_constant` is set by `--limit-time-constant`.
+                let name = field.rsplit('.').next().unwrap_or(field);
+                return CliError::input(format!("--{} must be {rest}", name.replace('_', "-")));
+            }
+        }
+    }
+    e.into()
 }
 
 /// The controller chosen by `--controller` (and its name), with its gains and reference.
@@ -672,14 +662,9 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
     let m = load(&a.model, a.gravity.as_deref())?;
     let q0 = parse_vector(a.q0.as_deref(), "q0", &m)?;
     let qf = parse_vector(Some(&a.qf), "qf", &m)?;
-    if !(a.dt > 0.0 && a.dt.is_finite()) {
-        return Err(CliError::input(format!(
-            "--dt must be positive (got {})",
-            a.dt
-        )));
-    }
     let (traj, what) = trajectory(a, &m, &q0, &qf)?;
-    let p = sim::torque_profile_limited(&m, traj.as_ref(), a.dt, a.max_samples)?;
+    let p = sim::torque_profile_limited(&m, traj.as_ref(), a.dt, a.max_samples)
+        .map_err(in_flag_words)?;
     let rec = &p.samples;
     if let (Some(path), Some(kind)) = (&a.output, output_kind) {
         let file = AtomicFile::create(path)?;
@@ -726,18 +711,10 @@ fn trajectory(
             );
             (Box::new(t), what)
         }
-        TrajectoryArg::Quintic => {
-            if !(a.duration > 0.0 && a.duration.is_finite()) {
-                return Err(CliError::input(format!(
-                    "--duration must be positive (got {})",
-                    a.duration
-                )));
-            }
-            (
-                Box::new(Quintic::rest_to_rest(q0, qf, a.duration)?),
-                "quintic rest-to-rest".to_string(),
-            )
-        }
+        TrajectoryArg::Quintic => (
+            Box::new(Quintic::rest_to_rest(q0, qf, a.duration).map_err(in_flag_words)?),
+            "quintic rest-to-rest".to_string(),
+        ),
     })
 }
 

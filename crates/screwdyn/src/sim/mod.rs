@@ -15,8 +15,10 @@
 mod controller;
 mod effects;
 mod integrate;
+mod options;
 mod profile;
 mod record;
+mod setting;
 mod simulate;
 mod trajectory;
 
@@ -26,6 +28,7 @@ pub use controller::{
 };
 pub use effects::{EffectGains, JointEffects};
 pub use integrate::{AccelFn, Integrator, Stepper};
+pub use options::SimOptions;
 pub use profile::{
     torque_profile, torque_profile_limited, TorqueProfile, Violation, ViolationSummary,
     MAX_PROFILE_SAMPLES,
@@ -33,5 +36,5 @@ pub use profile::{
 pub use record::{
     sample_columns, CsvSampleWriter, JsonSampleWriter, Recording, Sample, SampleSink,
 };
-pub use simulate::{simulate, simulate_into, step_plan, Disturbance, RunSummary, SimOptions};
+pub use simulate::{simulate, simulate_into, step_plan, Disturbance, RunSummary};
 pub use trajectory::{Quintic, Trajectory, Trapezoid, Waypoints};
