@@ -8,9 +8,8 @@ use crate::write::{self, AtomicFile};
 use crate::CliError;
 use screwdyn::dynamics::ForwardMethod;
 use screwdyn::sim::{
-    self, ComputedTorque, ConstantTorque, Controller, Disturbance, Integrator, JointEffects,
-    PdGravity, Quintic, Recording, Sample, SampleSink, SimOptions, TorqueSeries, Trajectory,
-    Trapezoid, ZeroTorque,
+    self, Controller, ControllerSpec, Disturbance, Integrator, JointEffects, Quintic, Recording,
+    Sample, SampleSink, SimOptions, Trajectory, Trapezoid,
 };
 use screwdyn::Model;
 use std::io::IsTerminal;
@@ -178,8 +177,9 @@ fn scalar_series(rec: &Recording, name: &str, x: &[f64]) -> Series {
     }
 }
 
-/// Reads a torque series: columns `t` and `tau.<joint>` (a missing joint is zero).
-fn read_torque_csv(m: &Model, path: &Path) -> Result<TorqueSeries, CliError> {
+/// Reads a torque series: columns `t` and `tau.<joint>` (a missing joint is zero); the times
+/// are checked when the controller is built.
+fn read_torque_csv(m: &Model, path: &Path) -> Result<ControllerSpec, CliError> {
     let file = path.display().to_string();
     let err =
         |e: csv::Error| CliError::input(format!("{file}: {}", e.to_string().replace('\n', " ")));
@@ -237,7 +237,7 @@ fn read_torque_csv(m: &Model, path: &Path) -> Result<TorqueSeries, CliError> {
         times.push(t);
         values.push(tau);
     }
-    TorqueSeries::new(times, values).map_err(|e| CliError::input(format!("{file}: {e}")))
+    Ok(ControllerSpec::Series { times, values })
 }
 
 /// Parses `BODY:mx,my,mz,fx,fy,fz[@world]@T0-T1`.
@@ -409,35 +409,35 @@ fn controller(
     if c != ControllerArg::Series {
         unused("--torque-csv", a.torque_csv.is_some(), &name)?;
     }
-    let gains = |text: &Option<String>, flag: &str, default: Vec<f64>| match text {
-        Some(t) => parse_per_joint(t, flag, m),
-        None => Ok(default),
+    let gains = |text: &Option<String>, flag: &str| {
+        text.as_deref()
+            .map(|t| parse_per_joint(t, flag, m))
+            .transpose()
     };
-    let controller: Box<dyn Controller> = match c {
-        ControllerArg::Zero => Box::new(ZeroTorque),
+    let spec = match c {
+        ControllerArg::Zero => ControllerSpec::Zero,
         ControllerArg::Constant => {
             let Some(t) = &a.tau else {
                 return Err(CliError::input("--controller constant needs --tau"));
             };
-            Box::new(ConstantTorque(parse_vector(Some(t), "tau", m)?))
+            ControllerSpec::Constant(parse_vector(Some(t), "tau", m)?)
         }
-        ControllerArg::Pd => {
-            let (kp0, kd0) = PdGravity::default_gains(m, &target)?;
-            let kp = gains(&a.kp, "kp", kp0)?;
-            let kd = gains(&a.kd, "kd", kd0)?;
-            Box::new(PdGravity::new(m.clone(), target.clone(), kp, kd)?)
-        }
+        ControllerArg::Pd => ControllerSpec::PdGravity {
+            target,
+            kp: gains(&a.kp, "kp")?,
+            kd: gains(&a.kd, "kd")?,
+        },
         ControllerArg::ComputedTorque => {
-            if a.duration <= 0.0 {
-                return Err(CliError::input(
-                    "--controller computed-torque needs a positive --duration",
-                ));
+            let reference = Quintic::rest_to_rest(q0, &target, a.duration).map_err(|e| {
+                in_flag_words(e).with_suffix(
+                    " (--controller computed-torque tracks a quintic from --q0 to --target over --duration)",
+                )
+            })?;
+            ControllerSpec::ComputedTorque {
+                reference: Box::new(reference),
+                kp: gains(&a.kp, "kp")?,
+                kd: gains(&a.kd, "kd")?,
             }
-            let traj = Quintic::rest_to_rest(q0, &target, a.duration)?;
-            let (kp0, kd0) = ComputedTorque::default_gains(m.nq());
-            let kp = gains(&a.kp, "kp", kp0)?;
-            let kd = gains(&a.kd, "kd", kd0)?;
-            Box::new(ComputedTorque::new(m.clone(), Box::new(traj), kp, kd)?)
         }
         ControllerArg::Series => {
             let Some(p) = &a.torque_csv else {
@@ -445,9 +445,14 @@ fn controller(
                     "--controller series needs --torque-csv FILE",
                 ));
             };
-            Box::new(read_torque_csv(m, p)?)
+            read_torque_csv(m, p)?
         }
     };
+    // A bad series (times not increasing) is reported against its file.
+    let controller = spec.build(m).map_err(|e| match (c, &a.torque_csv) {
+        (ControllerArg::Series, Some(p)) => CliError::input(format!("{}: {e}", p.display())),
+        _ => e.into(),
+    })?;
     Ok((name, controller))
 }
 

@@ -13,6 +13,7 @@
 //! ```
 
 mod controller;
+mod controller_spec;
 mod effects;
 mod integrate;
 mod options;
@@ -26,6 +27,7 @@ pub use controller::{
     ComputedTorque, ConstantTorque, Controller, PdGravity, TorqueSeries, ZeroTorque,
     DEFAULT_NATURAL_FREQUENCY,
 };
+pub use controller_spec::ControllerSpec;
 pub use effects::{EffectGains, JointEffects};
 pub use integrate::{AccelFn, Integrator, Stepper};
 pub use options::SimOptions;
