@@ -31,7 +31,7 @@ use crate::model::Model;
 /// assert!((q[0] - 0.5).abs() < 1e-3 && (q[1] + 0.3).abs() < 1e-3);
 ///
 /// let bad = ControllerSpec::PdGravity { target: vec![0.0; 2], kp: Some(vec![1.0; 3]), kd: None };
-/// assert!(bad.build(&m).unwrap_err().to_string().starts_with("kp has 3 values"));
+/// assert!(bad.build(&m).err().unwrap().to_string().starts_with("kp has 3 values"));
 /// ```
 pub enum ControllerSpec {
     /// No actuation ([`ZeroTorque`]).
