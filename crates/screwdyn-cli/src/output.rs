@@ -10,7 +10,7 @@ use crate::args::Format;
 use crate::CliError;
 use comfy_table::{presets, Table};
 use nalgebra::DMatrix;
-use screwdyn::sim::csv_field;
+use screwdyn::format::{csv_field, json_number, NumberText};
 use serde_json::{Map, Value as Json};
 use std::borrow::Cow;
 use std::io::{IsTerminal, Write};
@@ -110,12 +110,12 @@ impl Value {
 
     fn to_json(&self) -> Json {
         match self {
-            Value::Scalar(x) => num_json(*x),
+            Value::Scalar(x) => json_number(*x),
             Value::Count(n) => Json::from(*n),
-            Value::Vector(_, x) => Json::Array(x.iter().map(|v| num_json(*v)).collect()),
+            Value::Vector(_, x) => Json::Array(x.iter().map(|v| json_number(*v)).collect()),
             Value::Matrix(_, _, m) => Json::Array(
                 (0..m.nrows())
-                    .map(|r| Json::Array((0..m.ncols()).map(|c| num_json(m[(r, c)])).collect()))
+                    .map(|r| Json::Array((0..m.ncols()).map(|c| json_number(m[(r, c)])).collect()))
                     .collect(),
             ),
             Value::Map(items) => Json::Object(
@@ -152,19 +152,17 @@ impl Value {
     fn write_csv(
         &self,
         w: &mut impl Write,
-        num: &mut ryu::Buffer,
+        num: &mut NumberText,
         cells: &mut usize,
     ) -> std::io::Result<()> {
         match self {
-            Value::Scalar(x) => csv_cell(w, cells, num_text(num, *x)),
+            Value::Scalar(x) => csv_cell(w, cells, num.csv(*x)),
             Value::Count(n) => csv_cell(w, cells, &n.to_string()),
-            Value::Vector(_, x) => x
-                .iter()
-                .try_for_each(|x| csv_cell(w, cells, num_text(num, *x))),
+            Value::Vector(_, x) => x.iter().try_for_each(|x| csv_cell(w, cells, num.csv(*x))),
             Value::Matrix(_, _, m) => {
                 for r in 0..m.nrows() {
                     for c in 0..m.ncols() {
-                        csv_cell(w, cells, num_text(num, m[(r, c)]))?;
+                        csv_cell(w, cells, num.csv(m[(r, c)]))?;
                     }
                 }
                 Ok(())
@@ -178,7 +176,7 @@ impl Value {
     }
 
     /// Writes this value as compact JSON (the same document as [`Value::to_json`]).
-    fn write_json(&self, w: &mut impl Write, num: &mut ryu::Buffer) -> std::io::Result<()> {
+    fn write_json(&self, w: &mut impl Write, num: &mut NumberText) -> std::io::Result<()> {
         match self {
             Value::Scalar(x) => json_num(w, num, *x),
             Value::Count(n) => write!(w, "{n}"),
@@ -251,7 +249,7 @@ impl Value {
 
 fn write_json_object<K: AsRef<str>>(
     w: &mut impl Write,
-    num: &mut ryu::Buffer,
+    num: &mut NumberText,
     items: &[(K, Value)],
 ) -> std::io::Result<()> {
     w.write_all(b"{")?;
@@ -264,12 +262,6 @@ fn write_json_object<K: AsRef<str>>(
         v.write_json(w, num)?;
     }
     w.write_all(b"}")
-}
-
-fn num_json(x: f64) -> Json {
-    serde_json::Number::from_f64(x)
-        .map(Json::Number)
-        .unwrap_or(Json::Null)
 }
 
 /// A number for tables: 6 decimals, or scientific when very large or small.
@@ -344,7 +336,7 @@ impl Report {
     }
 
     /// Writes the report as one compact JSON object (the document of [`Report::to_json`]).
-    pub fn write_json(&self, w: &mut impl Write, num: &mut ryu::Buffer) -> std::io::Result<()> {
+    pub fn write_json(&self, w: &mut impl Write, num: &mut NumberText) -> std::io::Result<()> {
         write_json_object(w, num, &self.items)
     }
 
@@ -393,7 +385,7 @@ pub struct ReportWriter<W: Write> {
     /// CSV: the number of columns of the header (every row must match it).
     columns: usize,
     out: Sink<W>,
-    num: ryu::Buffer,
+    num: NumberText,
 }
 
 enum Sink<W: Write> {
@@ -414,7 +406,7 @@ impl<W: Write> ReportWriter<W> {
             count: 0,
             columns: 0,
             out,
-            num: ryu::Buffer::new(),
+            num: NumberText::new(),
         }
     }
 
@@ -519,25 +511,8 @@ fn csv_cell(w: &mut impl Write, cells: &mut usize, text: &str) -> std::io::Resul
     w.write_all(text.as_bytes())
 }
 
-/// A number as the shortest text that reads back to the same `f64` (`ryu`); `NaN`, `inf`.
-fn num_text(num: &mut ryu::Buffer, x: f64) -> &str {
-    if x.is_finite() {
-        num.format_finite(x)
-    } else if x.is_nan() {
-        "NaN"
-    } else if x > 0.0 {
-        "inf"
-    } else {
-        "-inf"
-    }
-}
-
-fn json_num(w: &mut impl Write, num: &mut ryu::Buffer, x: f64) -> std::io::Result<()> {
-    if x.is_finite() {
-        w.write_all(num.format_finite(x).as_bytes())
-    } else {
-        w.write_all(b"null")
-    }
+fn json_num(w: &mut impl Write, num: &mut NumberText, x: f64) -> std::io::Result<()> {
+    w.write_all(num.json(x).as_bytes())
 }
 
 fn json_str(w: &mut impl Write, s: &str) -> std::io::Result<()> {

@@ -21,6 +21,7 @@ pub mod batch;
 pub mod builtin;
 pub mod dynamics;
 mod error;
+pub mod format;
 pub mod identification;
 pub mod inertia;
 pub mod io;

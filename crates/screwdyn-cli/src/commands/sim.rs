@@ -8,9 +8,8 @@ use crate::write::{self, AtomicFile};
 use crate::CliError;
 use screwdyn::dynamics::ForwardMethod;
 use screwdyn::sim::{
-    self, ComputedTorque, ConstantTorque, Controller, Disturbance, Integrator, JointEffects,
-    PdGravity, Quintic, Recording, Sample, SampleSink, SimOptions, TorqueSeries, Trajectory,
-    Trapezoid, ZeroTorque,
+    self, Controller, ControllerSpec, Disturbance, Integrator, JointEffects, Quintic, Recording,
+    Sample, SampleSink, SimOptions, Trajectory, Trapezoid,
 };
 use screwdyn::Model;
 use std::io::IsTerminal;
@@ -178,8 +177,9 @@ fn scalar_series(rec: &Recording, name: &str, x: &[f64]) -> Series {
     }
 }
 
-/// Reads a torque series: columns `t` and `tau.<joint>` (a missing joint is zero).
-fn read_torque_csv(m: &Model, path: &Path) -> Result<TorqueSeries, CliError> {
+/// Reads a torque series: columns `t` and `tau.<joint>` (a missing joint is zero); the times
+/// are checked when the controller is built.
+fn read_torque_csv(m: &Model, path: &Path) -> Result<ControllerSpec, CliError> {
     let file = path.display().to_string();
     let err =
         |e: csv::Error| CliError::input(format!("{file}: {}", e.to_string().replace('\n', " ")));
@@ -237,7 +237,7 @@ fn read_torque_csv(m: &Model, path: &Path) -> Result<TorqueSeries, CliError> {
         times.push(t);
         values.push(tau);
     }
-    TorqueSeries::new(times, values).map_err(|e| CliError::input(format!("{file}: {e}")))
+    Ok(ControllerSpec::Series { times, values })
 }
 
 /// Parses `BODY:mx,my,mz,fx,fy,fz[@world]@T0-T1`.
@@ -343,45 +343,18 @@ fn sim_options(a: &SimulateArgs, m: &Model) -> Result<SimOptions, CliError> {
         .method
         .parse()
         .map_err(|e: String| CliError::input(format!("--method: {e}")))?;
-    if !(a.dt > 0.0 && a.dt.is_finite()) {
-        return Err(CliError::input(format!(
-            "--dt must be positive (got {})",
-            a.dt
-        )));
-    }
-    let t = a.limit_time_constant;
-    if !(t > 0.0 && t.is_finite()) {
-        return Err(CliError::input(format!(
-            "--limit-time-constant must be positive (got {t})"
-        )));
-    }
-    let zeta = a.limit_damping_ratio;
-    if !(zeta >= 0.0 && zeta.is_finite()) {
-        return Err(CliError::input(format!(
-            "--limit-damping-ratio must be non-negative (got {zeta})"
-        )));
-    }
-    if !(a.duration >= 0.0 && a.duration.is_finite()) {
-        return Err(CliError::input(format!(
-            "--duration must be a non-negative number (got {})",
-            a.duration
-        )));
-    }
-    if a.record_every == 0 {
-        return Err(CliError::input("--record-every must be at least 1"));
-    }
     let opts = SimOptions {
         duration: a.duration,
         dt: a.dt,
         integrator,
         method,
-        effects: if a.no_effects {
-            JointEffects::none()
-        } else {
-            JointEffects {
-                limit_time_constant: a.limit_time_constant,
-                limit_damping_ratio: a.limit_damping_ratio,
-                ..JointEffects::default()
+        effects: JointEffects {
+            limit_time_constant: a.limit_time_constant,
+            limit_damping_ratio: a.limit_damping_ratio,
+            ..if a.no_effects {
+                JointEffects::none()
+            } else {
+                JointEffects::default()
             }
         },
         record_every: a.record_every,
@@ -391,7 +364,24 @@ fn sim_options(a: &SimulateArgs, m: &Model) -> Result<SimOptions, CliError> {
             .map(|f| m.frame_id(f))
             .collect::<Result<Vec<_>, _>>()?,
     };
+    opts.validate(m).map_err(in_flag_words)?;
     Ok(opts)
+}
+
+/// A library error about a setting (`dt must be positive (got 0); …`) worded with the flag
+/// that sets it (`--dt must be positive (got 0); …`); other errors as they are.
+fn in_flag_words(e: screwdyn::Error) -> CliError {
+    if let screwdyn::Error::InvalidArgument(message) = &e {
+        if let Some((field, rest)) = message.split_once(" must be ") {
+            let is_field = |c: char| c.is_ascii_lowercase() || c == '_' || c == '.';
+            if !field.is_empty() && field.chars().all(is_field) {
+                // `effects.limit_time_constant` is set by `--limit-time-constant`.
+                let name = field.rsplit('.').next().unwrap_or(field);
+                return CliError::input(format!("--{} must be {rest}", name.replace('_', "-")));
+            }
+        }
+    }
+    e.into()
 }
 
 /// The controller chosen by `--controller` (and its name), with its gains and reference.
@@ -419,35 +409,35 @@ fn controller(
     if c != ControllerArg::Series {
         unused("--torque-csv", a.torque_csv.is_some(), &name)?;
     }
-    let gains = |text: &Option<String>, flag: &str, default: Vec<f64>| match text {
-        Some(t) => parse_per_joint(t, flag, m),
-        None => Ok(default),
+    let gains = |text: &Option<String>, flag: &str| {
+        text.as_deref()
+            .map(|t| parse_per_joint(t, flag, m))
+            .transpose()
     };
-    let controller: Box<dyn Controller> = match c {
-        ControllerArg::Zero => Box::new(ZeroTorque),
+    let spec = match c {
+        ControllerArg::Zero => ControllerSpec::Zero,
         ControllerArg::Constant => {
             let Some(t) = &a.tau else {
                 return Err(CliError::input("--controller constant needs --tau"));
             };
-            Box::new(ConstantTorque(parse_vector(Some(t), "tau", m)?))
+            ControllerSpec::Constant(parse_vector(Some(t), "tau", m)?)
         }
-        ControllerArg::Pd => {
-            let (kp0, kd0) = PdGravity::default_gains(m, &target)?;
-            let kp = gains(&a.kp, "kp", kp0)?;
-            let kd = gains(&a.kd, "kd", kd0)?;
-            Box::new(PdGravity::new(m.clone(), target.clone(), kp, kd)?)
-        }
+        ControllerArg::Pd => ControllerSpec::PdGravity {
+            target,
+            kp: gains(&a.kp, "kp")?,
+            kd: gains(&a.kd, "kd")?,
+        },
         ControllerArg::ComputedTorque => {
-            if a.duration <= 0.0 {
-                return Err(CliError::input(
-                    "--controller computed-torque needs a positive --duration",
-                ));
+            let reference = Quintic::rest_to_rest(q0, &target, a.duration).map_err(|e| {
+                in_flag_words(e).with_suffix(
+                    " (--controller computed-torque tracks a quintic from --q0 to --target over --duration)",
+                )
+            })?;
+            ControllerSpec::ComputedTorque {
+                reference: Box::new(reference),
+                kp: gains(&a.kp, "kp")?,
+                kd: gains(&a.kd, "kd")?,
             }
-            let traj = Quintic::rest_to_rest(q0, &target, a.duration)?;
-            let (kp0, kd0) = ComputedTorque::default_gains(m.nq());
-            let kp = gains(&a.kp, "kp", kp0)?;
-            let kd = gains(&a.kd, "kd", kd0)?;
-            Box::new(ComputedTorque::new(m.clone(), Box::new(traj), kp, kd)?)
         }
         ControllerArg::Series => {
             let Some(p) = &a.torque_csv else {
@@ -455,9 +445,14 @@ fn controller(
                     "--controller series needs --torque-csv FILE",
                 ));
             };
-            Box::new(read_torque_csv(m, p)?)
+            read_torque_csv(m, p)?
         }
     };
+    // A bad series (times not increasing) is reported against its file.
+    let controller = spec.build(m).map_err(|e| match (c, &a.torque_csv) {
+        (ControllerArg::Series, Some(p)) => CliError::input(format!("{}: {e}", p.display())),
+        _ => e.into(),
+    })?;
     Ok((name, controller))
 }
 
@@ -672,14 +667,9 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
     let m = load(&a.model, a.gravity.as_deref())?;
     let q0 = parse_vector(a.q0.as_deref(), "q0", &m)?;
     let qf = parse_vector(Some(&a.qf), "qf", &m)?;
-    if !(a.dt > 0.0 && a.dt.is_finite()) {
-        return Err(CliError::input(format!(
-            "--dt must be positive (got {})",
-            a.dt
-        )));
-    }
     let (traj, what) = trajectory(a, &m, &q0, &qf)?;
-    let p = sim::torque_profile_limited(&m, traj.as_ref(), a.dt, a.max_samples)?;
+    let p = sim::torque_profile_limited(&m, traj.as_ref(), a.dt, a.max_samples)
+        .map_err(in_flag_words)?;
     let rec = &p.samples;
     if let (Some(path), Some(kind)) = (&a.output, output_kind) {
         let file = AtomicFile::create(path)?;
@@ -726,18 +716,10 @@ fn trajectory(
             );
             (Box::new(t), what)
         }
-        TrajectoryArg::Quintic => {
-            if !(a.duration > 0.0 && a.duration.is_finite()) {
-                return Err(CliError::input(format!(
-                    "--duration must be positive (got {})",
-                    a.duration
-                )));
-            }
-            (
-                Box::new(Quintic::rest_to_rest(q0, qf, a.duration)?),
-                "quintic rest-to-rest".to_string(),
-            )
-        }
+        TrajectoryArg::Quintic => (
+            Box::new(Quintic::rest_to_rest(q0, qf, a.duration).map_err(in_flag_words)?),
+            "quintic rest-to-rest".to_string(),
+        ),
     })
 }
 

@@ -1,6 +1,7 @@
 //! Joint effects added to the commanded torque: effort saturation, viscous damping, smoothed
 //! Coulomb friction and position limits as a stiff spring–damper.
 
+use super::setting::{check, Range};
 use crate::dynamics::mass_matrix_inverse;
 use crate::error::{Error, Result};
 use crate::model::Model;
@@ -92,7 +93,7 @@ impl EffectGains {
     /// `q0`, for a step of `dt`. Errors name the bad setting.
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) for a time constant, damping ratio or smoothing speed that is not finite and positive (non-negative for the ratio); errors of [`mass_matrix_inverse`](crate::dynamics::mass_matrix_inverse) at `q0`.
+    /// As [`JointEffects::validate`]; errors of [`mass_matrix_inverse`](crate::dynamics::mass_matrix_inverse) at `q0`.
     ///
     /// ```
     /// use screwdyn::sim::{EffectGains, JointEffects};
@@ -109,21 +110,7 @@ impl EffectGains {
             effects.limit_damping_ratio,
             effects.friction_smoothing,
         );
-        let positive = |x: f64| x > 0.0 && x.is_finite();
-        let problem = if effects.position_limits && !positive(t) {
-            Some(("limit time constant", t, "positive"))
-        } else if effects.position_limits && !(zeta >= 0.0 && zeta.is_finite()) {
-            Some(("limit damping ratio", zeta, "non-negative"))
-        } else if effects.friction && !positive(eps) {
-            Some(("friction smoothing speed", eps, "positive"))
-        } else {
-            None
-        };
-        if let Some((what, x, must)) = problem {
-            return Err(Error::InvalidArgument(format!(
-                "the joint effects' {what} is {x}; it must be finite and {must}"
-            )));
-        }
+        effects.validate()?;
         let needs_friction = effects.friction && model.joints().iter().any(|j| j.friction != 0.0);
         if !(effects.position_limits || needs_friction) {
             return Ok(EffectGains {
@@ -195,6 +182,43 @@ impl EffectGains {
 }
 
 impl JointEffects {
+    /// Checks the settings, whether or not their effect is switched on: the limit stops' time
+    /// constant finite and positive, their damping ratio finite and non-negative, the friction
+    /// smoothing speed finite and positive. The error names the field
+    /// (`effects.limit_time_constant`, `effects.limit_damping_ratio`,
+    /// `effects.friction_smoothing`).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for the first setting out of its range.
+    ///
+    /// ```
+    /// use screwdyn::sim::JointEffects;
+    /// assert!(JointEffects::default().validate().is_ok());
+    /// let e = JointEffects { limit_time_constant: -1.0, ..JointEffects::none() };
+    /// assert!(e.validate().unwrap_err().to_string()
+    ///     .starts_with("effects.limit_time_constant must be positive (got -1)"));
+    /// ```
+    pub fn validate(&self) -> Result<()> {
+        check(
+            "effects.limit_time_constant",
+            self.limit_time_constant,
+            Range::Positive,
+            "the time constant of the position-limit stops in seconds",
+        )?;
+        check(
+            "effects.limit_damping_ratio",
+            self.limit_damping_ratio,
+            Range::NonNegative,
+            "the damping ratio of the position-limit stops",
+        )?;
+        check(
+            "effects.friction_smoothing",
+            self.friction_smoothing,
+            Range::Positive,
+            "the speed in rad/s or m/s that smooths Coulomb friction",
+        )
+    }
+
     /// No effects at all: the applied torque is the commanded torque.
     pub fn none() -> Self {
         JointEffects {

@@ -107,20 +107,20 @@ const B4: [f64; 7] = [
     1.0 / 40.0,
 ];
 
-impl Stepper {
-    /// Buffers for `n` coordinates.
+impl Integrator {
+    /// Checks the scheme's settings: Dormand–Prince tolerances finite, non-negative and not
+    /// both zero (the fixed-step schemes have none).
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] for Dormand–Prince tolerances that are NaN, infinite,
-    /// negative or both zero.
+    /// [`Error::InvalidArgument`] naming `rtol` and `atol`.
     ///
     /// ```
-    /// use screwdyn::sim::{Integrator, Stepper};
-    /// assert!(Stepper::new(Integrator::Rk4, 2).is_ok());
-    /// assert!(Stepper::new(Integrator::DormandPrince { rtol: f64::NAN, atol: 1e-9 }, 2).is_err());
+    /// use screwdyn::sim::Integrator;
+    /// assert!(Integrator::DormandPrince { rtol: 1e-8, atol: 0.0 }.validate().is_ok());
+    /// assert!(Integrator::DormandPrince { rtol: 0.0, atol: 0.0 }.validate().is_err());
     /// ```
-    pub fn new(integrator: Integrator, n: usize) -> Result<Self> {
-        if let Integrator::DormandPrince { rtol, atol } = integrator {
+    pub fn validate(&self) -> Result<()> {
+        if let Integrator::DormandPrince { rtol, atol } = *self {
             let ok = |x: f64| x.is_finite() && x >= 0.0;
             if !(ok(rtol) && ok(atol) && rtol + atol > 0.0) {
                 return Err(Error::InvalidArgument(format!(
@@ -128,6 +128,23 @@ impl Stepper {
                 )));
             }
         }
+        Ok(())
+    }
+}
+
+impl Stepper {
+    /// Buffers for `n` coordinates.
+    ///
+    /// # Errors
+    /// As [`Integrator::validate`].
+    ///
+    /// ```
+    /// use screwdyn::sim::{Integrator, Stepper};
+    /// assert!(Stepper::new(Integrator::Rk4, 2).is_ok());
+    /// assert!(Stepper::new(Integrator::DormandPrince { rtol: f64::NAN, atol: 1e-9 }, 2).is_err());
+    /// ```
+    pub fn new(integrator: Integrator, n: usize) -> Result<Self> {
+        integrator.validate()?;
         Ok(Stepper {
             integrator,
             // Stage derivatives: for the first-order system x = (q, v), ẋ = (v, q̈):

@@ -13,10 +13,13 @@
 //! ```
 
 mod controller;
+mod controller_spec;
 mod effects;
 mod integrate;
+mod options;
 mod profile;
 mod record;
+mod setting;
 mod simulate;
 mod trajectory;
 
@@ -24,14 +27,16 @@ pub use controller::{
     ComputedTorque, ConstantTorque, Controller, PdGravity, TorqueSeries, ZeroTorque,
     DEFAULT_NATURAL_FREQUENCY,
 };
+pub use controller_spec::ControllerSpec;
 pub use effects::{EffectGains, JointEffects};
 pub use integrate::{AccelFn, Integrator, Stepper};
+pub use options::SimOptions;
 pub use profile::{
     torque_profile, torque_profile_limited, TorqueProfile, Violation, ViolationSummary,
     MAX_PROFILE_SAMPLES,
 };
 pub use record::{
-    csv_field, sample_columns, CsvSampleWriter, JsonSampleWriter, Recording, Sample, SampleSink,
+    sample_columns, CsvSampleWriter, JsonSampleWriter, Recording, Sample, SampleSink,
 };
-pub use simulate::{simulate, simulate_into, step_plan, Disturbance, RunSummary, SimOptions};
+pub use simulate::{simulate, simulate_into, step_plan, Disturbance, RunSummary};
 pub use trajectory::{Quintic, Trajectory, Trapezoid, Waypoints};

@@ -3,6 +3,7 @@
 //! to accelerate the manipulator from rest to constant velocity, and then back to stop?".
 
 use super::record::{Recording, Sample, SampleSink};
+use super::setting::{check, Range};
 use super::trajectory::Trajectory;
 use crate::dynamics::{inverse_dynamics, kinetic_energy, potential_energy};
 use crate::error::{Error, Result};
@@ -108,11 +109,7 @@ pub fn torque_profile_limited(
             model.nq()
         )));
     }
-    if !(dt > 0.0 && dt.is_finite()) {
-        return Err(Error::InvalidArgument(format!(
-            "the sampling step must be positive and finite (got {dt})"
-        )));
-    }
+    check("dt", dt, Range::Positive, "the sampling step in seconds")?;
     let wanted = (trajectory.duration() / dt).ceil() + 1.0;
     if wanted.is_nan() || wanted > max_samples as f64 {
         return Err(Error::InvalidArgument(format!(

@@ -2,6 +2,7 @@
 //! JSON output (column names `t`, `q.<joint>`, …, listed in docs/cli.md).
 
 use crate::error::{Error, Result};
+use crate::format::{csv_field, NumberText};
 use crate::spatial::Se3;
 use std::io::Write;
 
@@ -271,7 +272,7 @@ pub struct CsvSampleWriter<W: Write> {
     out: W,
     row: Vec<f64>,
     line: String,
-    number: ryu::Buffer,
+    number: NumberText,
 }
 
 impl<W: Write> CsvSampleWriter<W> {
@@ -281,7 +282,7 @@ impl<W: Write> CsvSampleWriter<W> {
             out,
             row: Vec::new(),
             line: String::new(),
-            number: ryu::Buffer::new(),
+            number: NumberText::new(),
         }
     }
     /// The writer, once the run is over.
@@ -301,15 +302,6 @@ fn io_error(e: std::io::Error) -> Error {
     Error::Io(format!("writing the run failed ({e})"))
 }
 
-/// `name` as a CSV field: quoted (with `"` doubled) when it holds a comma, quote or line break.
-pub fn csv_field(name: &str) -> std::borrow::Cow<'_, str> {
-    if name.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", name.replace('"', "\"\"")).into()
-    } else {
-        name.into()
-    }
-}
-
 impl<W: Write> SampleSink for CsvSampleWriter<W> {
     fn begin(&mut self, joints: &[String], frames: &[String]) -> Result<()> {
         let header: Vec<String> = sample_columns(joints, frames)
@@ -327,8 +319,7 @@ impl<W: Write> SampleSink for CsvSampleWriter<W> {
             if k > 0 {
                 self.line.push(',');
             }
-            // Shortest round trip (Ryū); `NaN`, `inf`, `-inf` as Rust prints them.
-            self.line.push_str(self.number.format(*x));
+            self.line.push_str(self.number.csv(*x));
         }
         self.line.push('\n');
         self.out.write_all(self.line.as_bytes()).map_err(io_error)
@@ -358,7 +349,7 @@ pub struct JsonSampleWriter<W: Write> {
     columns: Vec<(String, std::io::BufWriter<std::fs::File>)>,
     samples: usize,
     row: Vec<f64>,
-    number: ryu::Buffer,
+    number: NumberText,
 }
 
 impl<W: Write> JsonSampleWriter<W> {
@@ -370,7 +361,7 @@ impl<W: Write> JsonSampleWriter<W> {
             columns: Vec::new(),
             samples: 0,
             row: Vec::new(),
-            number: ryu::Buffer::new(),
+            number: NumberText::new(),
         }
     }
 
@@ -436,12 +427,7 @@ impl<W: Write> SampleSink for JsonSampleWriter<W> {
         let scalars = 1 + 4 * self.joints.len() + 3;
         let (plain, frames) = self.columns.split_at_mut(scalars);
         for ((_, spool), x) in plain.iter_mut().zip(&self.row) {
-            // Finite values print as JSON numbers (shortest round trip), others as null.
-            let text = if x.is_finite() {
-                self.number.format_finite(*x)
-            } else {
-                "null"
-            };
+            let text = self.number.json(*x);
             spool.write_all(b",").map_err(io_error)?;
             spool.write_all(text.as_bytes()).map_err(io_error)?;
         }

@@ -3,7 +3,8 @@
 
 use super::controller::Controller;
 use super::effects::{EffectGains, JointEffects};
-use super::integrate::{Integrator, Stepper};
+use super::integrate::Stepper;
+use super::options::SimOptions;
 use super::record::{Recording, Sample, SampleSink};
 use crate::dynamics::energy::{kinetic_energy_given_twists, potential_energy_given_poses};
 use crate::dynamics::{forward_dynamics, ExternalWrenches, ForwardMethod};
@@ -27,39 +28,6 @@ pub struct Disturbance {
     pub start: f64,
     /// End time (s).
     pub end: f64,
-}
-
-/// How to simulate.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SimOptions {
-    /// Simulated time (s).
-    pub duration: f64,
-    /// Step (s): the fixed step of Euler and RK4, the output interval of Dormand–Prince.
-    pub dt: f64,
-    /// Integration scheme.
-    pub integrator: Integrator,
-    /// Forward-dynamics algorithm.
-    pub method: ForwardMethod,
-    /// Joint effects.
-    pub effects: JointEffects,
-    /// Record every k-th step (1 = every step).
-    pub record_every: usize,
-    /// Frames whose poses are recorded.
-    pub frames: Vec<usize>,
-}
-
-impl Default for SimOptions {
-    fn default() -> Self {
-        SimOptions {
-            duration: 1.0,
-            dt: 1e-3,
-            integrator: Integrator::Rk4,
-            method: ForwardMethod::Aba,
-            effects: JointEffects::default(),
-            record_every: 1,
-            frames: Vec::new(),
-        }
-    }
 }
 
 /// The plant: controller + effects + disturbances → applied torque → forward dynamics.
@@ -248,8 +216,8 @@ pub fn step_plan(duration: f64, dt: f64) -> (usize, f64) {
 ///
 /// # Errors
 /// [`Error::DimensionMismatch`]/[`Error::NonFinite`] for bad `q0`, `v0`;
-/// [`Error::InvalidArgument`] for a bad step, duration, recorded frame, disturbance body or
-/// joint-effect setting; [`Error::Numerical`] when the run diverges; any error of the
+/// [`Error::InvalidArgument`] for options that break [`SimOptions::validate`], a bad
+/// disturbance body or time; [`Error::Numerical`] when the run diverges; any error of the
 /// controller or the sink.
 ///
 /// ```
@@ -286,7 +254,6 @@ pub fn simulate_into(
         method: opts.method,
         effects: opts.effects,
         gains: EffectGains::new(&opts.effects, model, q0, opts.dt)?,
-
         last: LastEvaluation::new(n),
     };
     let mut stepper = Stepper::new(opts.integrator, n)?;
@@ -295,7 +262,7 @@ pub fn simulate_into(
     sink.begin(&joints, &recorder.frame_names)?;
     let (mut q, mut v, mut a) = (q0.to_vec(), v0.to_vec(), vec![0.0; n]);
     let (steps, last_dt) = step_plan(opts.duration, opts.dt);
-    let every = opts.record_every.max(1);
+    let every = opts.record_every;
     recorder.record(0.0, &q, &v, &mut plant, &mut a, sink)?;
     let report = (steps / 200).max(1);
     // Countdowns instead of `k % every` and `k % report`: two integer divisions a step.
@@ -342,16 +309,9 @@ fn check_inputs(
     disturbances: &[Disturbance],
     opts: &SimOptions,
 ) -> Result<()> {
+    opts.validate(model)?;
     model.check_vector(q0, "q0")?;
     model.check_vector(v0, "v0")?;
-    let valid =
-        opts.dt > 0.0 && opts.dt.is_finite() && opts.duration >= 0.0 && opts.duration.is_finite();
-    if !valid {
-        return Err(Error::InvalidArgument(format!(
-            "the step must be positive and the duration non-negative (got dt = {}, duration = {})",
-            opts.dt, opts.duration
-        )));
-    }
     for d in disturbances {
         model.check_body(d.body)?;
         crate::model::check_finite(d.wrench.as_slice(), "a disturbance wrench")?;

@@ -2,6 +2,7 @@
 //! velocity, and then back to stop"), quintic polynomials, and piecewise quintics through
 //! waypoints.
 
+use super::setting::{check, Range};
 use crate::error::{Error, Result};
 
 /// A joint-space reference `q_d(t)`, `q̇_d(t)`, `q̈_d(t)` on `[0, duration]` (held constant
@@ -247,11 +248,12 @@ impl Quintic {
         ] {
             check_same_len(what, v, n)?;
         }
-        if !(duration > 0.0 && duration.is_finite()) {
-            return Err(Error::InvalidArgument(format!(
-                "a quintic needs a positive duration (got {duration})"
-            )));
-        }
+        check(
+            "duration",
+            duration,
+            Range::Positive,
+            "the length of the quintic in seconds",
+        )?;
         let t = duration;
         let coeffs = (0..n)
             .map(|i| {
