@@ -1,4 +1,5 @@
-//! NumPy in, NumPy out: shape checks with clear messages, stacked states, output arrays.
+//! NumPy in, NumPy out: shape checks with clear messages, stacked states, output arrays, and
+//! the Python classes results are wrapped in.
 
 use numpy::{
     AllowTypeChange, BorrowError, PyArray1, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods,
@@ -129,7 +130,7 @@ fn contiguous<'a>(arr: &'a ArrayIn<'_>) -> Cow<'a, [f64]> {
 /// with the library's sentence (`q has 3 values, the model has 6 joints: …`).
 pub fn joint_states<'a>(
     model: &Model,
-    arr: &'a impl Values,
+    arr: &'a (impl Values + ?Sized),
     name: &'static str,
 ) -> PyResult<States<'a>> {
     let shape = arr.shape();
@@ -175,7 +176,7 @@ pub fn joint_states<'a>(
 
 /// A fixed-width argument (a wrench `(6,)`, a point `(3,)`), single or stacked `(N, width)`.
 pub fn fixed_states<'a>(
-    arr: &'a impl Values,
+    arr: &'a (impl Values + ?Sized),
     name: &'static str,
     width: usize,
     stackable: bool,
@@ -205,6 +206,17 @@ pub fn fixed_states<'a>(
             }
         ))),
     }
+}
+
+/// A 1-D array argument (one value per joint: trajectory end points, limits, times) as a vector.
+pub fn values_1d(a: &ArrayIn<'_>, name: &'static str) -> PyResult<Vec<f64>> {
+    if a.ndim() != 1 {
+        return Err(PyValueError::new_err(format!(
+            "{name} must be a 1-D array (one value per joint), got {} dimensions",
+            a.ndim()
+        )));
+    }
+    Ok(a.as_array().iter().copied().collect())
 }
 
 /// The common number of states of stacked arguments (`None` when all are single).
@@ -325,4 +337,15 @@ pub fn write_rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f6
 #[inline]
 pub fn write_pose(h: &screwdyn::spatial::Se3, out: &mut [f64]) {
     write_rows(&h.to_matrix(), out);
+}
+
+/// The Python class `module.class`: the result classes of `screwdyn._results` (`ClosedForm`,
+/// `SimResult`…) and `screwdyn._view.View`, which wrap the arrays a method returns for
+/// notebooks, pandas and matplotlib.
+pub fn python_class<'py>(
+    py: Python<'py>,
+    module: &str,
+    class: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    py.import(module)?.getattr(class)
 }
