@@ -7,6 +7,7 @@ use numpy::{
 };
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
+use pyo3::types::{PyFloat, PyInt, PyTuple};
 use screwdyn::Model;
 use std::borrow::Cow;
 
@@ -348,4 +349,33 @@ pub fn python_class<'py>(
     class: &str,
 ) -> PyResult<Bound<'py, PyAny>> {
     py.import(module)?.getattr(class)
+}
+
+/// Python's `float(x)`, for the number arguments the Python layer converted so before these
+/// methods were native (`simulate`'s `duration`, `dt`, tolerances; `torque_profile`'s `dt`).
+pub fn as_float(x: &Bound<'_, PyAny>) -> PyResult<f64> {
+    match x.cast::<PyFloat>() {
+        Ok(f) => Ok(f.value()),
+        Err(_) => x.py().get_type::<PyFloat>().call1((x,))?.extract(),
+    }
+}
+
+/// Python's `int(x)`, for the counts and seeds the Python layer converted so (`record_every`,
+/// `states`, `seed`, the view's caps).
+pub fn as_int<'py, T>(x: &Bound<'py, PyAny>) -> PyResult<T>
+where
+    T: for<'a> FromPyObject<'a, 'py, Error = PyErr>,
+{
+    x.py().get_type::<PyInt>().call1((x,))?.extract()
+}
+
+/// Python's `bool(x)`, for the `friction` flags the Python layer converted so.
+pub fn truthy(x: &Bound<'_, PyAny>) -> PyResult<bool> {
+    x.is_truthy()
+}
+
+/// `()`, the default of a sequence argument (`simulate`'s `disturbances` and `frames`,
+/// `view`'s `package_path`).
+pub fn empty_tuple() -> Py<PyAny> {
+    Python::attach(|py| PyTuple::empty(py).into_any().unbind())
 }

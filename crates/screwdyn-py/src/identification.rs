@@ -3,7 +3,7 @@
 
 use crate::batch::Batch;
 use crate::compute::{arg, optional};
-use crate::convert::{self, python_class, vector, StateIn};
+use crate::convert::{self, as_int, python_class, truthy, vector, StateIn};
 use crate::errors::call_err;
 use crate::model::PyModel;
 use pyo3::exceptions::PyValueError;
@@ -49,7 +49,7 @@ impl PyModel {
     fn inertial_parameters<'py>(
         &self,
         py: Python<'py>,
-        friction: bool,
+        #[pyo3(from_py_with = truthy)] friction: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         let pi = identification::standard_parameters(&self.model, friction);
         vector(py, pi.as_slice())
@@ -58,7 +58,7 @@ impl PyModel {
     /// Names of the standard parameters: ``<parameter>_<link>`` (``m_link1``, ``Izz_link2``),
     /// then ``fv_<joint>``, ``fc_<joint>`` with ``friction``.
     #[pyo3(signature = (friction = false))]
-    fn parameter_names(&self, friction: bool) -> Vec<String> {
+    fn parameter_names(&self, #[pyo3(from_py_with = truthy)] friction: bool) -> Vec<String> {
         identification::parameter_names(&self.model, friction)
     }
 
@@ -70,9 +70,9 @@ impl PyModel {
     fn base_parameters<'py>(
         &self,
         py: Python<'py>,
-        friction: bool,
-        states: usize,
-        seed: u64,
+        #[pyo3(from_py_with = truthy)] friction: bool,
+        #[pyo3(from_py_with = as_int)] states: usize,
+        #[pyo3(from_py_with = as_int)] seed: u64,
     ) -> PyResult<Bound<'py, PyAny>> {
         let data = self.compute(py, |_| {
             let b = py.detach(|| self.base(friction, states, seed))?;
@@ -96,9 +96,9 @@ impl PyModel {
         v: StateIn<'py>,
         a: StateIn<'py>,
         tau: StateIn<'py>,
-        friction: bool,
-        states: usize,
-        seed: u64,
+        #[pyo3(from_py_with = truthy)] friction: bool,
+        #[pyo3(from_py_with = as_int)] states: usize,
+        #[pyo3(from_py_with = as_int)] seed: u64,
     ) -> PyResult<Bound<'py, PyAny>> {
         let data = self.compute(py, |c| {
             let m = &self.model;

@@ -7,7 +7,7 @@
 use crate::args::method;
 use crate::compute::{arg, optional};
 use crate::convert::{self, fixed_states, joint_states, python_class, rows_array, values_1d};
-use crate::convert::{vector, ArrayIn, StateIn};
+use crate::convert::{as_float, as_int, empty_tuple, vector, ArrayIn, StateIn};
 use crate::errors::call_err;
 use crate::model::PyModel;
 use crate::trajectory::{PyTrajectory, Traj};
@@ -44,9 +44,10 @@ impl PyModel {
     /// disturbances: :class:`Disturbance` wrenches on links during time windows.
     /// record_every: keep every k-th step; frames: frames whose poses are recorded.
     /// Returns a :class:`SimResult` (arrays ``t``, ``q``, ``v``, ``a``, ``tau``, energies, poses).
-    // The text signature shows the defaults `()` of the two sequences, which Rust writes `None`.
+    // The text signature shows the defaults `()` of the two sequences, which are no literals in
+    // Rust.
     #[pyo3(
-        signature = (q0, v0 = None, *, duration = 1.0, dt = 1e-3, controller = None, integrator = "rk4", rtol = 1e-8, atol = 1e-10, method = "aba", effects = None, disturbances = None, record_every = 1, frames = None, progress = None),
+        signature = (q0, v0 = None, *, duration = 1.0, dt = 1e-3, controller = None, integrator = "rk4", rtol = 1e-8, atol = 1e-10, method = "aba", effects = None, disturbances = empty_tuple(), record_every = 1, frames = empty_tuple(), progress = None),
         text_signature = "($self, q0, v0=None, *, duration=1.0, dt=0.001, controller=None, integrator='rk4', rtol=1e-08, atol=1e-10, method='aba', effects=None, disturbances=(), record_every=1, frames=(), progress=None)"
     )]
     #[allow(clippy::too_many_arguments)]
@@ -55,34 +56,36 @@ impl PyModel {
         py: Python<'py>,
         q0: StateIn<'py>,
         v0: Option<StateIn<'py>>,
-        duration: f64,
-        dt: f64,
+        #[pyo3(from_py_with = as_float)] duration: f64,
+        #[pyo3(from_py_with = as_float)] dt: f64,
         controller: Option<&Bound<'py, PyAny>>,
         integrator: &str,
-        rtol: f64,
-        atol: f64,
+        #[pyo3(from_py_with = as_float)] rtol: f64,
+        #[pyo3(from_py_with = as_float)] atol: f64,
         method: &str,
         effects: Option<&Bound<'py, PyAny>>,
-        disturbances: Option<&Bound<'py, PyAny>>,
-        record_every: usize,
-        frames: Option<&Bound<'py, PyAny>>,
+        disturbances: Py<PyAny>,
+        #[pyo3(from_py_with = as_int)] record_every: usize,
+        frames: Py<PyAny>,
         progress: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let run = Run {
-            controller,
-            disturbances,
-            duration,
-            dt,
-            integrator,
-            rtol,
-            atol,
-            method,
-            effects,
-            record_every,
-            frames,
-            progress,
-        };
         let rec = self.compute(py, |c| {
+            // The controller, disturbances and frames are read before the initial state (as
+            // when this method was written in Python: the same error comes first).
+            let run = Run {
+                controller: ControllerArg::of(controller)?,
+                disturbances: disturbance_specs(disturbances.bind(py))?,
+                frames: frames.bind(py).try_iter()?.collect::<PyResult<_>>()?,
+                duration,
+                dt,
+                integrator,
+                rtol,
+                atol,
+                method,
+                effects,
+                record_every,
+                progress,
+            };
             let joints = [arg(&q0, "q0"), optional(&v0, "v0")];
             c.one("simulate", joints, |[q0, v0]| self.run(py, q0, v0, run))
         })?;
@@ -97,7 +100,7 @@ impl PyModel {
         &self,
         py: Python<'py>,
         trajectory: &Bound<'py, PyTrajectory>,
-        dt: f64,
+        #[pyo3(from_py_with = as_float)] dt: f64,
     ) -> PyResult<Bound<'py, PyAny>> {
         let data = self.compute(py, |_| {
             torque_profile(py, &self.model, &trajectory.borrow(), dt)
@@ -108,8 +111,10 @@ impl PyModel {
 
 /// The arguments of `simulate` but the initial state.
 struct Run<'a, 'py> {
-    controller: Option<&'a Bound<'py, PyAny>>,
-    disturbances: Option<&'a Bound<'py, PyAny>>,
+    controller: ControllerArg<'a, 'py>,
+    /// `(link, wrench, start, end, in_world)` each.
+    disturbances: Vec<Bound<'py, PyAny>>,
+    frames: Vec<Bound<'py, PyAny>>,
     duration: f64,
     dt: f64,
     integrator: &'a str,
@@ -118,7 +123,6 @@ struct Run<'a, 'py> {
     method: &'a str,
     effects: Option<&'a Bound<'py, PyAny>>,
     record_every: usize,
-    frames: Option<&'a Bound<'py, PyAny>>,
     progress: Option<&'a Bound<'py, PyAny>>,
 }
 
@@ -132,13 +136,12 @@ impl PyModel {
         a: Run<'_, 'py>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let model = &self.model;
-        let mut frames = Vec::new();
-        if let Some(fs) = a.frames {
-            for f in fs.try_iter()? {
-                frames.push(self.frame(&f?)?);
-            }
-        }
-        let dist = self.disturbances(a.disturbances)?;
+        let frames = a
+            .frames
+            .iter()
+            .map(|f| self.frame(f))
+            .collect::<PyResult<_>>()?;
+        let dist = self.disturbances(&a.disturbances)?;
         if a.record_every == 0 {
             return Err(PyValueError::new_err("record_every must be at least 1"));
         }
@@ -197,21 +200,10 @@ impl PyModel {
         recording(py, &rec)
     }
 
-    /// The `disturbances` argument: `screwdyn.Disturbance`s, or their `(link, wrench, start,
-    /// end, in_world)` tuples.
-    fn disturbances(&self, ds: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<Disturbance>> {
-        let Some(ds) = ds else {
-            return Ok(Vec::new());
-        };
-        let class = python_class(ds.py(), "screwdyn", "Disturbance")?;
+    /// The disturbances from their `(link, wrench, start, end, in_world)` descriptions.
+    fn disturbances(&self, specs: &[Bound<'_, PyAny>]) -> PyResult<Vec<Disturbance>> {
         let mut out = Vec::new();
-        for d in ds.try_iter()? {
-            let d = d?;
-            let spec = if d.is_instance(&class)? {
-                d.call_method0("_spec")?
-            } else {
-                d
-            };
+        for spec in specs {
             let t = spec.cast::<PyTuple>().map_err(|_| {
                 PyTypeError::new_err("disturbances is a list of screwdyn.Disturbance")
             })?;
@@ -228,27 +220,17 @@ impl PyModel {
         Ok(out)
     }
 
-    /// The `controller` argument: `None` (zero torque), one of the package's controller classes
-    /// (`PD`, `ComputedTorque`, `TorqueSeries`, `ConstantTorque`: each describes itself by
-    /// `_spec()` as `(kind, arguments…)`), a callable `f(t, q, v) -> tau`, or an array of
-    /// constant torques.
-    fn controller<'a, 'py>(&self, c: Option<&'a Bound<'py, PyAny>>) -> PyResult<Control<'a, 'py>> {
-        let Some(c) = c.filter(|c| !c.is_none()) else {
-            return Ok(Control::Library(Ctl::Zero));
-        };
-        if c.hasattr("_spec")? {
-            let spec = c.call_method0("_spec")?;
-            let spec = spec
-                .cast::<PyTuple>()
-                .map_err(|_| PyTypeError::new_err(CONTROLLERS))?;
-            return Ok(Control::Library(self.library_controller(spec)?));
-        }
-        if c.is_callable() {
-            return Ok(Control::Callable(c));
-        }
-        let torque: ArrayIn<'_> = c.extract()?;
-        let torque = joint_vector(&self.model, &torque, "the constant torque")?;
-        Ok(Control::Library(Ctl::Constant(torque)))
+    /// The controller of a run from its argument.
+    fn controller<'a, 'py>(&self, c: ControllerArg<'a, 'py>) -> PyResult<Control<'a, 'py>> {
+        Ok(match c {
+            ControllerArg::Zero => Control::Library(Ctl::Zero),
+            ControllerArg::Spec(spec) => Control::Library(self.library_controller(&spec)?),
+            ControllerArg::Callable(f) => Control::Callable(f),
+            ControllerArg::Constant(torque) => {
+                let torque = joint_vector(&self.model, &torque, "the constant torque")?;
+                Control::Library(Ctl::Constant(torque))
+            }
+        })
     }
 
     /// A controller of the library from its `(kind, arguments…)` description.
@@ -322,6 +304,52 @@ impl PyModel {
                 )))
             }
         })
+    }
+}
+
+/// The `disturbances` argument: `screwdyn.Disturbance`s (described by their `_spec()`), or
+/// their descriptions.
+fn disturbance_specs<'py>(ds: &Bound<'py, PyAny>) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    let class = python_class(ds.py(), "screwdyn", "Disturbance")?;
+    ds.try_iter()?
+        .map(|d| {
+            let d = d?;
+            if d.is_instance(&class)? {
+                d.call_method0("_spec")
+            } else {
+                Ok(d)
+            }
+        })
+        .collect()
+}
+
+/// The `controller` argument as given: `None` (zero torque), one of the package's controller
+/// classes (`PD`, `ComputedTorque`, `TorqueSeries`, `ConstantTorque`: each describes itself by
+/// `_spec()` as `(kind, arguments…)`), a callable `f(t, q, v) -> tau`, or an array of constant
+/// torques.
+enum ControllerArg<'a, 'py> {
+    Zero,
+    Spec(Bound<'py, PyTuple>),
+    Callable(&'a Bound<'py, PyAny>),
+    Constant(ArrayIn<'py>),
+}
+
+impl<'a, 'py> ControllerArg<'a, 'py> {
+    fn of(c: Option<&'a Bound<'py, PyAny>>) -> PyResult<Self> {
+        let Some(c) = c.filter(|c| !c.is_none()) else {
+            return Ok(ControllerArg::Zero);
+        };
+        if c.hasattr("_spec")? {
+            let spec = c.call_method0("_spec")?;
+            let spec = spec
+                .cast_into::<PyTuple>()
+                .map_err(|_| PyTypeError::new_err(CONTROLLERS))?;
+            return Ok(ControllerArg::Spec(spec));
+        }
+        if c.is_callable() {
+            return Ok(ControllerArg::Callable(c));
+        }
+        Ok(ControllerArg::Constant(c.extract()?))
     }
 }
 

@@ -3,7 +3,7 @@
 //! library's CSV/JSON writers.
 
 use crate::compute::arg;
-use crate::convert::{python_class, ArrayIn, StateIn};
+use crate::convert::{as_int, empty_tuple, python_class, ArrayIn, StateIn};
 use crate::errors::{call_err, guard};
 use crate::model::PyModel;
 use pyo3::exceptions::{PyFileNotFoundError, PyTypeError, PyValueError};
@@ -69,26 +69,28 @@ impl PyModel {
     /// non-finite value; FileNotFoundError for a missing run file.
     // The text signature shows the defaults Rust cannot write as literals.
     #[pyo3(
-        signature = (q = None, run = None, *, urdf = None, package_path = None, max_triangles = screwdyn_view::DEFAULT_MAX_TRIANGLES, max_samples = screwdyn_view::DEFAULT_MAX_SAMPLES, title = None, width = default_width(), height = default_height()),
+        signature = (q = None, run = None, *, urdf = None, package_path = empty_tuple(), max_triangles = screwdyn_view::DEFAULT_MAX_TRIANGLES, max_samples = screwdyn_view::DEFAULT_MAX_SAMPLES, title = None, width = default_width(), height = default_height()),
         text_signature = "($self, q=None, run=None, *, urdf=None, package_path=(), max_triangles=200000, max_samples=1000, title=None, width='100%', height=600)"
     )]
     #[allow(clippy::too_many_arguments)]
     fn view<'py>(
         &self,
         py: Python<'py>,
-        q: Option<StateIn<'py>>,
+        q: Option<&Bound<'py, PyAny>>,
         run: Option<&Bound<'py, PyAny>>,
         urdf: Option<PathBuf>,
-        package_path: Option<&Bound<'py, PyAny>>,
-        max_triangles: usize,
-        max_samples: usize,
+        package_path: Py<PyAny>,
+        #[pyo3(from_py_with = as_int)] max_triangles: usize,
+        #[pyo3(from_py_with = as_int)] max_samples: usize,
         title: Option<String>,
         width: Py<PyAny>,
         height: Py<PyAny>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let data = self.compute(py, |c| {
+            // In the order the arguments were checked when `view` was written in Python.
             let run = run.map(RunArg::of).transpose()?;
-            let package_paths = package_paths(package_path)?;
+            let package_paths = package_paths(package_path.bind(py))?;
+            let q: Option<StateIn<'_>> = q.map(|q| q.extract()).transpose()?;
             let m = &self.model;
             if q.is_some() && run.is_some() {
                 return Err(PyValueError::new_err(
@@ -144,12 +146,11 @@ fn is_path_like(x: &Bound<'_, PyAny>) -> PyResult<bool> {
 }
 
 /// The `package_path` argument: one folder or a sequence of them.
-fn package_paths(p: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<PathBuf>> {
-    match p {
-        None => Ok(Vec::new()),
-        Some(p) if is_path_like(p)? => Ok(vec![p.extract()?]),
-        Some(ps) => ps.try_iter()?.map(|p| p?.extract()).collect(),
+fn package_paths(p: &Bound<'_, PyAny>) -> PyResult<Vec<PathBuf>> {
+    if is_path_like(p)? {
+        return Ok(vec![p.extract()?]);
     }
+    p.try_iter()?.map(|p| p?.extract()).collect()
 }
 
 /// The `run` argument of `view`: the path of a run file, or a `SimResult` / `TorqueProfile`.
