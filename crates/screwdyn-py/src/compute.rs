@@ -15,7 +15,7 @@
 //! ```
 
 use crate::batch::{run, run_lanes, Batch, Rows, Scratch};
-use crate::convert::{joint_states, States, Values};
+use crate::convert::{joint_states, StateIn, States};
 use crate::errors::guard;
 use crate::model::PyModel;
 use pyo3::prelude::*;
@@ -25,23 +25,26 @@ use std::borrow::Cow;
 
 /// A joint-space argument of a method, with the name its messages use; an optional argument
 /// left out (`v=None`) is the zero vector.
-pub(crate) struct Joint<'a> {
-    value: Option<&'a dyn Values>,
+pub(crate) struct Joint<'a, 'py> {
+    value: Option<&'a StateIn<'py>>,
     name: &'static str,
 }
 
 /// A joint-space argument the caller must give.
-pub(crate) fn arg<'a>(value: &'a impl Values, name: &'static str) -> Joint<'a> {
+pub(crate) fn arg<'a, 'py>(value: &'a StateIn<'py>, name: &'static str) -> Joint<'a, 'py> {
     Joint {
-        value: Some(value as &dyn Values),
+        value: Some(value),
         name,
     }
 }
 
 /// A joint-space argument that defaults to zero.
-pub(crate) fn optional<'a>(value: &'a Option<impl Values>, name: &'static str) -> Joint<'a> {
+pub(crate) fn optional<'a, 'py>(
+    value: &'a Option<StateIn<'py>>,
+    name: &'static str,
+) -> Joint<'a, 'py> {
     Joint {
-        value: value.as_ref().map(|v| v as &dyn Values),
+        value: value.as_ref(),
         name,
     }
 }
@@ -72,7 +75,7 @@ impl<'py> Compute<'_, 'py> {
     pub(crate) fn each<F, const K: usize>(
         &self,
         batch: Batch<'_, 'py>,
-        joints: [Joint<'_>; K],
+        joints: [Joint<'_, 'py>; K],
         out_shape: &[usize],
         kernel: F,
     ) -> PyResult<Bound<'py, PyAny>>
@@ -98,7 +101,7 @@ impl<'py> Compute<'_, 'py> {
     pub(crate) fn lanes<F, G, const K: usize>(
         &self,
         batch: Batch<'_, 'py>,
-        joints: [Joint<'_>; K],
+        joints: [Joint<'_, 'py>; K],
         out_shape: &[usize],
         lanes: F,
         one: G,
@@ -127,7 +130,7 @@ impl<'py> Compute<'_, 'py> {
     pub(crate) fn one<T, const K: usize>(
         &self,
         method: &str,
-        joints: [Joint<'_>; K],
+        joints: [Joint<'_, 'py>; K],
         body: impl FnOnce([&[f64]; K]) -> PyResult<T>,
     ) -> PyResult<T> {
         let states = self.joints(joints)?;
@@ -142,28 +145,21 @@ impl<'py> Compute<'_, 'py> {
     /// that does its own loop over the states.
     pub(crate) fn joints<'a, const K: usize>(
         &self,
-        joints: [Joint<'a>; K],
+        joints: [Joint<'a, 'py>; K],
     ) -> PyResult<[States<'a>; K]> {
         let model = &self.model.model;
-        let mut error = None;
-        let states = joints.map(|j| {
-            if error.is_some() {
-                return None;
-            }
-            let converted = match j.value {
-                Some(v) => joint_states(model, v, j.name),
-                None => Ok(States {
+        let mut states = [const { States::EMPTY }; K];
+        for (state, j) in states.iter_mut().zip(joints) {
+            *state = match j.value {
+                Some(v) => joint_states(model, v, j.name)?,
+                None => States {
                     name: j.name,
                     data: Cow::Owned(vec![0.0; model.nq()]),
                     n: None,
                     width: model.nq(),
-                }),
+                },
             };
-            converted.map_err(|e| error = Some(e)).ok()
-        });
-        match error {
-            Some(e) => Err(e),
-            None => Ok(states.map(|s| s.expect("every argument was converted"))),
         }
+        Ok(states)
     }
 }

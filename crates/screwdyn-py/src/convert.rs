@@ -97,6 +97,14 @@ pub struct States<'a> {
 }
 
 impl States<'_> {
+    /// No argument: a placeholder in an array of states being filled.
+    pub const EMPTY: States<'static> = States {
+        name: "",
+        data: Cow::Borrowed(&[]),
+        n: None,
+        width: 0,
+    };
+
     /// Row `k` (the single vector when not stacked).
     #[inline]
     pub fn row(&self, k: usize) -> &[f64] {
@@ -131,7 +139,7 @@ fn contiguous<'a>(arr: &'a ArrayIn<'_>) -> Cow<'a, [f64]> {
 /// with the library's sentence (`q has 3 values, the model has 6 joints: …`).
 pub fn joint_states<'a>(
     model: &Model,
-    arr: &'a (impl Values + ?Sized),
+    arr: &'a impl Values,
     name: &'static str,
 ) -> PyResult<States<'a>> {
     let shape = arr.shape();
@@ -177,7 +185,7 @@ pub fn joint_states<'a>(
 
 /// A fixed-width argument (a wrench `(6,)`, a point `(3,)`), single or stacked `(N, width)`.
 pub fn fixed_states<'a>(
-    arr: &'a (impl Values + ?Sized),
+    arr: &'a impl Values,
     name: &'static str,
     width: usize,
     stackable: bool,

@@ -32,7 +32,7 @@ impl PyModel {
     fn three_matrices<'py>(
         &self,
         py: Python<'py>,
-        joints: [Joint<'_>; 3],
+        joints: [Joint<'_, 'py>; 3],
         wrenches: WrenchDicts<'_, 'py>,
         threads: Option<usize>,
         derivatives: Derivatives,
