@@ -49,7 +49,8 @@ pub(crate) fn optional<'a, 'py>(
     }
 }
 
-/// What a method's body computes with: the model, and the interpreter for the results.
+/// What a method's body computes through: the model (its workspace for single states) and the
+/// interpreter the results go to.
 pub(crate) struct Compute<'m, 'py> {
     py: Python<'py>,
     model: &'m PyModel,
@@ -148,7 +149,7 @@ impl<'py> Compute<'_, 'py> {
         joints: [Joint<'a, 'py>; K],
     ) -> PyResult<[States<'a>; K]> {
         let model = &self.model.model;
-        let mut states = [const { States::EMPTY }; K];
+        let mut states = [States::EMPTY; K];
         for (state, j) in states.iter_mut().zip(joints) {
             *state = match j.value {
                 Some(v) => joint_states(model, v, j.name)?,

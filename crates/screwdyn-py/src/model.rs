@@ -31,7 +31,7 @@ enum Source {
 /// only). A single argument is broadcast against stacked ones. `out=` (NumPy's convention)
 /// writes the result into a float64, C-contiguous array of its exact shape, and returns it.
 #[pyclass(name = "Model", module = "screwdyn._screwdyn")]
-pub struct PyModel {
+pub(crate) struct PyModel {
     pub(crate) model: Model,
     source: Source,
     strict: bool,

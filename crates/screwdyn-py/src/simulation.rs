@@ -87,7 +87,9 @@ impl PyModel {
                 progress,
             };
             let joints = [arg(&q0, "q0"), optional(&v0, "v0")];
-            c.one("simulate", joints, |[q0, v0]| self.run(py, q0, v0, run))
+            c.one("simulate", joints, |[q0, v0]| {
+                self.simulate_from(py, q0, v0, run)
+            })
         })?;
         python_class(py, "screwdyn._results", "SimResult")?.call1((rec,))
     }
@@ -128,7 +130,7 @@ struct Run<'a, 'py> {
 
 impl PyModel {
     /// Simulates from `(q0, v0)` as `a` says, and returns the recording as a dict.
-    fn run<'py>(
+    fn simulate_from<'py>(
         &self,
         py: Python<'py>,
         q0: &[f64],
