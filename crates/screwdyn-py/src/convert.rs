@@ -1,4 +1,5 @@
-//! NumPy in, NumPy out: shape checks with clear messages, stacked states, output arrays.
+//! NumPy in, NumPy out: shape checks with clear messages, stacked states, output arrays, and
+//! the Python classes results are wrapped in.
 
 use numpy::{
     AllowTypeChange, BorrowError, PyArray1, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods,
@@ -6,6 +7,7 @@ use numpy::{
 };
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
+use pyo3::types::{PyFloat, PyInt, PyTuple};
 use screwdyn::Model;
 use std::borrow::Cow;
 
@@ -99,6 +101,14 @@ pub struct States<'a> {
 }
 
 impl States<'_> {
+    /// No argument: a placeholder in an array of states being filled.
+    pub const EMPTY: States<'static> = States {
+        name: "",
+        data: Cow::Borrowed(&[]),
+        n: None,
+        width: 0,
+    };
+
     /// Row `k` (the single vector when not stacked).
     #[inline]
     pub fn row(&self, k: usize) -> &[f64] {
@@ -246,6 +256,17 @@ pub fn fixed_states<'a>(
     }
 }
 
+/// A 1-D array argument (one value per joint: trajectory end points, limits, times) as a vector.
+pub fn values_1d(a: &ArrayIn<'_>, name: &'static str) -> PyResult<Vec<f64>> {
+    if a.ndim() != 1 {
+        return Err(PyValueError::new_err(format!(
+            "{name} must be a 1-D array (one value per joint), got {} dimensions",
+            a.ndim()
+        )));
+    }
+    Ok(a.as_array().iter().copied().collect())
+}
+
 /// The common number of states of stacked arguments (`None` when all are single).
 pub fn batch_len(args: &[&States<'_>]) -> PyResult<Option<usize>> {
     let mut n: Option<(usize, &str)> = None;
@@ -364,4 +385,44 @@ pub fn write_rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f6
 #[inline]
 pub fn write_pose(h: &screwdyn::spatial::Se3, out: &mut [f64]) {
     write_rows(&h.to_matrix(), out);
+}
+
+/// The Python class `module.class`: the result classes of `screwdyn._results` (`ClosedForm`,
+/// `SimResult`…) and `screwdyn._view.View`, which wrap the arrays a method returns for
+/// notebooks, pandas and matplotlib.
+pub fn python_class<'py>(
+    py: Python<'py>,
+    module: &str,
+    class: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    py.import(module)?.getattr(class)
+}
+
+/// Python's `float(x)`, for the number arguments the Python layer converted so before these
+/// methods were native (`simulate`'s `duration`, `dt`, tolerances; `torque_profile`'s `dt`).
+pub fn as_float(x: &Bound<'_, PyAny>) -> PyResult<f64> {
+    match x.cast::<PyFloat>() {
+        Ok(f) => Ok(f.value()),
+        Err(_) => x.py().get_type::<PyFloat>().call1((x,))?.extract(),
+    }
+}
+
+/// Python's `int(x)`, for the counts and seeds the Python layer converted so (`record_every`,
+/// `states`, `seed`, the view's caps).
+pub fn as_int<'py, T>(x: &Bound<'py, PyAny>) -> PyResult<T>
+where
+    T: for<'a> FromPyObject<'a, 'py, Error = PyErr>,
+{
+    x.py().get_type::<PyInt>().call1((x,))?.extract()
+}
+
+/// Python's `bool(x)`, for the `friction` flags the Python layer converted so.
+pub fn truthy(x: &Bound<'_, PyAny>) -> PyResult<bool> {
+    x.is_truthy()
+}
+
+/// `()`, the default of a sequence argument (`simulate`'s `disturbances` and `frames`,
+/// `view`'s `package_path`).
+pub fn empty_tuple() -> Py<PyAny> {
+    Python::attach(|py| PyTuple::empty(py).into_any().unbind())
 }

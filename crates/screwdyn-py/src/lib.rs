@@ -2,15 +2,44 @@
 //! `screwdyn._screwdyn`). Bindings only: every quantity is computed by the library; this crate
 //! parses NumPy arrays, checks their shapes, runs batches over rayon with the GIL released and
 //! turns the library's errors (and any panic) into Python exceptions.
+//!
+//! # Where things are
+//!
+//! The files mirror the library's topics. `model` holds the class `Model` (`PyModel`): loading,
+//! properties, pickling. Its methods are in `kinematics`, `dynamics`, `energy`, `seeds` (the
+//! closed form, Lagrangian coefficients and RNEA trace), `derivatives`, `identification`,
+//! `simulation` and `view`; `trajectory` holds the class `Trajectory`, `symbolic` the entry of
+//! `screwdyn.symbolic`. The infrastructure: `convert` (NumPy in and out), `batch` (one state
+//! or `N` over rayon's threads), `compute` (the body every computing method shares: guard,
+//! argument conversion, single-or-batch dispatch, run), `args` (frames, links, joints, wrenches,
+//! reference frames by their Python forms) and `errors`.
+//!
+//! # How methods reach `Model`
+//!
+//! One way only: each topic file has its own `#[pymethods] impl PyModel` block (PyO3's
+//! `multiple-pymethods` feature), so every method of `Model` — the Pinocchio-style aliases
+//! `inverse_dynamics` and `mass_matrix` included, as methods sharing their docstring with
+//! `rnea` and `crba` — is a native method with its signature and docstring next to its code.
+//! The Python package adds nothing to `Model`: it holds only what is Python by nature (the
+//! result classes of `_results.py` and `_view.py` these methods return, the controller and
+//! disturbance classes, `screwdyn.dask`, `screwdyn.symbolic` and the `screwdyn.rnea(model, …)`
+//! functions).
 
-mod analysis;
+mod args;
 mod batch;
+mod compute;
 mod convert;
 mod derivatives;
+mod dynamics;
+mod energy;
 mod errors;
+mod identification;
+mod kinematics;
 mod model;
-mod sim;
+mod seeds;
+mod simulation;
 mod symbolic;
+mod trajectory;
 mod view;
 
 use pyo3::prelude::*;
@@ -44,13 +73,8 @@ fn _panic_in_batch_for_tests(py: Python<'_>) -> PyResult<()> {
 #[pymodule]
 fn _screwdyn(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)?;
-    m.add_class::<model::PyModel>()?;
-    m.add_function(wrap_pyfunction!(model::load, m)?)?;
-    m.add_function(wrap_pyfunction!(model::load_string, m)?)?;
-    m.add_function(wrap_pyfunction!(model::builtin_names, m)?)?;
-    m.add_function(wrap_pyfunction!(model::_unpickle_model, m)?)?;
-    sim::register(m)?;
-    derivatives::register(m)?;
+    model::register(m)?;
+    m.add_class::<trajectory::PyTrajectory>()?;
     symbolic::register(m)?;
     view::register(m)?;
     m.add_function(wrap_pyfunction!(_panic_for_tests, m)?)?;

@@ -2,14 +2,15 @@
 //! canonical polynomials are handed to Python term by term — exact structure, `f64`
 //! coefficients — and the Python module builds the SymPy expressions from them.
 
+use crate::args::reference;
 use crate::errors::{call_err, guard};
-use crate::model::{reference, PyModel};
+use crate::model::PyModel;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 use screwdyn::symbolic::{self, CoriolisForm, Options, Poly, Quantity, Var};
 
-pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_symbolic_derive, m)?)?;
     m.add("SYMBOLIC_DEFAULT_MAX_TERMS", symbolic::DEFAULT_MAX_TERMS)?;
     Ok(())

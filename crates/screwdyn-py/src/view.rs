@@ -1,19 +1,21 @@
 //! `Model.view`: the page of `screwdyn_view::render_html` (the same page as `screwdyn view`),
-//! and `SimResult.save`: a recording written by the library's CSV/JSON writers.
+//! wrapped in `screwdyn._view.View`; and `SimResult.save`: a recording written by the
+//! library's CSV/JSON writers.
 
-use crate::convert::{joint_states, ArrayIn};
+use crate::compute::arg;
+use crate::convert::{as_int, empty_tuple, python_class, ArrayIn, StateIn};
 use crate::errors::{call_err, guard};
 use crate::model::PyModel;
-use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::exceptions::{PyFileNotFoundError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
+use pyo3::types::{PyBytes, PyDict, PyInt, PyString};
 use screwdyn::sim::Recording;
 use screwdyn::Model;
 use screwdyn_view::{read_run, render_html, Run, ViewOptions, WarningKind};
 use std::path::PathBuf;
 
-pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(_view, m)?)?;
+/// Adds the view's functions and defaults to the native module.
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_save_recording, m)?)?;
     m.add_function(wrap_pyfunction!(_write_text_atomically, m)?)?;
     m.add(
@@ -25,6 +27,174 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
         screwdyn_view::DEFAULT_MAX_SAMPLES,
     )?;
     Ok(())
+}
+
+// `view`'s text signature spells the library's caps out; these fail the build if they change.
+const _: () = assert!(screwdyn_view::DEFAULT_MAX_TRIANGLES == 200_000);
+const _: () = assert!(screwdyn_view::DEFAULT_MAX_SAMPLES == 1000);
+
+/// The notebook frame's default width, a CSS length.
+fn default_width() -> Py<PyAny> {
+    Python::attach(|py| PyString::new(py, "100%").into_any().unbind())
+}
+
+/// The notebook frame's default height, in pixels.
+fn default_height() -> Py<PyAny> {
+    Python::attach(|py| PyInt::new(py, 600).into_any().unbind())
+}
+
+#[pymethods]
+impl PyModel {
+    /// The robot in 3-D (the page of ``screwdyn view``), displayed inline in Jupyter: orbit,
+    /// zoom and pan, a floor grid, the base frame, and toggleable overlays (link frames ``{i}``,
+    /// joint screw axes, centres of mass, the end-effector path of a run).
+    ///
+    /// q: the configuration shown (``(nq,)``; zeros by default). Not combined with ``run``.
+    /// run: a run to animate (play/pause, time slider, speed, synchronised plot of ``q``, ``τ``
+    ///     and the energies, joints past a limit highlighted): a :class:`SimResult` from
+    ///     :meth:`simulate`, a :class:`TorqueProfile`, or the path of a run ``.csv``/``.json``
+    ///     file as written by ``screwdyn simulate --output`` or :meth:`SimResult.save`.
+    /// urdf: the URDF whose ``<visual>`` elements are drawn (default: the file the model was
+    ///     loaded from, when it is a URDF file; otherwise the skeleton from the screw axes).
+    /// package_path: folders searched for ``package://`` meshes before ``ROS_PACKAGE_PATH``
+    ///     (``--package-path``).
+    /// max_triangles: cap on the embedded mesh triangles (``--max-triangles``; larger meshes are
+    ///     decimated, with a warning). max_samples: cap on the run samples embedded
+    ///     (``--max-samples``; evenly strided, limit violations of dropped samples kept).
+    /// title: the page title (default: the model's name). width, height: the notebook frame's
+    ///     size (pixels or a CSS length).
+    ///
+    /// Returns a :class:`View` (``.html``, ``.save(path)``, ``.warnings``). Raises ValueError with
+    /// the library's sentence for a run whose joints are not the model's, a bad ``q``, a
+    /// non-finite value; FileNotFoundError for a missing run file.
+    // The text signature shows the defaults Rust cannot write as literals.
+    #[pyo3(
+        signature = (q = None, run = None, *, urdf = None, package_path = empty_tuple(), max_triangles = screwdyn_view::DEFAULT_MAX_TRIANGLES, max_samples = screwdyn_view::DEFAULT_MAX_SAMPLES, title = None, width = default_width(), height = default_height()),
+        text_signature = "($self, q=None, run=None, *, urdf=None, package_path=(), max_triangles=200000, max_samples=1000, title=None, width='100%', height=600)"
+    )]
+    #[allow(clippy::too_many_arguments)]
+    fn view<'py>(
+        &self,
+        py: Python<'py>,
+        q: Option<&Bound<'py, PyAny>>,
+        run: Option<&Bound<'py, PyAny>>,
+        urdf: Option<PathBuf>,
+        package_path: Py<PyAny>,
+        #[pyo3(from_py_with = as_int)] max_triangles: usize,
+        #[pyo3(from_py_with = as_int)] max_samples: usize,
+        title: Option<String>,
+        width: Py<PyAny>,
+        height: Py<PyAny>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let data = self.compute(py, |c| {
+            // In the order the arguments were checked when `view` was written in Python.
+            let run = run.map(RunArg::of).transpose()?;
+            let package_paths = package_paths(package_path.bind(py))?;
+            let q: Option<StateIn<'_>> = q.map(|q| q.extract()).transpose()?;
+            let m = &self.model;
+            if q.is_some() && run.is_some() {
+                return Err(PyValueError::new_err(
+                    "q cannot be combined with run (the run gives the configurations)",
+                ));
+            }
+            let q = q
+                .as_ref()
+                .map(|q| c.one("view", [arg(q, "q")], |[q]| Ok(q.to_vec())));
+            let q = q.transpose()?;
+            let run = run.map(|r| r.read(m, max_samples)).transpose()?;
+            let options = ViewOptions {
+                q,
+                run,
+                urdf: urdf.or_else(|| self.urdf_path()),
+                package_paths,
+                max_triangles,
+                title,
+            };
+            let page = py.detach(|| render_html(m, &options)).map_err(call_err)?;
+            let d = PyDict::new(py);
+            d.set_item("html", &page.html)?;
+            let warnings: Vec<(&str, String)> = page
+                .warnings
+                .iter()
+                .map(|w| {
+                    let kind = match w.kind {
+                        WarningKind::MeshMissing => "mesh-missing",
+                        WarningKind::MeshUnreadable => "mesh-unreadable",
+                        WarningKind::Decimated => "decimated",
+                    };
+                    (kind, w.message.clone())
+                })
+                .collect();
+            d.set_item("warnings", warnings)?;
+            d.set_item("triangles", page.triangles)?;
+            d.set_item("samples", page.samples)?;
+            Ok(d)
+        })?;
+        let kwargs = PyDict::new(py);
+        kwargs.set_item("width", width)?;
+        kwargs.set_item("height", height)?;
+        python_class(py, "screwdyn._view", "View")?.call((data,), Some(&kwargs))
+    }
+}
+
+/// Whether `x` is a `str` or an `os.PathLike`.
+fn is_path_like(x: &Bound<'_, PyAny>) -> PyResult<bool> {
+    Ok(
+        x.is_instance_of::<PyString>()
+            || x.is_instance(&python_class(x.py(), "os", "PathLike")?)?,
+    )
+}
+
+/// The `package_path` argument: one folder or a sequence of them.
+fn package_paths(p: &Bound<'_, PyAny>) -> PyResult<Vec<PathBuf>> {
+    if is_path_like(p)? {
+        return Ok(vec![p.extract()?]);
+    }
+    p.try_iter()?.map(|p| p?.extract()).collect()
+}
+
+/// The `run` argument of `view`: the path of a run file, or a `SimResult` / `TorqueProfile`.
+enum RunArg<'a, 'py> {
+    File(&'a Bound<'py, PyAny>),
+    Result(&'a Bound<'py, PyAny>),
+}
+
+impl<'a, 'py> RunArg<'a, 'py> {
+    fn of(run: &'a Bound<'py, PyAny>) -> PyResult<Self> {
+        if run.is_instance_of::<PyBytes>() || is_path_like(run)? {
+            Ok(RunArg::File(run))
+        } else if run.hasattr("joint_names")? {
+            Ok(RunArg::Result(run))
+        } else {
+            Err(PyTypeError::new_err(
+                "run is a path to a run .csv/.json file, a SimResult or a TorqueProfile",
+            ))
+        }
+    }
+
+    /// The run to animate: a file read by the library's `read_run`, or the recording's arrays.
+    fn read(self, model: &Model, max_samples: usize) -> PyResult<Run> {
+        match self {
+            RunArg::Result(r) => {
+                let rec = recording(r)?;
+                Run::from_recording(&rec, model, max_samples).map_err(call_err)
+            }
+            RunArg::File(p) => {
+                let path: PathBuf = p.extract().map_err(|_| {
+                    PyTypeError::new_err(
+                        "run is a path to a run .csv/.json file, a SimResult or a TorqueProfile",
+                    )
+                })?;
+                if !path.exists() {
+                    return Err(PyFileNotFoundError::new_err(format!(
+                        "{}: no such run file",
+                        path.display()
+                    )));
+                }
+                read_run(&path, model, max_samples).map_err(call_err)
+            }
+        }
+    }
 }
 
 /// A `(T, n)` array as rows, checked to have `n` columns.
@@ -39,6 +209,7 @@ fn rows(a: &ArrayIn<'_>, name: &str, t: usize, n: usize) -> PyResult<Vec<Vec<f64
     Ok(arr.rows().into_iter().map(|r| r.to_vec()).collect())
 }
 
+/// A `(T,)` array as a vector.
 fn series(a: &ArrayIn<'_>, name: &str, t: usize) -> PyResult<Vec<f64>> {
     let arr = a.as_array();
     if arr.shape() != [t] {
@@ -50,18 +221,18 @@ fn series(a: &ArrayIn<'_>, name: &str, t: usize) -> PyResult<Vec<f64>> {
     Ok(arr.iter().copied().collect())
 }
 
-/// A library [`Recording`] from the arrays of a `SimResult`: `(joints, t, q, v, a, tau,
-/// kinetic_energy, potential_energy, total_energy)` (poses are not carried).
-fn recording(spec: &Bound<'_, PyTuple>) -> PyResult<Recording> {
-    if spec.len() != 9 {
-        return Err(PyTypeError::new_err(
-            "a recording is (joints, t, q, v, a, tau, kinetic_energy, potential_energy, total_energy)",
-        ));
-    }
-    let joints: Vec<String> = spec.get_item(0)?.extract()?;
-    let arr = |k: usize| -> PyResult<ArrayIn<'_>> { spec.get_item(k)?.extract() };
+/// A library [`Recording`] from the arrays of a `SimResult` (or of a `TorqueProfile`'s
+/// `samples`): `joint_names`, `t`, `q`, `v`, `a`, `tau` and the energies (poses are not carried).
+fn recording(result: &Bound<'_, PyAny>) -> PyResult<Recording> {
+    let samples = if result.hasattr("samples")? {
+        result.getattr("samples")?
+    } else {
+        result.clone()
+    };
+    let joints: Vec<String> = samples.getattr("joint_names")?.extract()?;
+    let arr = |name: &str| -> PyResult<ArrayIn<'_>> { samples.getattr(name)?.extract() };
     let t: Vec<f64> = {
-        let a = arr(1)?;
+        let a = arr("t")?;
         let v = a.as_array();
         if v.ndim() != 1 {
             return Err(PyValueError::new_err(format!(
@@ -74,13 +245,13 @@ fn recording(spec: &Bound<'_, PyTuple>) -> PyResult<Recording> {
     let (nt, n) = (t.len(), joints.len());
     let mut rec = Recording::new(joints, Vec::new());
     rec.t = t;
-    rec.q = rows(&arr(2)?, "q", nt, n)?;
-    rec.v = rows(&arr(3)?, "v", nt, n)?;
-    rec.a = rows(&arr(4)?, "a", nt, n)?;
-    rec.tau = rows(&arr(5)?, "tau", nt, n)?;
-    rec.kinetic_energy = series(&arr(6)?, "kinetic_energy", nt)?;
-    rec.potential_energy = series(&arr(7)?, "potential_energy", nt)?;
-    rec.total_energy = series(&arr(8)?, "total_energy", nt)?;
+    rec.q = rows(&arr("q")?, "q", nt, n)?;
+    rec.v = rows(&arr("v")?, "v", nt, n)?;
+    rec.a = rows(&arr("a")?, "a", nt, n)?;
+    rec.tau = rows(&arr("tau")?, "tau", nt, n)?;
+    rec.kinetic_energy = series(&arr("kinetic_energy")?, "kinetic_energy", nt)?;
+    rec.potential_energy = series(&arr("potential_energy")?, "potential_energy", nt)?;
+    rec.total_energy = series(&arr("total_energy")?, "total_energy", nt)?;
     Ok(rec)
 }
 
@@ -90,12 +261,12 @@ fn _write_text_atomically(path: PathBuf, text: &str) -> PyResult<()> {
     screwdyn_view::write_atomically(&path, text.as_bytes()).map_err(call_err)
 }
 
-/// Writes a recording as the CSV or JSON file `screwdyn simulate --output` writes (by the
-/// extension of `path`).
+/// Writes a `SimResult` (or a `TorqueProfile`'s samples) as the CSV or JSON file `screwdyn
+/// simulate --output` writes (by the extension of `path`).
 #[pyfunction]
-fn _save_recording(path: PathBuf, recording_spec: &Bound<'_, PyTuple>) -> PyResult<()> {
+fn _save_recording(path: PathBuf, result: &Bound<'_, PyAny>) -> PyResult<()> {
     guard(|| {
-        let rec = recording(recording_spec)?;
+        let rec = recording(result)?;
         let ext = path
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase())
@@ -119,84 +290,5 @@ fn _save_recording(path: PathBuf, recording_spec: &Bound<'_, PyTuple>) -> PyResu
             }
         };
         screwdyn_view::write_atomically(&path, &bytes).map_err(call_err)
-    })
-}
-
-/// The run to animate: a path (read by the library's `read_run`) or a recording tuple.
-fn run_of(model: &Model, run: &Bound<'_, PyAny>, max_samples: usize) -> PyResult<Run> {
-    if let Ok(spec) = run.cast::<PyTuple>() {
-        let rec = recording(spec)?;
-        return Run::from_recording(&rec, model, max_samples).map_err(call_err);
-    }
-    let path: PathBuf = run.extract().map_err(|_| {
-        PyTypeError::new_err(
-            "run is a path to a run .csv/.json file, a SimResult or a TorqueProfile",
-        )
-    })?;
-    if !path.exists() {
-        return Err(pyo3::exceptions::PyFileNotFoundError::new_err(format!(
-            "{}: no such run file",
-            path.display()
-        )));
-    }
-    read_run(&path, model, max_samples).map_err(call_err)
-}
-
-/// The page of `screwdyn view`: a dict with `html`, `warnings` (`(kind, message)` pairs),
-/// `triangles` and `samples`.
-#[pyfunction]
-#[pyo3(signature = (model, q, run, urdf, package_paths, max_triangles, max_samples, title))]
-#[allow(clippy::too_many_arguments)]
-fn _view<'py>(
-    py: Python<'py>,
-    model: &PyModel,
-    q: Option<ArrayIn<'py>>,
-    run: Option<Bound<'py, PyAny>>,
-    urdf: Option<PathBuf>,
-    package_paths: Vec<PathBuf>,
-    max_triangles: usize,
-    max_samples: usize,
-    title: Option<String>,
-) -> PyResult<Bound<'py, PyDict>> {
-    guard(|| {
-        let m = &model.model;
-        if q.is_some() && run.is_some() {
-            return Err(PyValueError::new_err(
-                "q cannot be combined with run (the run gives the configurations)",
-            ));
-        }
-        let q = match &q {
-            Some(a) => Some(joint_states(m, a, "q")?.single("view")?.to_vec()),
-            None => None,
-        };
-        let run = run.map(|r| run_of(m, &r, max_samples)).transpose()?;
-        let urdf = urdf.or_else(|| model.urdf_path());
-        let options = ViewOptions {
-            q,
-            run,
-            urdf,
-            package_paths,
-            max_triangles,
-            title,
-        };
-        let page = py.detach(|| render_html(m, &options)).map_err(call_err)?;
-        let d = PyDict::new(py);
-        d.set_item("html", &page.html)?;
-        let warnings: Vec<(&str, String)> = page
-            .warnings
-            .iter()
-            .map(|w| {
-                let kind = match w.kind {
-                    WarningKind::MeshMissing => "mesh-missing",
-                    WarningKind::MeshUnreadable => "mesh-unreadable",
-                    WarningKind::Decimated => "decimated",
-                };
-                (kind, w.message.clone())
-            })
-            .collect();
-        d.set_item("warnings", warnings)?;
-        d.set_item("triangles", page.triangles)?;
-        d.set_item("samples", page.samples)?;
-        Ok(d)
     })
 }

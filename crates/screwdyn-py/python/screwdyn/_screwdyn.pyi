@@ -38,17 +38,15 @@ def load_string(text: str, format: Optional[str] = None, *, name: str = "<string
 
 def builtin_names() -> List[str]: ...
 
-# Private entry points of the Python layer (Model.view, Model.rnea_derivatives, …,
-# screwdyn.symbolic); use those instead.
 VIEW_DEFAULT_MAX_TRIANGLES: int
 VIEW_DEFAULT_MAX_SAMPLES: int
 SYMBOLIC_DEFAULT_MAX_TERMS: int
+
+# Private entry points of the Python layer (screwdyn.symbolic, SimResult.save, View.save); use
+# those instead.
 def _symbolic_derive(model: Model, quantity: str, symbols: str, frame: Optional[str],
                      reference_frame: str, coriolis: str, max_terms: int) -> Dict[str, Any]: ...
-def _view(model: Model, q: Optional[ArrayLike], run: Any, urdf: Optional[str],
-          package_paths: List[str], max_triangles: int, max_samples: int,
-          title: Optional[str]) -> Dict[str, Any]: ...
-def _save_recording(path: str, recording_spec: Tuple[Any, ...]) -> None: ...
+def _save_recording(path: str, result: Union[SimResult, TorqueProfile]) -> None: ...
 def _write_text_atomically(path: str, text: str) -> None: ...
 
 class Model:

@@ -1,8 +1,11 @@
-//! The seeds' quantities for a student: the closed form, the Lagrangian coefficients and the
-//! RNEA iterations, as dicts of arrays (wrapped in display classes by the Python layer).
+//! The seeds' quantities for a student, at one state (the library's `dynamics::closed_form`,
+//! `lagrange_coefficients` and `rnea_trace`): `Model.closed_form`, `lagrange_coefficients` and
+//! `rnea_trace`, dicts of arrays wrapped in the display classes of `screwdyn._results`.
 
-use crate::convert::{self, array, matrix, vector};
+use crate::compute::{arg, optional};
+use crate::convert::{self, array, matrix, python_class, vector, StateIn};
 use crate::errors::call_err;
+use crate::model::PyModel;
 use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -10,7 +13,70 @@ use screwdyn::dynamics::{self, ExternalWrenches};
 use screwdyn::spatial::Se3;
 use screwdyn::Model;
 
-pub fn closed_form<'py>(
+#[pymethods]
+impl PyModel {
+    /// The seeds' closed form at one state ``(q, v)``: ``A(θ)``, ``L = (I − A)⁻¹``, ``S``, ``𝔍``,
+    /// ``J = L S``, ``M = Sᵀ Lᵀ 𝔍 L S``, ``C``, ``g`` as arrays (a :class:`ClosedForm`).
+    #[pyo3(signature = (q, v = None))]
+    fn closed_form<'py>(
+        slf: &Bound<'py, Self>,
+        q: StateIn<'py>,
+        v: Option<StateIn<'py>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let (py, this) = (slf.py(), slf.borrow());
+        let data = this.compute(py, |c| {
+            c.one("closed_form", [arg(&q, "q"), optional(&v, "v")], |[q, v]| {
+                closed_form(py, &this.model, q, v)
+            })
+        })?;
+        python_class(py, "screwdyn._results", "ClosedForm")?.call1((slf, data))
+    }
+
+    /// Seed 004's Lagrangian coefficients at one state: ``D_ij`` (inertias), ``D_ijk``
+    /// (Coriolis/centrifugal) and ``D_i`` (gravity), as a :class:`LagrangeCoefficients`.
+    fn lagrange_coefficients<'py>(
+        slf: &Bound<'py, Self>,
+        q: StateIn<'py>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let (py, this) = (slf.py(), slf.borrow());
+        let data = this.compute(py, |c| {
+            c.one("lagrange_coefficients", [arg(&q, "q")], |[q]| {
+                lagrange(py, &this.model, q)
+            })
+        })?;
+        python_class(py, "screwdyn._results", "LagrangeCoefficients")?.call1((slf, data))
+    }
+
+    /// The recursive Newton–Euler algorithm of seeds 000/002 step by step at one state: the
+    /// forward iterations (poses, twists, accelerations) and the backward ones (wrenches,
+    /// torques), as an :class:`RneaTrace` that displays like the lecture in a notebook.
+    #[pyo3(signature = (q, v = None, a = None, *, fext = None, fext_world = None, tip_wrenches = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn rnea_trace<'py>(
+        &self,
+        py: Python<'py>,
+        q: StateIn<'py>,
+        v: Option<StateIn<'py>>,
+        a: Option<StateIn<'py>>,
+        fext: Option<&Bound<'py, PyDict>>,
+        fext_world: Option<&Bound<'py, PyDict>>,
+        tip_wrenches: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let data = self.compute(py, |c| {
+            let ext = self.wrenches([fext, fext_world, tip_wrenches])?;
+            let joints = [arg(&q, "q"), optional(&v, "v"), optional(&a, "a")];
+            c.one("rnea_trace", joints, |[q, v, a]| {
+                rnea_trace(py, &self.model, q, v, a, ext.as_ref())
+            })
+        })?;
+        python_class(py, "screwdyn._results", "RneaTrace")?.call1((data,))
+    }
+}
+
+/// The library's `dynamics::closed_form` (seeds 000/001) as a dict of arrays `A`, `L`, `S`,
+/// `inertia` (𝔍), `ad_S_qdot`, `V`, `ad_V`, `J`, `J_dot`, `Vdot_base`, `M`, `C`,
+/// `C_christoffel`, `g`.
+fn closed_form<'py>(
     py: Python<'py>,
     model: &Model,
     q: &[f64],
@@ -37,7 +103,9 @@ pub fn closed_form<'py>(
     Ok(d)
 }
 
-pub fn lagrange<'py>(py: Python<'py>, model: &Model, q: &[f64]) -> PyResult<Bound<'py, PyDict>> {
+/// The library's `dynamics::lagrange_coefficients` (seed 004): `D_ij`, `D_ijk`, `D_i` as a dict
+/// of arrays.
+fn lagrange<'py>(py: Python<'py>, model: &Model, q: &[f64]) -> PyResult<Bound<'py, PyDict>> {
     let c = dynamics::lagrange_coefficients(model, q).map_err(call_err)?;
     let n = model.nq();
     let mut dijk = vec![0.0; n * n * n];
@@ -55,7 +123,7 @@ pub fn lagrange<'py>(py: Python<'py>, model: &Model, q: &[f64]) -> PyResult<Boun
 /// The library's `dynamics::rnea_trace` (seeds 000/002, forward and backward iterations) as a
 /// dict of arrays, plus the model quantities the lecture writes next to them (`S_i`,
 /// `H_i^{λ(i)}(0)`, `𝔍^{i,i}`).
-pub fn rnea_trace<'py>(
+fn rnea_trace<'py>(
     py: Python<'py>,
     model: &Model,
     q: &[f64],

@@ -1,0 +1,118 @@
+//! The arguments of `Model`'s methods that are not joint-space arrays: frames, links and joints
+//! by name or index, external wrenches, reference frames and forward-dynamics methods.
+
+use crate::convert::{fixed_states, ArrayIn};
+use crate::errors::call_err;
+use crate::model::PyModel;
+use nalgebra::Vector6;
+use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use screwdyn::dynamics::{ExternalWrenches, ForwardMethod};
+use screwdyn::kinematics::Reference;
+
+/// The external wrenches as the keyword arguments give them: `fext`, `fext_world` and
+/// `tip_wrenches`.
+pub(crate) type WrenchDicts<'a, 'py> = [Option<&'a Bound<'py, PyDict>>; 3];
+
+impl PyModel {
+    /// A frame given by name or index.
+    pub(crate) fn frame(&self, f: &Bound<'_, PyAny>) -> PyResult<usize> {
+        let n = self.model.frames().len();
+        name_or_index(f, "frame", n, "frames", |name| self.model.frame_id(name))
+    }
+
+    /// A moving link (body) given by name or index.
+    pub(crate) fn link(&self, b: &Bound<'_, PyAny>) -> PyResult<usize> {
+        let n = self.model.nbodies();
+        name_or_index(b, "link", n, "moving links", |name| {
+            self.model.body_id(name)
+        })
+    }
+
+    /// A joint given by name or index.
+    pub(crate) fn joint(&self, j: &Bound<'_, PyAny>) -> PyResult<usize> {
+        let n = self.model.nq();
+        name_or_index(j, "joint", n, "joints", |name| self.model.joint_id(name))
+    }
+
+    /// External wrenches from the keyword arguments `fext` (link → wrench on the link, in the
+    /// link frame), `fext_world` (link → wrench on the link, in the base frame) and
+    /// `tip_wrenches` (frame → wrench the frame applies to the environment, in that frame).
+    pub(crate) fn wrenches(
+        &self,
+        [fext, fext_world, tip_wrenches]: WrenchDicts<'_, '_>,
+    ) -> PyResult<Option<ExternalWrenches>> {
+        if fext.is_none() && fext_world.is_none() && tip_wrenches.is_none() {
+            return Ok(None);
+        }
+        let mut ext = ExternalWrenches::new(&self.model);
+        let wrench = |w: &Bound<'_, PyAny>, name: &'static str| -> PyResult<Vector6<f64>> {
+            let arr: ArrayIn<'_> = w.extract()?;
+            let s = fixed_states(&arr, name, 6, false)?;
+            Ok(Vector6::from_column_slice(s.row(0)))
+        };
+        if let Some(d) = fext {
+            for (k, w) in d.iter() {
+                let b = self.link(&k)?;
+                ext.add_local(b, wrench(&w, "a wrench of fext")?)
+                    .map_err(call_err)?;
+            }
+        }
+        if let Some(d) = fext_world {
+            for (k, w) in d.iter() {
+                let b = self.link(&k)?;
+                ext.add_world(b, wrench(&w, "a wrench of fext_world")?)
+                    .map_err(call_err)?;
+            }
+        }
+        if let Some(d) = tip_wrenches {
+            for (k, w) in d.iter() {
+                let f = self.frame(&k)?;
+                ext.add_tip(&self.model, f, wrench(&w, "a tip wrench")?)
+                    .map_err(call_err)?;
+            }
+        }
+        Ok(Some(ext))
+    }
+}
+
+/// The frame a twist or Jacobian is written in: `world`, `local` or `world-aligned` (`_` may
+/// replace `-`).
+pub(crate) fn reference(s: &str) -> PyResult<Reference> {
+    s.replace('_', "-")
+        .parse::<Reference>()
+        .map_err(PyValueError::new_err)
+}
+
+/// A forward-dynamics method: `aba`, `crba` or `walker-orin` (`_` may replace `-`).
+pub(crate) fn method(s: &str) -> PyResult<ForwardMethod> {
+    s.replace('_', "-")
+        .parse::<ForwardMethod>()
+        .map_err(PyValueError::new_err)
+}
+
+/// An item of the model given by its name (looked up by `by_name`) or by its index below `n`;
+/// `kind` ("frame") and `plural` ("frames") word the messages.
+fn name_or_index(
+    x: &Bound<'_, PyAny>,
+    kind: &str,
+    n: usize,
+    plural: &str,
+    by_name: impl FnOnce(&str) -> screwdyn::Result<usize>,
+) -> PyResult<usize> {
+    if let Ok(name) = x.extract::<String>() {
+        return by_name(&name).map_err(call_err);
+    }
+    if let Ok(i) = x.extract::<i64>() {
+        return usize::try_from(i).ok().filter(|&i| i < n).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "{kind} index {i} is out of range: the model has {n} {plural} (0…{})",
+                n.saturating_sub(1)
+            ))
+        });
+    }
+    Err(PyTypeError::new_err(format!(
+        "a {kind} is given by its name (str) or its index (int)"
+    )))
+}
