@@ -5,7 +5,7 @@
 #   bash scripts/test.sh                        # everything
 #   SCREWDYN_SKIP_RUST=1 bash scripts/test.sh   # only the Python suite (still builds the extension)
 #
-# One build serves both suites: `cargo build --workspace --all-targets` compiles every crate
+# One build serves both suites: `cargo build --workspace --lib --bins --tests --examples` compiles every crate
 # once, in the test profile, with the Python extension's `extension-module` feature, so the
 # libraries, the CLI, the test binaries and the extension (`lib_screwdyn.so`) share their
 # dependencies; `cargo test` then only runs. The package is assembled from that build the way
@@ -72,9 +72,10 @@ EOF
 ) >"$work/pip.log" 2>&1 &
 pip_pid=$!
 
-# One build for both suites, then the Rust tests.
+# One build for both suites (every target `cargo test` runs; benches are left to the bench
+# scripts), then the Rust tests.
 features=(--features screwdyn-py/extension-module)
-cargo build --workspace --all-targets "${features[@]}"
+cargo build --workspace --lib --bins --tests --examples "${features[@]}"
 if [[ -z "${SCREWDYN_SKIP_RUST:-}" ]]; then
     cargo test --workspace "${features[@]}"
 fi

@@ -135,7 +135,7 @@ impl States<'_> {
 /// NumPy allows a float64 buffer that is not 8-byte aligned (a view into a byte buffer, an
 /// array unpickled by Dask); a slice or view of it would be undefined behaviour, so it is read
 /// element by element.
-fn contiguous<'a>(arr: &'a ArrayIn<'_>) -> Cow<'a, [f64]> {
+pub fn contiguous<'a>(arr: &'a ArrayIn<'_>) -> Cow<'a, [f64]> {
     if !is_aligned(arr.data()) {
         return Cow::Owned(unaligned_values(arr));
     }
@@ -158,7 +158,11 @@ fn unaligned_values(arr: &ArrayIn<'_>) -> Vec<f64> {
     let mut index = vec![0usize; shape.len()];
     let mut out = Vec::with_capacity(count);
     for _ in 0..count {
-        let offset: isize = index.iter().zip(strides).map(|(&i, &s)| i as isize * s).sum();
+        let offset: isize = index
+            .iter()
+            .zip(strides)
+            .map(|(&i, &s)| i as isize * s)
+            .sum();
         // SAFETY: the array is borrowed read-only and `index` stays within `shape`, so the
         // element at `offset` bytes from the data pointer lies inside its buffer.
         out.push(unsafe { base.offset(offset).cast::<f64>().read_unaligned() });
@@ -264,7 +268,13 @@ pub fn values_1d(a: &ArrayIn<'_>, name: &'static str) -> PyResult<Vec<f64>> {
             a.ndim()
         )));
     }
-    Ok(a.as_array().iter().copied().collect())
+    Ok(contiguous(a).into_owned())
+}
+
+/// The rows of a 2-D array argument (its dimensions checked by the caller).
+pub fn rows_of(a: &ArrayIn<'_>) -> Vec<Vec<f64>> {
+    let width = a.shape().get(1).copied().unwrap_or(0).max(1);
+    contiguous(a).chunks(width).map(<[f64]>::to_vec).collect()
 }
 
 /// The common number of states of stacked arguments (`None` when all are single).

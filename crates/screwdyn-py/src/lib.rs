@@ -6,7 +6,7 @@
 //! # Where things are
 //!
 //! The files mirror the library's topics. `model` holds the class `Model` (`PyModel`): loading,
-//! properties, pickling. Its methods are in `kinematics`, `dynamics`, `energy`, `seeds` (the
+//! properties, pickling. Its methods are in `kinematics`, `dynamics`, `energy`, `worked` (the
 //! closed form, Lagrangian coefficients and RNEA trace), `derivatives`, `identification`,
 //! `simulation` and `view`; `trajectory` holds the class `Trajectory`, `symbolic` the entry of
 //! `screwdyn.symbolic`. The infrastructure: `convert` (NumPy in and out), `batch` (one state
@@ -36,11 +36,11 @@ mod errors;
 mod identification;
 mod kinematics;
 mod model;
-mod seeds;
 mod simulation;
 mod symbolic;
 mod trajectory;
 mod view;
+mod worked;
 
 use pyo3::prelude::*;
 

@@ -10,15 +10,14 @@ use crate::convert::{self, fixed_states, joint_states, python_class, rows_array,
 use crate::convert::{as_float, as_int, empty_tuple, vector, ArrayIn, StateIn};
 use crate::errors::call_err;
 use crate::model::PyModel;
-use crate::trajectory::{PyTrajectory, Traj};
+use crate::trajectory::PyTrajectory;
 use nalgebra::Vector6;
 use numpy::PyUntypedArrayMethods;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 use screwdyn::sim::{
-    self, ComputedTorque, ConstantTorque, Controller, Disturbance, Integrator, JointEffects,
-    PdGravity, Recording, SimOptions, TorqueSeries, ZeroTorque,
+    self, Controller, ControllerSpec, Disturbance, Integrator, JointEffects, Recording, SimOptions,
 };
 use screwdyn::Model;
 use std::cell::RefCell;
@@ -144,9 +143,6 @@ impl PyModel {
             .map(|f| self.frame(f))
             .collect::<PyResult<_>>()?;
         let dist = self.disturbances(&a.disturbances)?;
-        if a.record_every == 0 {
-            return Err(PyValueError::new_err("record_every must be at least 1"));
-        }
         let opts = SimOptions {
             duration: a.duration,
             dt: a.dt,
@@ -225,18 +221,18 @@ impl PyModel {
     /// The controller of a run from its argument.
     fn controller<'a, 'py>(&self, c: ControllerArg<'a, 'py>) -> PyResult<Control<'a, 'py>> {
         Ok(match c {
-            ControllerArg::Zero => Control::Library(Ctl::Zero),
+            ControllerArg::Zero => Control::Library(ControllerSpec::Zero),
             ControllerArg::Spec(spec) => Control::Library(self.library_controller(&spec)?),
             ControllerArg::Callable(f) => Control::Callable(f),
             ControllerArg::Constant(torque) => {
                 let torque = joint_vector(&self.model, &torque, "the constant torque")?;
-                Control::Library(Ctl::Constant(torque))
+                Control::Library(ControllerSpec::Constant(torque))
             }
         })
     }
 
     /// A controller of the library from its `(kind, arguments…)` description.
-    fn library_controller(&self, spec: &Bound<'_, PyTuple>) -> PyResult<Ctl> {
+    fn library_controller(&self, spec: &Bound<'_, PyTuple>) -> PyResult<ControllerSpec> {
         let kind: String = spec.get_item(0)?.extract()?;
         let m = &self.model;
         let jv = |i: usize, name: &'static str| -> PyResult<Vec<f64>> {
@@ -244,36 +240,17 @@ impl PyModel {
             joint_vector(m, &a, name)
         };
         // Optional gains: `None` takes the library's defaults.
-        let gains = |i: usize,
-                     default: &dyn Fn() -> PyResult<(Vec<f64>, Vec<f64>)>|
-         -> PyResult<(Vec<f64>, Vec<f64>)> {
-            let (kp, kd) = (spec.get_item(i)?, spec.get_item(i + 1)?);
-            let d = if kp.is_none() || kd.is_none() {
-                Some(default()?)
-            } else {
-                None
-            };
-            let kp = if kp.is_none() {
-                d.as_ref().map(|d| d.0.clone()).unwrap_or_default()
-            } else {
-                jv(i, "kp")?
-            };
-            let kd = if kd.is_none() {
-                d.map(|d| d.1).unwrap_or_default()
-            } else {
-                jv(i + 1, "kd")?
-            };
-            Ok((kp, kd))
+        let gain = |i: usize, name: &'static str| -> PyResult<Option<Vec<f64>>> {
+            let g = spec.get_item(i)?;
+            (!g.is_none()).then(|| jv(i, name)).transpose()
         };
         Ok(match kind.as_str() {
-            "constant" => Ctl::Constant(jv(1, "the constant torque")?),
-            "pd" => {
-                let target = jv(1, "the PD target")?;
-                let (kp, kd) = gains(2, &|| {
-                    PdGravity::default_gains(m, &target).map_err(call_err)
-                })?;
-                Ctl::Pd(target, kp, kd)
-            }
+            "constant" => ControllerSpec::Constant(jv(1, "the constant torque")?),
+            "pd" => ControllerSpec::PdGravity {
+                target: jv(1, "the PD target")?,
+                kp: gain(2, "kp")?,
+                kd: gain(3, "kd")?,
+            },
             "computed_torque" => {
                 let t = spec.get_item(1)?;
                 let t = t.cast::<PyTrajectory>().map_err(|_| {
@@ -281,8 +258,11 @@ impl PyModel {
                         "computed-torque control needs a screwdyn.Trajectory as reference",
                     )
                 })?;
-                let (kp, kd) = gains(2, &|| Ok(ComputedTorque::default_gains(m.nq())))?;
-                Ctl::Computed(t.get().traj.clone(), kp, kd)
+                ControllerSpec::ComputedTorque {
+                    reference: t.get().traj.clone().boxed(),
+                    kp: gain(2, "kp")?,
+                    kd: gain(3, "kd")?,
+                }
             }
             "series" => {
                 let t: ArrayIn<'_> = spec.get_item(1)?.extract()?;
@@ -293,12 +273,11 @@ impl PyModel {
                         "torque series values must have shape (K, nq): one torque row per time",
                     ));
                 }
-                let rows = v
-                    .as_array()
-                    .outer_iter()
-                    .map(|r| r.iter().copied().collect())
-                    .collect();
-                Ctl::Series(times, rows)
+                let rows = convert::rows_of(&v);
+                ControllerSpec::Series {
+                    times,
+                    values: rows,
+                }
             }
             other => {
                 return Err(PyValueError::new_err(format!(
@@ -364,39 +343,8 @@ fn joint_vector(m: &Model, a: &ArrayIn<'_>, name: &'static str) -> PyResult<Vec<
 /// The controller of a run: one the library builds (and runs with the GIL released), or a
 /// Python callable.
 enum Control<'a, 'py> {
-    Library(Ctl),
+    Library(ControllerSpec),
     Callable(&'a Bound<'py, PyAny>),
-}
-
-/// A controller the library builds, as the `controller` argument describes it.
-enum Ctl {
-    Zero,
-    Constant(Vec<f64>),
-    Pd(Vec<f64>, Vec<f64>, Vec<f64>),
-    Computed(Traj, Vec<f64>, Vec<f64>),
-    Series(Vec<f64>, Vec<Vec<f64>>),
-}
-
-impl Ctl {
-    fn build(self, model: &Model) -> screwdyn::Result<Box<dyn Controller>> {
-        Ok(match self {
-            Ctl::Zero => Box::new(ZeroTorque),
-            Ctl::Constant(t) => {
-                model.check_vector(&t, "the constant torque")?;
-                Box::new(ConstantTorque(t))
-            }
-            Ctl::Pd(target, kp, kd) => Box::new(PdGravity::new(model.clone(), target, kp, kd)?),
-            Ctl::Computed(tr, kp, kd) => {
-                Box::new(ComputedTorque::new(model.clone(), tr.boxed(), kp, kd)?)
-            }
-            Ctl::Series(times, values) => {
-                for v in &values {
-                    model.check_vector(v, "a torque of the series")?;
-                }
-                Box::new(TorqueSeries::new(times, values)?)
-            }
-        })
-    }
 }
 
 /// A Python callable `f(t, q, v) -> tau` as a controller.

@@ -27,7 +27,7 @@ impl Traj {
     }
 
     /// The trajectory as a box, for a controller that tracks it.
-    pub(crate) fn boxed(self) -> Box<dyn Trajectory> {
+    pub(crate) fn boxed(self) -> Box<dyn Trajectory + Send> {
         match self {
             Traj::Trapezoid(t) => Box::new(t),
             Traj::Quintic(t) => Box::new(t),
@@ -121,11 +121,7 @@ impl PyTrajectory {
                     "points must have shape (K, nq): one row per waypoint",
                 ));
             }
-            let p = points.as_array();
-            let rows: Vec<Vec<f64>> = p
-                .outer_iter()
-                .map(|r| r.iter().copied().collect())
-                .collect();
+            let rows = convert::rows_of(&points);
             let t = Waypoints::new(&times, &rows).map_err(call_err)?;
             Ok(PyTrajectory {
                 traj: Traj::Waypoints(t),
@@ -153,7 +149,7 @@ impl PyTrajectory {
         guard(|| {
             let tr = self.traj.get();
             let n = tr.nq();
-            let times: Vec<f64> = t.as_array().iter().copied().collect();
+            let times = convert::contiguous(&t).into_owned();
             let (mut q, mut v, mut a) = (
                 vec![0.0; n * times.len()],
                 vec![0.0; n * times.len()],

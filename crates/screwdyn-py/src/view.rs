@@ -3,9 +3,10 @@
 //! library's CSV/JSON writers.
 
 use crate::compute::arg;
-use crate::convert::{as_int, empty_tuple, python_class, ArrayIn, StateIn};
+use crate::convert::{self, as_int, empty_tuple, python_class, ArrayIn, StateIn};
 use crate::errors::{call_err, guard};
 use crate::model::PyModel;
+use numpy::PyUntypedArrayMethods;
 use pyo3::exceptions::{PyFileNotFoundError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyInt, PyString};
@@ -199,26 +200,24 @@ impl<'a, 'py> RunArg<'a, 'py> {
 
 /// A `(T, n)` array as rows, checked to have `n` columns.
 fn rows(a: &ArrayIn<'_>, name: &str, t: usize, n: usize) -> PyResult<Vec<Vec<f64>>> {
-    let arr = a.as_array();
-    let shape = arr.shape();
+    let shape = a.shape();
     if shape.len() != 2 || shape[0] != t || shape[1] != n {
         return Err(PyValueError::new_err(format!(
             "the recording's {name} has shape {shape:?}, expected ({t}, {n}) (one row per sample, one column per joint)"
         )));
     }
-    Ok(arr.rows().into_iter().map(|r| r.to_vec()).collect())
+    Ok(convert::rows_of(a))
 }
 
 /// A `(T,)` array as a vector.
 fn series(a: &ArrayIn<'_>, name: &str, t: usize) -> PyResult<Vec<f64>> {
-    let arr = a.as_array();
-    if arr.shape() != [t] {
+    if a.shape() != [t] {
         return Err(PyValueError::new_err(format!(
             "the recording's {name} has shape {:?}, expected ({t},)",
-            arr.shape()
+            a.shape()
         )));
     }
-    Ok(arr.iter().copied().collect())
+    Ok(convert::contiguous(a).into_owned())
 }
 
 /// A library [`Recording`] from the arrays of a `SimResult` (or of a `TorqueProfile`'s

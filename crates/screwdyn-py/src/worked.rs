@@ -1,6 +1,7 @@
-//! The seeds' quantities for a student, at one state (the library's `dynamics::closed_form`,
-//! `lagrange_coefficients` and `rnea_trace`): `Model.closed_form`, `lagrange_coefficients` and
-//! `rnea_trace`, dicts of arrays wrapped in the display classes of `screwdyn._results`.
+//! The intermediate quantities a student checks a hand derivation against, at one state (the
+//! library's `dynamics::closed_form`, `lagrange_coefficients` and `rnea_trace`):
+//! `Model.closed_form`, `lagrange_coefficients` and `rnea_trace`, dicts of arrays wrapped in the
+//! display classes of `screwdyn._results`.
 
 use crate::compute::{arg, optional};
 use crate::convert::{self, array, matrix, python_class, vector, StateIn};
