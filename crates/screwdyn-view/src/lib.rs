@@ -159,5 +159,5 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> screwdyn::Result<()> {
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
-    result.map_err(|e| screwdyn::Error::Io(format!("cannot write {} ({e})", path.display())))
+    result.map_err(|e| screwdyn::Error::unwritable(path, &e))
 }

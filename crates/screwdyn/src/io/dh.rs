@@ -49,7 +49,7 @@
 //! ```
 
 use super::common::{self, FrameSpec, LimitSpec};
-use super::LoadOptions;
+use super::options::LoadOptions;
 use crate::error::{Error, Result};
 use crate::model::{JointSpec, Model};
 use crate::spatial::{Se3, SpatialInertia};
@@ -140,9 +140,10 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
         "dh" => false,
         "modified-dh" => true,
         other => {
-            return Err(Error::Parse(format!(
-                "{file}: format '{other}' is not a DH table (expected dh or modified-dh)"
-            )))
+            return Err(Error::parse(
+                file,
+                format!("format '{other}' is not a DH table (expected dh or modified-dh)"),
+            ))
         }
     };
     let header = common::Header {
@@ -154,7 +155,7 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
     let mut b = header.builder(file, options);
     let base = header.base().to_string();
     if f.row.is_empty() {
-        return Err(Error::Parse(format!("{file}: the DH table has no [[row]]")));
+        return Err(Error::parse(file, "the DH table has no [[row]]"));
     }
     let mut previous = base.clone();
     let z = Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0);
@@ -165,7 +166,7 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
         let i = k + 1;
         let jname = row.name.clone().unwrap_or_else(|| format!("joint{i}"));
         let lname = row.link.clone().unwrap_or_else(|| format!("link{i}"));
-        let bad = |why: String| Error::Parse(format!("{at}: DH row {i} (joint '{jname}') {why}"));
+        let bad = |why: String| at.error(format!("DH row {i} (joint '{jname}') {why}"));
         let nums = [row.a, row.alpha, row.d, row.theta];
         if !nums.iter().all(|x| x.is_finite()) {
             return Err(bad("has a non-finite DH parameter".into()));
@@ -204,7 +205,7 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
             Vector3::from(row.com.unwrap_or([0.0; 3])),
             common::inertia_matrix(row.inertia.unwrap_or([0.0; 6])),
         );
-        b.locate(&lname, at.clone());
+        b.locate(&lname, at.to_string());
         let parent = row.parent.clone().unwrap_or(previous);
         b.link(&lname, &parent, j, home, inertia);
         previous = lname;

@@ -37,7 +37,7 @@
 //! ```
 
 use super::common::{self, FrameSpec};
-use super::LoadOptions;
+use super::options::LoadOptions;
 use crate::error::{Error, Result};
 use crate::model::{JointSpec, Model, ModelBuilder};
 use crate::spatial::{ang, lin, Se3, SpatialInertia, Twist};
@@ -203,9 +203,10 @@ fn se3_rows(rows: &[[f64; 4]; 4], what: &str, file: &str) -> Result<Se3> {
     if ok {
         Ok(h)
     } else {
-        Err(Error::Parse(format!(
-            "{file}: {what} is not a homogeneous transform [R p; 0 0 0 1] with R a rotation"
-        )))
+        Err(Error::parse(
+            file,
+            format!("{what} is not a homogeneous transform [R p; 0 0 0 1] with R a rotation"),
+        ))
     }
 }
 
@@ -237,10 +238,10 @@ pub fn parse_poe(text: &str, file: &str, options: &LoadOptions) -> Result<Model>
     ] {
         if let Some(v) = v {
             if v.len() != n {
-                return Err(Error::Parse(format!(
-                    "{file}: {key} has {} values but Slist has {n} screws",
-                    v.len()
-                )));
+                return Err(Error::parse(
+                    file,
+                    format!("{key} has {} values but Slist has {n} screws", v.len()),
+                ));
             }
         }
     }

@@ -28,7 +28,7 @@
 //! assert!(e.to_string().starts_with("bad.urdf:1:"));
 //! ```
 
-use super::LoadOptions;
+use super::options::LoadOptions;
 use crate::error::{Error, Result};
 use crate::model::{FrameKind, JointKind, JointSpec, Mimic, Model, ModelBuilder};
 use crate::spatial::{ang, lin, Se3, SpatialInertia};
@@ -73,7 +73,7 @@ impl Ctx<'_> {
         self.line_starts.partition_point(|&s| s <= at) as u32
     }
     fn parse_err(&self, n: Node, msg: String) -> Error {
-        Error::Parse(format!("{}:{}: {msg}", self.file, self.line(n)))
+        Error::parse_at(self.file, self.line(n) as usize, msg)
     }
     fn model_err(&self, line: u32, msg: String) -> Error {
         Error::InvalidModel(format!("{}:{line}: {msg}", self.file))
@@ -397,7 +397,12 @@ fn joint_element(
 pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let doc = Document::parse(text).map_err(|e| {
         let p = e.pos();
-        Error::Parse(format!("{file}:{}:{}: XML syntax error: {e}", p.row, p.col))
+        Error::Parse {
+            file: file.into(),
+            line: Some(p.row as usize),
+            column: Some(p.col as usize),
+            message: format!("XML syntax error: {e}"),
+        }
     })?;
     let ctx = Ctx {
         file,
@@ -418,7 +423,7 @@ pub fn parse_urdf(text: &str, file: &str, options: &LoadOptions) -> Result<Model
     let robot_name = root
         .attribute("name")
         .map(str::to_string)
-        .unwrap_or_else(|| super::native::default_name(file));
+        .unwrap_or_else(|| super::common::default_name(file));
     let mut b = ModelBuilder::new(&robot_name);
     b.strict(options.strict);
     let e = read_elements(&ctx, root, &mut b)?;
