@@ -3,12 +3,14 @@
 
 mod bench;
 mod classic;
+mod derivatives;
 mod dynamics;
 mod explain;
 mod identify;
 mod inertia;
 mod kinematics;
 mod model;
+mod regressor;
 mod sim;
 mod symbolic;
 mod view;
@@ -45,8 +47,8 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Bench(a) => bench::bench(&a),
         Command::Symbolic(a) => symbolic::symbolic(&a),
         Command::Inertia(a) => inertia::inertia(&a),
-        Command::Derivatives(a) => identify::derivatives(&a),
-        Command::Regressor(a) => identify::regressor(&a),
+        Command::Derivatives(a) => derivatives::derivatives(&a),
+        Command::Regressor(a) => regressor::regressor(&a),
         Command::Identify(a) => identify::identify(&a),
         Command::View(a) => view::view(&a),
     }
