@@ -246,10 +246,16 @@ impl Error {
         }
     }
 
-    /// The error itself, without the batch state around it.
-    pub fn without_state(&self) -> &Error {
+    /// The error itself, without the batch state around it (for a batch of one state, whose
+    /// errors need no state number).
+    ///
+    /// ```
+    /// let e = screwdyn::Error::Numerical("singular".into());
+    /// assert_eq!(e.clone().in_state(0).without_state(), e);
+    /// ```
+    pub fn without_state(self) -> Error {
         match self {
-            Error::Batch { source, .. } => source,
+            Error::Batch { source, .. } => *source,
             other => other,
         }
     }

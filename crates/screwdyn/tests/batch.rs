@@ -341,7 +341,7 @@ fn a_singular_mass_matrix_names_the_state_and_the_joint_as_the_per_call_aba_does
         let per_call =
             dynamics::aba(&m, &mut Workspace::new(&m), &q[..2], &[0.0; 2], &[1.0; 2]).unwrap_err();
         assert_eq!(e.state(), Some(0));
-        assert_eq!(e.without_state(), &per_call);
+        assert_eq!(e.clone().without_state(), per_call);
         assert!(
             e.to_string()
                 .starts_with("state 0: forward dynamics failed"),
