@@ -131,9 +131,11 @@ fn logged_torque(
 }
 
 /// Samples `traj` every `1 / rate` seconds over `[0, duration]` and calls `sink(t, q, q̇, q̈, τ)`
-/// with the torques of [`logged_torque`] plus Gaussian noise of standard deviation `noise`
-/// (Box–Muller from a deterministic generator seeded with `seed`): the log an identification
-/// experiment along an exciting trajectory would record. Streams: nothing is stored.
+/// with the torques the robot would need (inverse dynamics plus the joints' viscous and
+/// Coulomb friction, `τ = RNEA(q, q̇, q̈) + fv q̇ + fc sign(q̇)`) plus Gaussian noise of
+/// standard deviation `noise` (Box–Muller from a deterministic generator seeded with `seed`):
+/// the log an identification experiment along an exciting trajectory would record. Streams:
+/// nothing is stored.
 ///
 /// # Errors
 /// `InvalidArgument` for a non-positive or non-finite duration or rate, or a negative noise;

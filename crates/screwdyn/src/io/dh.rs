@@ -133,7 +133,9 @@ pub fn modified_dh_transform(a_prev: f64, alpha_prev: f64, d: f64, theta: f64) -
 /// Parses a standard or modified DH table (see the module documentation for the keys).
 ///
 /// # Errors
-/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
+/// [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model,
+/// each naming the file and, where known, the line (and, with `strict`, the first
+/// physical-consistency problem).
 pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let f: DhFile = common::from_toml(text, file)?;
     let modified = match f.format.as_str() {

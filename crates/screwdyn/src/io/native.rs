@@ -152,7 +152,10 @@ impl ShapeSpec {
 /// Parses a native screwdyn TOML description (see the module documentation for the keys).
 ///
 /// # Errors
-/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
+/// [`Error::Parse`](crate::Error::Parse) for malformed text and
+/// [`Error::InvalidModel`](crate::Error::InvalidModel) for an inconsistent model, each naming the
+/// file and, where known, the line (and, with `strict`, the first physical-consistency
+/// problem).
 pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let f: NativeFile = common::from_toml(text, file)?;
     let header = common::Header {

@@ -213,7 +213,9 @@ fn se3_rows(rows: &[[f64; 4]; 4], what: &str, file: &str) -> Result<Se3> {
 /// Parses a PoE TOML description (see the module documentation for the keys).
 ///
 /// # Errors
-/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
+/// [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model,
+/// each naming the file and, where known, the line (and, with `strict`, the first
+/// physical-consistency problem).
 pub fn parse_poe(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let f: PoeFile = common::from_toml(text, file)?;
     let n = f.Slist.len();
