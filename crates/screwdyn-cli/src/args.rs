@@ -115,7 +115,7 @@ pub struct RegressorArgs {
     #[arg(long)]
     pub base: bool,
     /// Random states used to find the base parameters.
-    #[arg(long, default_value_t = 100)]
+    #[arg(long, default_value_t = screwdyn::identification::DEFAULT_STATES)]
     pub states: usize,
 }
 

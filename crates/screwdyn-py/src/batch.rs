@@ -5,7 +5,7 @@
 //! Results go to a fresh array, or to the caller's `out=` array ([`Batch`]).
 
 use crate::convert::{batch_len, States};
-use crate::errors::in_state;
+use crate::errors::call_err;
 use nalgebra::Matrix6xX;
 use numpy::ndarray::IxDyn;
 use numpy::{PyArrayDyn, PyArrayMethods, PyReadwriteArrayDyn};
@@ -13,7 +13,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyFloat;
 use rayon::prelude::*;
-use screwdyn::batch::{BatchError, BatchWorkspace, Rows as LaneRows};
+use screwdyn::batch::{BatchWorkspace, Rows as LaneRows};
 use screwdyn::{Model, Workspace};
 use std::sync::Mutex;
 
@@ -100,10 +100,7 @@ where
         how,
         |m, s, first, block| {
             for (j, o) in block.chunks_mut(width).enumerate() {
-                kernel(m, s, &rows(first + j), o).map_err(|e| BatchError {
-                    state: Some(first + j),
-                    error: e,
-                })?;
+                kernel(m, s, &rows(first + j), o).map_err(|e| e.in_state(first + j))?;
             }
             Ok(())
         },
@@ -128,8 +125,7 @@ pub fn run_lanes<'py, F, G>(
     one: G,
 ) -> PyResult<Bound<'py, PyAny>>
 where
-    F: Fn(&Model, &mut BatchWorkspace, &[LaneRows<'_>], &mut [f64]) -> Result<(), BatchError>
-        + Sync,
+    F: Fn(&Model, &mut BatchWorkspace, &[LaneRows<'_>], &mut [f64]) -> screwdyn::Result<()> + Sync,
     G: Fn(&Model, &mut Scratch, &Rows<'_>, &mut [f64]) -> screwdyn::Result<()> + Sync,
 {
     assert!(
@@ -158,10 +154,7 @@ where
                     None => LaneRows::Same(&a.data),
                 };
             }
-            f(m, &mut s.batch, &inputs[..args.len()], block).map_err(|e| BatchError {
-                state: e.state.map(|k| first + k),
-                error: e.error,
-            })
+            f(m, &mut s.batch, &inputs[..args.len()], block).map_err(|e| e.offset_state(first))
         },
     )
 }
@@ -180,7 +173,7 @@ fn run_chunks<'py, F>(
     chunk: F,
 ) -> PyResult<Bound<'py, PyAny>>
 where
-    F: Fn(&Model, &mut Scratch, usize, &mut [f64]) -> Result<(), BatchError> + Sync,
+    F: Fn(&Model, &mut Scratch, usize, &mut [f64]) -> screwdyn::Result<()> + Sync,
 {
     let threads = check_threads(how.threads)?;
     let width: usize = out_shape.iter().product();
@@ -199,7 +192,7 @@ where
         single(model, cache, out, &chunk)?;
         return Ok(target.into_result());
     };
-    let result = py.detach(|| -> Result<(), BatchError> {
+    let result = py.detach(|| -> screwdyn::Result<()> {
         if width == 0 || n == 0 {
             return Ok(());
         }
@@ -226,7 +219,7 @@ where
             _ => work(out),
         }
     });
-    result.map_err(|e| in_state(e.error, e.state))?;
+    result.map_err(call_err)?;
     Ok(target.into_result())
 }
 
@@ -276,7 +269,7 @@ fn single<F>(
     chunk: &F,
 ) -> PyResult<()>
 where
-    F: Fn(&Model, &mut Scratch, usize, &mut [f64]) -> Result<(), BatchError> + Sync,
+    F: Fn(&Model, &mut Scratch, usize, &mut [f64]) -> screwdyn::Result<()> + Sync,
 {
     let r = match cache.try_lock() {
         Ok(mut guard) => {
@@ -286,5 +279,5 @@ where
         Err(_) => chunk(model, &mut Scratch::new(model), 0, out),
     };
     // A single state's error is not prefixed with a state number.
-    r.map_err(|e| in_state(e.error, None))
+    r.map_err(|e| call_err(e.without_state()))
 }

@@ -19,7 +19,7 @@ use crate::convert::{joint_states, StateIn, States};
 use crate::errors::guard;
 use crate::model::PyModel;
 use pyo3::prelude::*;
-use screwdyn::batch::{BatchError, BatchWorkspace, Rows as LaneRows};
+use screwdyn::batch::{BatchWorkspace, Rows as LaneRows};
 use screwdyn::Model;
 use std::borrow::Cow;
 
@@ -108,7 +108,7 @@ impl<'py> Compute<'_, 'py> {
         one: G,
     ) -> PyResult<Bound<'py, PyAny>>
     where
-        F: Fn(&Model, &mut BatchWorkspace, &[LaneRows<'_>], &mut [f64]) -> Result<(), BatchError>
+        F: Fn(&Model, &mut BatchWorkspace, &[LaneRows<'_>], &mut [f64]) -> screwdyn::Result<()>
             + Sync,
         G: Fn(&Model, &mut Scratch, &Rows<'_>, &mut [f64]) -> screwdyn::Result<()> + Sync,
     {

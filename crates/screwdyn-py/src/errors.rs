@@ -1,8 +1,12 @@
 //! The library's errors as Python exceptions, and the panic guard.
 
-use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyRuntimeError, PyValueError};
+use pyo3::exceptions::{
+    PyFileExistsError, PyFileNotFoundError, PyOSError, PyPermissionError, PyRuntimeError,
+    PyValueError,
+};
 use pyo3::prelude::*;
 use screwdyn::Error;
+use std::io::ErrorKind;
 
 pyo3::create_exception!(
     _screwdyn,
@@ -17,33 +21,31 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// An error of an algorithm call: bad shapes or values are `ValueError`s with the library's
-/// sentence.
+/// The `OSError` subclass Python's own file functions raise for an I/O error of `kind`.
+fn os_error(kind: ErrorKind, message: String) -> PyErr {
+    match kind {
+        ErrorKind::NotFound => PyFileNotFoundError::new_err(message),
+        ErrorKind::PermissionDenied => PyPermissionError::new_err(message),
+        ErrorKind::AlreadyExists => PyFileExistsError::new_err(message),
+        _ => PyOSError::new_err(message),
+    }
+}
+
+/// An error of an algorithm call: bad shapes or values (also a batch state's, `state k: …`) are
+/// `ValueError`s with the library's sentence; I/O errors are `OSError`s chosen by their kind.
 pub fn call_err(e: Error) -> PyErr {
     match e {
-        Error::Io(msg) => PyOSError::new_err(msg),
+        Error::Io { kind, message, .. } => os_error(kind, message),
         other => PyValueError::new_err(other.to_string()),
     }
 }
 
-/// An error while loading a description: `FileNotFoundError` for a missing file,
-/// `ModelError` for a broken description.
-pub fn load_err(e: Error, path: Option<&str>) -> PyErr {
+/// An error while loading a description: `FileNotFoundError` for a missing file (any
+/// `OSError` by the I/O error's kind), `ModelError` for a broken description.
+pub fn load_err(e: Error) -> PyErr {
     match e {
-        Error::Io(msg) => match path {
-            Some(p) if !std::path::Path::new(p).exists() => PyFileNotFoundError::new_err(msg),
-            _ => PyOSError::new_err(msg),
-        },
-        Error::UnknownName { .. } => ModelError::new_err(e.to_string()),
+        Error::Io { kind, message, .. } => os_error(kind, message),
         other => ModelError::new_err(other.to_string()),
-    }
-}
-
-/// Prefixes an error of state `k` of a batch.
-pub fn in_state(e: Error, k: Option<usize>) -> PyErr {
-    match k {
-        Some(k) => PyValueError::new_err(format!("state {k}: {e}")),
-        None => call_err(e),
     }
 }
 

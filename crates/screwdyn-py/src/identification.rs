@@ -10,7 +10,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use screwdyn::dynamics;
-use screwdyn::identification::{self, BaseParameters, LeastSquares};
+use screwdyn::identification::{self, BaseParameters, LeastSquares, DEFAULT_SEED, DEFAULT_STATES};
 
 #[pymethods]
 impl PyModel {
@@ -66,7 +66,7 @@ impl PyModel {
     /// ``states`` random states (QR with column pivoting in a fixed preferred order; the same as
     /// ``screwdyn regressor --base``): a :class:`BaseParameters` with readable expressions and
     /// ``K`` (``π_b = K π``).
-    #[pyo3(signature = (friction = false, *, states = 100, seed = 1))]
+    #[pyo3(signature = (friction = false, *, states = DEFAULT_STATES, seed = DEFAULT_SEED))]
     fn base_parameters<'py>(
         &self,
         py: Python<'py>,
@@ -87,7 +87,7 @@ impl PyModel {
     /// the condition number. ``friction=True`` adds ``fv q̇ + fc sign(q̇)`` per joint. Raises
     /// ValueError for too few samples or a log that does not excite every base parameter
     /// (condition number above 1e10), naming it.
-    #[pyo3(signature = (q, v, a, tau, *, friction = false, states = 100, seed = 1))]
+    #[pyo3(signature = (q, v, a, tau, *, friction = false, states = DEFAULT_STATES, seed = DEFAULT_SEED))]
     #[allow(clippy::too_many_arguments)]
     fn identify<'py>(
         &self,

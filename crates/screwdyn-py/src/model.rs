@@ -68,10 +68,10 @@ impl PyModel {
         let mut model = match &source {
             Source::Builtin(name) => {
                 screwdyn::io::load_model_with(&format!("builtin:{name}"), &opts)
-                    .map_err(|e| load_err(e, None))?
+                    .map_err(load_err)?
             }
             Source::Text { text, file } => {
-                screwdyn::io::load_str(text, file, &opts).map_err(|e| load_err(e, None))?
+                screwdyn::io::load_str(text, file, &opts).map_err(load_err)?
             }
         };
         if let Some(g) = gravity {
@@ -90,14 +90,14 @@ impl PyModel {
         })
     }
 
-    /// The URDF file the model was loaded from, when it was loaded from one that still exists
-    /// (its `<visual>` elements are drawn by `view`).
-    pub(crate) fn urdf_path(&self) -> Option<PathBuf> {
+    /// The URDF file the model was loaded from and its text, when it was loaded from one that
+    /// still exists (its `<visual>` elements are drawn by `view`, meshes found beside it).
+    pub(crate) fn urdf_source(&self) -> Option<(PathBuf, String)> {
         match &self.source {
-            Source::Text { file, .. } => {
-                let lower = file.to_ascii_lowercase();
+            Source::Text { file, text } => {
+                let urdf = screwdyn::io::Format::of_file(file) == Some(screwdyn::io::Format::Urdf);
                 let p = PathBuf::from(file);
-                ((lower.ends_with(".urdf") || lower.ends_with(".xml")) && p.is_file()).then_some(p)
+                (urdf && p.is_file()).then(|| (p, text.clone()))
             }
             Source::Builtin(_) => None,
         }
@@ -130,20 +130,15 @@ fn load(path_or_builtin: &Bound<'_, PyAny>, strict: bool) -> PyResult<PyModel> {
         if let Some(name) = path.strip_prefix("builtin:") {
             return PyModel::rebuild(Source::Builtin(name.to_string()), strict, None, None);
         }
-        let opts = options(strict);
-        let model =
-            screwdyn::io::load_model_with(&path, &opts).map_err(|e| load_err(e, Some(&path)))?;
-        // The text the model was parsed from, kept for pickling (the library has no exact
-        // serialiser: a pickled model is parsed again from the same text).
-        let text = std::fs::read_to_string(&path).map_err(|e| {
-            load_err(
-                screwdyn::Error::Io(format!("{path}: cannot be read ({e})")),
-                Some(&path),
-            )
-        })?;
+        // The text the model was parsed from, read once and kept for pickling (the library has
+        // no exact serialiser: a pickled model is parsed again from the same text).
+        let loaded = screwdyn::io::load_source(&path, &options(strict)).map_err(load_err)?;
         Ok(PyModel {
-            model,
-            source: Source::Text { text, file: path },
+            model: loaded.model,
+            source: Source::Text {
+                text: loaded.text.unwrap_or_default(),
+                file: path,
+            },
             strict,
             gravity: None,
             joint_friction: None,

@@ -377,7 +377,7 @@ fn integrator(s: &str, rtol: f64, atol: f64) -> PyResult<Integrator> {
     let i = s
         .replace('_', "-")
         .parse::<Integrator>()
-        .map_err(PyValueError::new_err)?;
+        .map_err(call_err)?;
     Ok(match i {
         Integrator::DormandPrince { .. } => Integrator::DormandPrince { rtol, atol },
         other => other,

@@ -7,7 +7,7 @@ use crate::convert::{self, as_int, empty_tuple, python_class, ArrayIn, StateIn};
 use crate::errors::{call_err, guard};
 use crate::model::PyModel;
 use numpy::PyUntypedArrayMethods;
-use pyo3::exceptions::{PyFileNotFoundError, PyTypeError, PyValueError};
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyInt, PyString};
 use screwdyn::sim::Recording;
@@ -103,10 +103,16 @@ impl PyModel {
                 .map(|q| c.one("view", [arg(q, "q")], |[q]| Ok(q.to_vec())));
             let q = q.transpose()?;
             let run = run.map(|r| r.read(m, max_samples)).transpose()?;
+            // The model's own URDF is not read again; one given as `urdf` is.
+            let (urdf, urdf_text) = match urdf {
+                Some(path) => (Some(path), None),
+                None => self.urdf_source().unzip(),
+            };
             let options = ViewOptions {
                 q,
                 run,
-                urdf: urdf.or_else(|| self.urdf_path()),
+                urdf,
+                urdf_text,
                 package_paths,
                 max_triangles,
                 title,
@@ -186,12 +192,6 @@ impl<'a, 'py> RunArg<'a, 'py> {
                         "run is a path to a run .csv/.json file, a SimResult or a TorqueProfile",
                     )
                 })?;
-                if !path.exists() {
-                    return Err(PyFileNotFoundError::new_err(format!(
-                        "{}: no such run file",
-                        path.display()
-                    )));
-                }
                 read_run(&path, model, max_samples).map_err(call_err)
             }
         }

@@ -97,8 +97,10 @@ pub fn render_html(model: &Model, options: &ViewOptions) -> Result<Page> {
     let (visuals, dir) = match &options.urdf {
         Some(path) => {
             let file = path.display().to_string();
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| Error::Io(format!("{file}: cannot be read ({e})")))?;
+            let text = match &options.urdf_text {
+                Some(text) => text.clone(),
+                None => std::fs::read_to_string(path).map_err(|e| Error::unreadable(path, &e))?,
+            };
             let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
             (visual::parse_visuals(&text, &file)?, dir)
         }

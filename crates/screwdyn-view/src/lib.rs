@@ -56,6 +56,9 @@ pub struct ViewOptions {
     /// The URDF file the model was loaded from: its `<visual>` elements are drawn. `None`
     /// (DH, PoE, TOML, built-ins) draws the skeleton.
     pub urdf: Option<PathBuf>,
+    /// The text of `urdf` when the caller has already read it (see
+    /// [`screwdyn::io::Loaded::urdf`]); `None` reads the file.
+    pub urdf_text: Option<String>,
     /// Folders searched for `package://` mesh paths, before `ROS_PACKAGE_PATH`.
     pub package_paths: Vec<PathBuf>,
     /// Cap on the embedded triangles ([`DEFAULT_MAX_TRIANGLES`]).
@@ -70,6 +73,7 @@ impl Default for ViewOptions {
             q: None,
             run: None,
             urdf: None,
+            urdf_text: None,
             package_paths: Vec::new(),
             max_triangles: DEFAULT_MAX_TRIANGLES,
             title: None,
@@ -159,5 +163,5 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> screwdyn::Result<()> {
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
-    result.map_err(|e| screwdyn::Error::Io(format!("cannot write {} ({e})", path.display())))
+    result.map_err(|e| screwdyn::Error::unwritable(path, &e))
 }

@@ -176,7 +176,7 @@ impl Mesh {
 }
 
 fn bad(file: &str, what: impl std::fmt::Display) -> Error {
-    Error::Parse(format!("{file}: {what}"))
+    Error::parse(file, what.to_string())
 }
 
 /// Reads an STL file, binary or ASCII (told apart by the binary layout: an 80-byte header, a

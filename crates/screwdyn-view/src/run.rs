@@ -332,7 +332,7 @@ pub fn read_run(path: &Path, model: &Model, max_samples: usize) -> Result<Run> {
         "csv" => read_csv(path, &file, model, max_samples),
         "json" => {
             let text = std::fs::read_to_string(path)
-                .map_err(|e| Error::Io(format!("{file}: cannot be read ({e})")))?;
+                .map_err(|e| Error::unreadable(path, &e))?;
             read_json(&text, &file, model, max_samples)
         }
         _ => Err(Error::InvalidArgument(format!(
@@ -343,7 +343,7 @@ pub fn read_run(path: &Path, model: &Model, max_samples: usize) -> Result<Run> {
 
 fn csv_error(file: &str, e: csv::Error) -> Error {
     match e.kind() {
-        csv::ErrorKind::Io(io) => Error::Io(format!("{file}: cannot be read ({io})")),
+        csv::ErrorKind::Io(io) => Error::unreadable(file, io),
         _ => Error::InvalidArgument(format!("{file}: {}", e.to_string().replace('\n', " "))),
     }
 }

@@ -39,14 +39,18 @@ fn numbers(text: &str, n: usize, what: &str, file: &str, line: u32) -> Result<Ve
         .map(|s| s.parse::<f64>())
         .collect::<std::result::Result<_, _>>()
         .map_err(|_| {
-            Error::Parse(format!(
-                "{file}:{line}: {what} '{text}' is not a list of numbers"
-            ))
+            Error::parse_at(
+                file,
+                line as usize,
+                format!("{what} '{text}' is not a list of numbers"),
+            )
         })?;
     if v.len() != n || v.iter().any(|x| !x.is_finite()) {
-        return Err(Error::Parse(format!(
-            "{file}:{line}: {what} '{text}' must be {n} finite numbers"
-        )));
+        return Err(Error::parse_at(
+            file,
+            line as usize,
+            format!("{what} '{text}' must be {n} finite numbers"),
+        ));
     }
     Ok(v)
 }
@@ -82,7 +86,7 @@ fn color_of(node: roxmltree::Node, file: &str, line: u32) -> Result<Option<[f32;
 /// ```
 pub fn parse_visuals(text: &str, file: &str) -> Result<Vec<Visual>> {
     let doc = roxmltree::Document::parse(text)
-        .map_err(|e| Error::Parse(format!("{file}: is not valid XML ({e})")))?;
+        .map_err(|e| Error::parse(file, format!("is not valid XML ({e})")))?;
     let line = |n: roxmltree::Node| doc.text_pos_at(n.range().start).row;
     let robot = doc.root_element();
     let mut named: HashMap<&str, [f32; 4]> = HashMap::new();
@@ -118,17 +122,22 @@ pub fn parse_visuals(text: &str, file: &str) -> Result<Vec<Visual>> {
                 .find(|n| n.has_tag_name("geometry"))
                 .and_then(|g| g.children().find(|n| n.is_element()))
                 .ok_or_else(|| {
-                    Error::Parse(format!(
-                        "{file}:{l}: a <visual> of link '{name}' has no <geometry> shape"
-                    ))
+                    Error::parse_at(
+                        file,
+                        l as usize,
+                        format!("a <visual> of link '{name}' has no <geometry> shape"),
+                    )
                 })?;
             let attr = |a: &str| {
                 shape.attribute(a).ok_or_else(|| {
-                    Error::Parse(format!(
-                        "{file}:{}: <{}> of link '{name}' has no '{a}' attribute",
-                        line(shape),
-                        shape.tag_name().name()
-                    ))
+                    Error::parse_at(
+                        file,
+                        line(shape) as usize,
+                        format!(
+                            "<{}> of link '{name}' has no '{a}' attribute",
+                            shape.tag_name().name()
+                        ),
+                    )
                 })
             };
             let one =
@@ -157,10 +166,11 @@ pub fn parse_visuals(text: &str, file: &str) -> Result<Vec<Visual>> {
                     }
                 }
                 other => {
-                    return Err(Error::Parse(format!(
-                        "{file}:{}: unknown geometry <{other}> in link '{name}' (expected box, cylinder, sphere or mesh)",
-                        line(shape)
-                    )))
+                    return Err(Error::parse_at(
+                        file,
+                        line(shape) as usize,
+                        format!("unknown geometry <{other}> in link '{name}' (expected box, cylinder, sphere or mesh)"),
+                    ))
                 }
             };
             let color = match v.children().find(|n| n.has_tag_name("material")) {
@@ -235,9 +245,11 @@ pub fn resolve_mesh(uri: &str, urdf_dir: &Path, package_paths: &[PathBuf]) -> Re
                     .join(", ")
             )
         };
-        return Err(Error::Io(format!(
-            "mesh '{uri}': package '{pkg}' not found{hint} or above the URDF's folder"
-        )));
+        return Err(Error::io(
+            None,
+            std::io::ErrorKind::NotFound,
+            format!("mesh '{uri}': package '{pkg}' not found{hint} or above the URDF's folder"),
+        ));
     }
     let path = match uri.strip_prefix("file://") {
         Some(p) => PathBuf::from(p),
@@ -253,10 +265,11 @@ pub fn resolve_mesh(uri: &str, urdf_dir: &Path, package_paths: &[PathBuf]) -> Re
     if path.is_file() {
         Ok(path)
     } else {
-        Err(Error::Io(format!(
-            "mesh '{uri}': {} does not exist",
-            path.display()
-        )))
+        Err(Error::io(
+            Some(path.clone()),
+            std::io::ErrorKind::NotFound,
+            format!("mesh '{uri}': {} does not exist", path.display()),
+        ))
     }
 }
 
@@ -271,19 +284,17 @@ pub fn read_mesh_file(path: &Path) -> Result<Vec<crate::mesh::Mesh>> {
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
-    let bytes =
-        std::fs::read(path).map_err(|e| Error::Io(format!("{file}: cannot be read ({e})")))?;
-    let text = || {
-        String::from_utf8(bytes.clone())
-            .map_err(|_| Error::Parse(format!("{file}: is not UTF-8 text")))
-    };
+    let bytes = std::fs::read(path).map_err(|e| Error::unreadable(path, &e))?;
+    let text =
+        || String::from_utf8(bytes.clone()).map_err(|_| Error::parse(&file, "is not UTF-8 text"));
     match ext.as_str() {
         "stl" => Ok(vec![crate::mesh::read_stl(&bytes, &file)?]),
         "obj" => Ok(vec![crate::mesh::read_obj(&text()?, &file)?]),
         "dae" => crate::mesh::read_dae(&text()?, &file),
-        _ => Err(Error::Parse(format!(
-            "{file}: unknown mesh format '.{ext}' (expected .stl, .obj or .dae)"
-        ))),
+        _ => Err(Error::parse(
+            file,
+            format!("unknown mesh format '.{ext}' (expected .stl, .obj or .dae)"),
+        )),
     }
 }
 

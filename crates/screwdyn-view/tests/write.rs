@@ -20,7 +20,7 @@ fn pages_are_written_whole_and_failures_name_the_file() {
 
     let missing = dir.join("no-such-folder").join("robot.html");
     let e = write_atomically(&missing, b"x").unwrap_err();
-    assert!(matches!(e, screwdyn::Error::Io(_)), "{e:?}");
+    assert!(matches!(e, screwdyn::Error::Io { .. }), "{e:?}");
     let msg = e.to_string();
     assert!(
         msg.starts_with("cannot write ") && msg.contains("no-such-folder"),

@@ -18,7 +18,6 @@
 //! ```
 
 pub mod batch;
-pub mod builtin;
 pub mod dynamics;
 mod error;
 pub mod format;
@@ -34,6 +33,7 @@ pub mod symbolic;
 mod workspace;
 
 pub use error::{Error, Result};
+pub use io::builtin;
 pub use model::{Model, ModelBuilder};
 pub use scalar::{real, Real};
 pub use workspace::{Workspace, EAGER_SQUARE_BUFFERS};

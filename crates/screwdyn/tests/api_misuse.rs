@@ -399,3 +399,46 @@ fn merging_massless_links_keeps_their_rotational_inertia() {
     assert!((mm[(0, 0)] - 1.2).abs() < 1e-12, "M00 = {}", mm[(0, 0)]);
     assert!((mm[(1, 1)] - 0.0).abs() < 1e-12);
 }
+
+/// A `FromStr` of the library: an unknown word is an [`Error::UnknownChoice`] naming it, and
+/// every word its message offers is accepted.
+fn offers_only_words_it_accepts<T>(what: &str)
+where
+    T: std::str::FromStr<Err = Error> + std::fmt::Debug,
+{
+    let e = "no-such-word".parse::<T>().unwrap_err();
+    let Error::UnknownChoice {
+        what: w,
+        got,
+        expected,
+    } = &e
+    else {
+        panic!("{what}: {e:?}")
+    };
+    assert_eq!((*w, got.as_str()), (what, "no-such-word"));
+    assert_eq!(
+        e.to_string(),
+        format!("unknown {what} 'no-such-word' (use {expected})")
+    );
+    let words: Vec<&str> = expected
+        .split([',', ' '])
+        .filter(|w| !w.is_empty() && *w != "or")
+        .collect();
+    assert!(words.len() >= 2, "{what}: {expected}");
+    for word in words {
+        if let Err(e) = word.parse::<T>() {
+            panic!("{what}: '{word}' is offered but refused: {e}");
+        }
+    }
+}
+
+#[test]
+fn every_from_str_refuses_an_unknown_word_with_the_choices() {
+    use screwdyn::symbolic::{Collect, CoriolisForm, Quantity};
+    offers_only_words_it_accepts::<ForwardMethod>("forward-dynamics method");
+    offers_only_words_it_accepts::<Reference>("reference");
+    offers_only_words_it_accepts::<Integrator>("integrator");
+    offers_only_words_it_accepts::<Quantity>("quantity");
+    offers_only_words_it_accepts::<CoriolisForm>("Coriolis form");
+    offers_only_words_it_accepts::<Collect>("collect mode");
+}

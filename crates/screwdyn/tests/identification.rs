@@ -178,6 +178,9 @@ fn noisy_fourier_log_recovers_the_base_parameters() {
     }
     assert!(pi.rows(60, 12).iter().all(|x| *x >= 0.0));
     let pib: DVector<f64> = base.base_values(&pi);
+    // The library's one-call form gives the same numbers.
+    let one_call = ls.physical_estimate(&m).unwrap();
+    assert_eq!((&one_call.standard, &one_call.base_values), (&pi, &pib));
     let mut res = Residuals::new(&m, &base);
     for (q, v, a, tau) in &held {
         res.add(&m, &base, &pib, q, v, a, tau, &mut pred).unwrap();
@@ -187,6 +190,24 @@ fn noisy_fourier_log_recovers_the_base_parameters() {
             *r < 2.0 * noise,
             "joint {i}: physical estimate held-out RMS {r}"
         );
+    }
+}
+
+/// The defaults both front-ends use (the command line's `--states`, Python's `states=` and
+/// `seed=`) are the values they hard-coded before, and enough: more states drawn from another
+/// seed find no further base parameter on any shipped robot.
+#[test]
+fn the_default_states_and_seed_find_every_base_parameter() {
+    assert_eq!((DEFAULT_STATES, DEFAULT_SEED), (100, 1));
+    for name in screwdyn::builtin::NAMES {
+        let m = load(&format!("builtin:{name}"));
+        for friction in [false, true] {
+            let defaults = BaseParameters::with_defaults(&m, friction).unwrap();
+            let same = BaseParameters::new(&m, friction, DEFAULT_STATES, DEFAULT_SEED).unwrap();
+            assert_eq!(defaults.expressions(), same.expressions(), "{name}");
+            let more = BaseParameters::new(&m, friction, 4 * DEFAULT_STATES, 7).unwrap();
+            assert_eq!(defaults.rank(), more.rank(), "{name}, friction {friction}");
+        }
     }
 }
 

@@ -117,7 +117,7 @@ pub fn forward_dynamics(a: &ForwardDynamicsArgs) -> Result<(), CliError> {
     let method: ForwardMethod = a
         .method
         .parse()
-        .map_err(|e: String| CliError::input(format!("--method: {e}")))?;
+        .map_err(|e: screwdyn::Error| CliError::input(format!("--method: {e}")))?;
     let m = load(&a.common.model, a.common.gravity.as_deref())?;
     let ext = external_wrenches(&m, &a.wrenches.wrench, &a.wrenches.tip_wrench)?;
     let mut ws = Workspace::new(&m);

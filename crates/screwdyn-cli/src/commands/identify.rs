@@ -1,116 +1,18 @@
-//! `derivatives`, `regressor` and `identify`: derivatives of the dynamics and identification of
-//! inertial parameters (issue 15). The library does the work; this parses, calls and prints.
+//! `identify`: inertial parameters from a log of states and torques, and exciting logs to record
+//! (issue 15). The library does the work; this reads the log, calls and prints.
 
-use super::{external_wrenches, load, names, run_states};
-use crate::args::{DerivativesArgs, IdentifyArgs, RegressorArgs};
+use super::{load, names};
+use crate::args::IdentifyArgs;
 use crate::output::{self, Report, Value};
 use crate::plot::{plot_panels, Panel, Series};
 use crate::CliError;
-use nalgebra::DMatrix;
-use screwdyn::dynamics;
 use screwdyn::identification::{
-    excitation_log, parameter_names, physical_estimate, standard_parameters, BaseParameters,
-    FourierTrajectory, LeastSquares, Residuals, VelocityDifferentiator,
+    excitation_log, BaseParameters, FourierTrajectory, LeastSquares, Residuals,
+    VelocityDifferentiator,
 };
-use screwdyn::{Model, Workspace};
+use screwdyn::Model;
 use std::io::Write;
 use std::path::Path;
-
-/// `derivatives`: `dtau_dq`, `dtau_dv`, `dqdd_dq`, `dqdd_dv`, `minv` (rows: the differentiated
-/// quantity, columns: the variable, both in joint order).
-pub fn derivatives(a: &DerivativesArgs) -> Result<(), CliError> {
-    let m = load(&a.common.model, a.common.gravity.as_deref())?;
-    let ext = external_wrenches(&m, &a.wrenches.wrench, &a.wrenches.tip_wrench)?;
-    let mut ws = Workspace::new(&m);
-    let j = names(&m);
-    let flags = [
-        ("q", a.q.as_deref()),
-        ("v", a.v.as_deref()),
-        ("a", a.a.as_deref()),
-    ];
-    run_states(&m, &a.common, &flags, |s| {
-        dynamics::rnea_derivatives(&m, &mut ws, &s.q, &s.v, &s.a, ext.as_ref())?;
-        let (dq, dv) = (ws.dtau_dq.clone(), ws.dtau_dv.clone());
-        // Forward dynamics at the torque that produces q̈ = a.
-        let tau = ws.tau.as_slice().to_vec();
-        dynamics::aba_derivatives(&m, &mut ws, &s.q, &s.v, &tau, ext.as_ref())?;
-        let mut r = Report::new();
-        r.add("joints", Value::Names(j.clone()))
-            .add("tau", Value::joints(&j, &tau))
-            .add("dtau_dq", Value::joint_matrix(&j, &dq))
-            .add("dtau_dv", Value::joint_matrix(&j, &dv))
-            .add("dqdd_dq", Value::joint_matrix(&j, &ws.dqdd_dq))
-            .add("dqdd_dv", Value::joint_matrix(&j, &ws.dqdd_dv))
-            .add("minv", Value::joint_matrix(&j, &ws.mass_matrix_inverse));
-        Ok(r)
-    })
-}
-
-/// `regressor`: `regressor` (n × p, columns named by parameter) and `parameters` (the model's
-/// standard parameters); with `--base`, the base parameters.
-pub fn regressor(a: &RegressorArgs) -> Result<(), CliError> {
-    let m = load(&a.common.model, a.common.gravity.as_deref())?;
-    if a.base {
-        if a.q.is_some() || a.v.is_some() || a.a.is_some() || a.common.input.is_some() {
-            return Err(CliError::input(
-                "--base describes the model, not a state: drop --q, --v, --a and --input",
-            ));
-        }
-        let b = BaseParameters::new(&m, a.friction, a.states, 1)?;
-        let values = b.base_values(&standard_parameters(&m, a.friction));
-        let exprs = b.expressions();
-        let mut r = Report::new();
-        r.add("rank", Value::Count(b.rank()))
-            .add("standard_parameters", Value::Count(b.standard_names.len()));
-        r.add(
-            "base_parameters",
-            Value::Map(
-                exprs
-                    .iter()
-                    .zip(values.iter())
-                    .map(|(e, v)| (e.clone(), Value::Scalar(*v)))
-                    .collect(),
-            ),
-        );
-        let mut t = format!(
-            "{} base parameters of {} standard ones ({}), value in the model:\n",
-            b.rank(),
-            b.standard_names.len(),
-            m.name()
-        );
-        for (e, v) in exprs.iter().zip(values.iter()) {
-            t.push_str(&format!("  {:>14}  {e}\n", output::fmt(*v)));
-        }
-        r.table = Some(t);
-        return output::print(&[r], output::resolve(a.common.model.format), false);
-    }
-    let mut ws = Workspace::new(&m);
-    let j = names(&m);
-    let pnames = crate::output::labels(&parameter_names(&m, a.friction));
-    let pi = standard_parameters(&m, a.friction);
-    let mut y = DMatrix::zeros(m.nv(), pnames.len());
-    let flags = [
-        ("q", a.q.as_deref()),
-        ("v", a.v.as_deref()),
-        ("a", a.a.as_deref()),
-    ];
-    run_states(&m, &a.common, &flags, |s| {
-        screwdyn::identification::full_regressor(
-            &m, &mut ws, &s.q, &s.v, &s.a, a.friction, &mut y,
-        )?;
-        let mut r = Report::new();
-        r.add("joints", Value::Names(j.clone()))
-            .add(
-                "regressor",
-                Value::Matrix(j.clone(), pnames.clone(), y.clone()),
-            )
-            .add(
-                "parameters",
-                Value::Vector(pnames.clone(), pi.as_slice().to_vec()),
-            );
-        Ok(r)
-    })
-}
 
 /// Column indices of a log.
 struct LogColumns {
@@ -328,7 +230,7 @@ pub fn identify(a: &IdentifyArgs) -> Result<(), CliError> {
             )));
         }
     }
-    let base = BaseParameters::new(&m, a.friction, 100, 1)?;
+    let base = BaseParameters::with_defaults(&m, a.friction)?;
     let mut ls = LeastSquares::new(&m, base.clone());
     let file = path.display().to_string();
     let samples = for_each_sample(&m, path, a.window, |(_, q, v, acc, tau)| {
@@ -344,13 +246,14 @@ pub fn identify(a: &IdentifyArgs) -> Result<(), CliError> {
         .solve()
         .map_err(|e| CliError::input(format!("{file}: {e}")))?;
     let physical = if a.physical {
-        let (r, z) = ls.factor();
-        let pi = physical_estimate(&m, &base, &r, &z)?;
-        Some((base.base_values(&pi), pi))
+        Some(ls.physical_estimate(&m)?)
     } else {
         None
     };
-    let values = physical.as_ref().map_or(&est.values, |(b, _)| b).clone();
+    let values = physical
+        .as_ref()
+        .map_or(&est.values, |p| &p.base_values)
+        .clone();
     // Second pass: residuals per joint (and the plot data).
     let mut res = Residuals::new(&m, &base);
     let mut pred = vec![0.0; m.nv()];

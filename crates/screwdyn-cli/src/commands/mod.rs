@@ -3,12 +3,14 @@
 
 mod bench;
 mod classic;
+mod derivatives;
 mod dynamics;
 mod explain;
 mod identify;
 mod inertia;
 mod kinematics;
 mod model;
+mod regressor;
 mod sim;
 mod symbolic;
 mod view;
@@ -18,7 +20,7 @@ use crate::output::{self, Report};
 use crate::CliError;
 use nalgebra::{Vector3, Vector6};
 use screwdyn::dynamics::ExternalWrenches;
-use screwdyn::io::LoadOptions;
+use screwdyn::io::{LoadOptions, Loaded};
 use screwdyn::Model;
 use std::path::Path;
 
@@ -45,8 +47,8 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Bench(a) => bench::bench(&a),
         Command::Symbolic(a) => symbolic::symbolic(&a),
         Command::Inertia(a) => inertia::inertia(&a),
-        Command::Derivatives(a) => identify::derivatives(&a),
-        Command::Regressor(a) => identify::regressor(&a),
+        Command::Derivatives(a) => derivatives::derivatives(&a),
+        Command::Regressor(a) => regressor::regressor(&a),
         Command::Identify(a) => identify::identify(&a),
         Command::View(a) => view::view(&a),
     }
@@ -68,11 +70,16 @@ pub fn load(args: &ModelArgs, gravity: Option<&str>) -> Result<Model, CliError> 
 /// Loads `path` (strict: findings are errors) and warns about each physical-consistency
 /// finding on stderr.
 pub fn load_model(path: &str, strict: bool) -> Result<Model, CliError> {
-    let m = screwdyn::io::load_model_with(path, &LoadOptions { strict })?;
-    for f in m.physical_problems() {
+    Ok(load_source(path, strict)?.model)
+}
+
+/// As [`load_model`], with the text and path the model was read from.
+pub fn load_source(path: &str, strict: bool) -> Result<Loaded, CliError> {
+    let loaded = screwdyn::io::load_source(path, &LoadOptions { strict })?;
+    for f in loaded.model.physical_problems() {
         eprintln!("screwdyn: warning: {f}");
     }
-    Ok(m)
+    Ok(loaded)
 }
 
 /// Comma-separated numbers given as `flag`, all finite.

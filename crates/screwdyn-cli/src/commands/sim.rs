@@ -338,11 +338,11 @@ fn sim_options(a: &SimulateArgs, m: &Model) -> Result<SimOptions, CliError> {
     let integrator: Integrator = a
         .integrator
         .parse()
-        .map_err(|e: String| CliError::input(format!("--integrator: {e}")))?;
+        .map_err(|e: screwdyn::Error| CliError::input(format!("--integrator: {e}")))?;
     let method: ForwardMethod = a
         .method
         .parse()
-        .map_err(|e: String| CliError::input(format!("--method: {e}")))?;
+        .map_err(|e: screwdyn::Error| CliError::input(format!("--method: {e}")))?;
     let opts = SimOptions {
         duration: a.duration,
         dt: a.dt,
@@ -526,7 +526,7 @@ fn run_streamed(
     let summary = match (result, &a.output) {
         (Ok(s), _) => s,
         // Writing the file failed (disk full, file-size limit): nothing replaced --output.
-        (Err(screwdyn::Error::Io(why)), Some(p)) => {
+        (Err(screwdyn::Error::Io { message: why, .. }), Some(p)) => {
             return Err(CliError::input(format!(
                 "cannot write {} ({why}); the previous file, if any, is unchanged",
                 p.display()

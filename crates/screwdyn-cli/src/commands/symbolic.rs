@@ -39,15 +39,15 @@ pub fn symbolic(a: &SymbolicArgs) -> Result<(), CliError> {
         },
         None,
     )?;
-    let quantity: Quantity = a.quantity.parse().map_err(CliError::input)?;
+    let quantity: Quantity = a.quantity.parse()?;
     let coriolis: CoriolisForm = a
         .coriolis_form
         .parse()
-        .map_err(|e: String| CliError::input(format!("--coriolis-form: {e}")))?;
+        .map_err(|e: screwdyn::Error| CliError::input(format!("--coriolis-form: {e}")))?;
     let collect: Collect = a
         .collect
         .parse()
-        .map_err(|e: String| CliError::input(format!("--collect: {e}")))?;
+        .map_err(|e: screwdyn::Error| CliError::input(format!("--collect: {e}")))?;
     if a.max_terms == 0 || a.max_ops == 0 {
         return Err(CliError::input(
             "--max-terms and --max-ops must be at least 1",

@@ -42,7 +42,8 @@ pub fn view(a: &ViewArgs) -> Result<(), CliError> {
             "--q cannot be combined with --run (the run gives the configurations)",
         ));
     }
-    let model = super::load_model(&a.model, a.strict)?;
+    let loaded = super::load_source(&a.model, a.strict)?;
+    let model = &loaded.model;
     let q =
         a.q.as_deref()
             .map(|text| super::parse_vector(Some(text), "q", &model))
@@ -52,16 +53,17 @@ pub fn view(a: &ViewArgs) -> Result<(), CliError> {
         .as_deref()
         .map(|p| read_run(p, &model, a.max_samples))
         .transpose()?;
-    let lower = a.model.to_ascii_lowercase();
-    let urdf = (!a.model.starts_with("builtin:")
-        && (lower.ends_with(".urdf") || lower.ends_with(".xml")))
-    .then(|| PathBuf::from(&a.model));
+    let (urdf, urdf_text) = loaded
+        .urdf()
+        .map(|(path, text)| (path.to_path_buf(), text.to_string()))
+        .unzip();
     let page = render_html(
-        &model,
+        model,
         &ViewOptions {
             q,
             run,
             urdf,
+            urdf_text,
             package_paths: a.package_path.clone(),
             max_triangles: a.max_triangles,
             title: None,

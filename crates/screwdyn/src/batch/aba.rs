@@ -1,14 +1,15 @@
-//! The articulated-body algorithm on [`Lanes`](super::Lanes): [`dynamics::aba`]'s three passes
+//! The articulated-body algorithm on `Lanes`: [`dynamics::aba`]'s three passes
 //! for `L` states at once, everything in the base frame as there.
 //!
 //! [`dynamics::aba`]: crate::dynamics::aba
 
+use super::buffers::Buffers;
 use super::joint::sin_cos_all;
+use super::joint::LaneJoint;
 use super::lanes::Lanes;
 use super::spatial::{
     ad, ad_transpose, add6, body_inertia_in, dot6, gravity_twist, mul6, scale6, zero6,
 };
-use super::{Buffers, LaneJoint};
 use crate::model::Model;
 
 /// `q̈ = M⁻¹(τ − C q̇ − g)` for the states in `b.q`, `b.v`, `b.a` (`a` holds `τ`); writes

@@ -1,12 +1,13 @@
-//! The composite-rigid-body algorithm on [`Lanes`](super::Lanes): [`dynamics::crba`] for `L`
+//! The composite-rigid-body algorithm on `Lanes`: [`dynamics::crba`] for `L`
 //! states at once, everything in the base frame as there.
 //!
 //! [`dynamics::crba`]: crate::dynamics::crba
 
+use super::buffers::Buffers;
 use super::joint::sin_cos_all;
+use super::joint::LaneJoint;
 use super::lanes::Lanes;
 use super::spatial::{dot6, Composite};
-use super::{Buffers, LaneJoint};
 use crate::model::Model;
 
 /// `M(q)` for the states in `b.q`; writes `b.out[..n²]` (symmetric, so row- and column-major

@@ -18,14 +18,6 @@ use crate::scalar::Reduction;
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 /// `L` doubles, one per state, with element-wise arithmetic (see the module documentation).
-///
-/// ```
-/// use screwdyn::batch::Lanes;
-/// let x = Lanes([1.0, 2.0, 3.0, 4.0]);
-/// let y = x * x - Lanes::splat(1.0);
-/// assert_eq!(y.0, [0.0, 3.0, 8.0, 15.0]);
-/// assert_eq!((y * 2.0).0[3], 30.0);
-/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(transparent)]
 pub struct Lanes<const L: usize>(pub [f64; L]);
@@ -64,15 +56,6 @@ impl<const L: usize> Lanes<L> {
     /// about 2⁻¹⁶ of a multiple of `π/2`), and then kept only in those lanes, so every lane's
     /// result depends on that lane alone. Angles beyond `|x| ≥ 2²⁰ π/2` (≈ 1.6·10⁶ rad), ±∞
     /// and NaN go to `f64::sin_cos`.
-    ///
-    /// ```
-    /// use screwdyn::batch::Lanes;
-    /// let (s, c) = Lanes([0.0, 1.0, -2.0, 1e3]).sin_cos();
-    /// for (k, x) in [0.0_f64, 1.0, -2.0, 1e3].into_iter().enumerate() {
-    ///     assert!((s.0[k] - x.sin()).abs() <= 2.0 * f64::EPSILON);
-    ///     assert!((c.0[k] - x.cos()).abs() <= 2.0 * f64::EPSILON);
-    /// }
-    /// ```
     #[inline(always)]
     pub fn sin_cos(self) -> (Self, Self) {
         let mut red = Reductions::<L>::default();
@@ -98,12 +81,6 @@ impl<const L: usize> Lanes<L> {
 
     /// `self a + b` in every lane, rounded once (a fused multiply–add, as [`f64::mul_add`]):
     /// one instruction for the eight lanes in the AVX-512 and AVX2 clones.
-    ///
-    /// ```
-    /// use screwdyn::batch::Lanes;
-    /// let x = Lanes([0.1, 3.0]);
-    /// assert_eq!(x.mul_add(10.0, Lanes([-1.0, 1.0])).0, [0.1_f64.mul_add(10.0, -1.0), 31.0]);
-    /// ```
     #[inline(always)]
     pub fn mul_add(self, a: impl Into<Self>, b: Self) -> Self {
         let a = a.into();
@@ -257,6 +234,35 @@ impl<const L: usize> Neg for Lanes<L> {
 mod tests {
     use super::*;
     use crate::scalar::ulps;
+
+    /// Element-wise arithmetic, lane by lane (formerly the type's doc example).
+    #[test]
+    fn arithmetic_acts_lane_by_lane() {
+        let x = Lanes([1.0, 2.0, 3.0, 4.0]);
+        let y = x * x - Lanes::splat(1.0);
+        assert_eq!(y.0, [0.0, 3.0, 8.0, 15.0]);
+        assert_eq!((y * 2.0).0[3], 30.0);
+    }
+
+    /// A few angles against `f64::sin`/`cos` (formerly `sin_cos`'s doc example).
+    #[test]
+    fn sin_cos_of_a_few_angles() {
+        let (s, c) = Lanes([0.0, 1.0, -2.0, 1e3]).sin_cos();
+        for (k, x) in [0.0_f64, 1.0, -2.0, 1e3].into_iter().enumerate() {
+            assert!((s.0[k] - x.sin()).abs() <= 2.0 * f64::EPSILON);
+            assert!((c.0[k] - x.cos()).abs() <= 2.0 * f64::EPSILON);
+        }
+    }
+
+    /// One rounding per lane, as `f64::mul_add` (formerly `mul_add`'s doc example).
+    #[test]
+    fn mul_add_rounds_once_per_lane() {
+        let x = Lanes([0.1, 3.0]);
+        assert_eq!(
+            x.mul_add(10.0, Lanes([-1.0, 1.0])).0,
+            [0.1_f64.mul_add(10.0, -1.0), 31.0]
+        );
+    }
 
     /// Lane-wise sine and cosine are within 2 ulp of glibc's (each within one of the exact
     /// value) over a million angles, at multiples of π/2 and beyond the fast range.

@@ -1,11 +1,12 @@
-//! The recursive Newton–Euler algorithm on [`Lanes`](super::Lanes): [`dynamics::rnea`]'s two
+//! The recursive Newton–Euler algorithm on `Lanes`: [`dynamics::rnea`]'s two
 //! passes, line for line, for `L` states at once.
 //!
 //! [`dynamics::rnea`]: crate::dynamics::rnea
 
+use super::buffers::Buffers;
 use super::joint::sin_cos_all;
+use super::joint::LaneJoint;
 use super::spatial::{ad_transpose, add6, apply_body_inertia, gravity_twist, sub6, zero6};
-use super::{Buffers, LaneJoint};
 use crate::model::Model;
 
 /// `τ = M(q) q̈ + C(q, q̇) q̇ + g(q)` for the states in `b.q`, `b.v`, `b.a`; writes `b.out[..n]`.

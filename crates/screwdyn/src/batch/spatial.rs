@@ -82,6 +82,7 @@ macro_rules! vector_ops {
         }
         #[doc = concat!("`a x` for ", stringify!($n), "-vectors.")]
         #[inline(always)]
+        #[allow(dead_code)] // kept for both sizes; only the 6-vector form has a caller
         pub fn $scale<const L: usize>(a: &[Lanes<L>; $n], x: Lanes<L>) -> [Lanes<L>; $n] {
             each!($n, |k| a[k] * x)
         }

@@ -28,15 +28,17 @@ pub enum ForwardMethod {
 }
 
 impl std::str::FromStr for ForwardMethod {
-    type Err = String;
-    fn from_str(s: &str) -> std::result::Result<Self, String> {
+    type Err = crate::Error;
+    fn from_str(s: &str) -> std::result::Result<Self, crate::Error> {
         match s {
             "aba" => Ok(ForwardMethod::Aba),
             "crba" => Ok(ForwardMethod::Crba),
             "walker-orin" | "walker_orin" => Ok(ForwardMethod::WalkerOrin),
-            _ => Err(format!(
-                "unknown forward-dynamics method '{s}' (use aba, crba or walker-orin)"
-            )),
+            _ => Err(crate::Error::UnknownChoice {
+                what: "forward-dynamics method",
+                got: s.into(),
+                expected: "aba, crba or walker-orin",
+            }),
         }
     }
 }

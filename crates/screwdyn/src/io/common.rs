@@ -1,5 +1,6 @@
 //! Pieces shared by the TOML formats: error positions, poses, inertias, extra frames, limits.
 
+use super::options::LoadOptions;
 use crate::error::{Error, Result};
 use crate::model::{JointSpec, Model, ModelBuilder};
 use crate::spatial::{Se3, SpatialInertia};
@@ -16,9 +17,32 @@ pub(crate) fn line_col(text: &str, at: usize) -> (usize, usize) {
     (line, col)
 }
 
-/// `file:line` of an element of a TOML file, from its span (the start of its table).
-pub(crate) fn at_line<T>(file: &str, text: &str, element: &toml::Spanned<T>) -> String {
-    format!("{file}:{}", line_col(text, element.span().start).0)
+/// Where an element of a description starts: its file and line.
+pub(crate) struct At<'f> {
+    pub file: &'f str,
+    pub line: usize,
+}
+
+impl At<'_> {
+    /// A parse error at this place.
+    pub fn error(&self, message: impl Into<String>) -> Error {
+        Error::parse_at(self.file, self.line, message)
+    }
+}
+
+/// `file:line`, the form the model builder's messages take.
+impl std::fmt::Display for At<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}:{}", self.file, self.line)
+    }
+}
+
+/// The place of an element of a TOML file, from its span (the start of its table).
+pub(crate) fn at_line<'f, T>(file: &'f str, text: &str, element: &toml::Spanned<T>) -> At<'f> {
+    At {
+        file,
+        line: line_col(text, element.span().start).0,
+    }
 }
 
 /// Deserializes TOML, turning an error into `file:line:col: message`.
@@ -27,12 +51,23 @@ pub(crate) fn from_toml<T: DeserializeOwned>(text: &str, file: &str) -> Result<T
         let msg = e.message().trim().trim_end_matches('.').replace('\n', " ");
         match e.span() {
             Some(span) => {
-                let (l, c) = line_col(text, span.start);
-                Error::Parse(format!("{file}:{l}:{c}: {msg}"))
+                let (line, column) = line_col(text, span.start);
+                Error::Parse {
+                    file: file.into(),
+                    line: Some(line),
+                    column: Some(column),
+                    message: msg,
+                }
             }
-            None => Error::Parse(format!("{file}: {msg}")),
+            None => Error::parse(file, msg),
         }
     })
+}
+
+/// The robot name used when a file gives none: the file name without directory and extension.
+pub(crate) fn default_name(file: &str) -> String {
+    let base = file.rsplit(['/', '\\']).next().unwrap_or(file);
+    base.split('.').next().unwrap_or(base).to_string()
 }
 
 /// Prefixes a builder error with the file name.
@@ -180,11 +215,7 @@ pub(crate) fn add_frames(
     for spanned in frames {
         let f = spanned.get_ref();
         let h = f.pose.to_se3().map_err(|why| {
-            Error::Parse(format!(
-                "{}: the pose of frame '{}' {why}",
-                at_line(file, text, spanned),
-                f.name
-            ))
+            at_line(file, text, spanned).error(format!("the pose of frame '{}' {why}", f.name))
         })?;
         b.frame(&f.name, &f.link, h);
     }
@@ -250,14 +281,14 @@ impl Header<'_> {
     pub fn model_name(&self, file: &str) -> String {
         self.name
             .map(str::to_string)
-            .unwrap_or_else(|| super::native::default_name(file))
+            .unwrap_or_else(|| default_name(file))
     }
     /// The root link's name.
     pub fn base(&self) -> &str {
         self.base.unwrap_or("base")
     }
     /// A builder with the name, root link, gravity and strictness set.
-    pub fn builder(&self, file: &str, options: &super::LoadOptions) -> ModelBuilder {
+    pub fn builder(&self, file: &str, options: &LoadOptions) -> ModelBuilder {
         let mut b = ModelBuilder::new(&self.model_name(file));
         b.base_name(self.base())
             .gravity(gravity(self.gravity))

@@ -49,7 +49,7 @@
 //! ```
 
 use super::common::{self, FrameSpec, LimitSpec};
-use super::LoadOptions;
+use super::options::LoadOptions;
 use crate::error::{Error, Result};
 use crate::model::{JointSpec, Model};
 use crate::spatial::{Se3, SpatialInertia};
@@ -133,16 +133,19 @@ pub fn modified_dh_transform(a_prev: f64, alpha_prev: f64, d: f64, theta: f64) -
 /// Parses a standard or modified DH table (see the module documentation for the keys).
 ///
 /// # Errors
-/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
+/// [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model,
+/// each naming the file and, where known, the line (and, with `strict`, the first
+/// physical-consistency problem).
 pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let f: DhFile = common::from_toml(text, file)?;
     let modified = match f.format.as_str() {
         "dh" => false,
         "modified-dh" => true,
         other => {
-            return Err(Error::Parse(format!(
-                "{file}: format '{other}' is not a DH table (expected dh or modified-dh)"
-            )))
+            return Err(Error::parse(
+                file,
+                format!("format '{other}' is not a DH table (expected dh or modified-dh)"),
+            ))
         }
     };
     let header = common::Header {
@@ -154,7 +157,7 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
     let mut b = header.builder(file, options);
     let base = header.base().to_string();
     if f.row.is_empty() {
-        return Err(Error::Parse(format!("{file}: the DH table has no [[row]]")));
+        return Err(Error::parse(file, "the DH table has no [[row]]"));
     }
     let mut previous = base.clone();
     let z = Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0);
@@ -165,7 +168,7 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
         let i = k + 1;
         let jname = row.name.clone().unwrap_or_else(|| format!("joint{i}"));
         let lname = row.link.clone().unwrap_or_else(|| format!("link{i}"));
-        let bad = |why: String| Error::Parse(format!("{at}: DH row {i} (joint '{jname}') {why}"));
+        let bad = |why: String| at.error(format!("DH row {i} (joint '{jname}') {why}"));
         let nums = [row.a, row.alpha, row.d, row.theta];
         if !nums.iter().all(|x| x.is_finite()) {
             return Err(bad("has a non-finite DH parameter".into()));
@@ -204,7 +207,7 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
             Vector3::from(row.com.unwrap_or([0.0; 3])),
             common::inertia_matrix(row.inertia.unwrap_or([0.0; 6])),
         );
-        b.locate(&lname, at.clone());
+        b.locate(&lname, at.to_string());
         let parent = row.parent.clone().unwrap_or(previous);
         b.link(&lname, &parent, j, home, inertia);
         previous = lname;

@@ -57,8 +57,8 @@
 //! ```
 
 use super::common::{self, FrameSpec, InertiaSpec, LimitSpec, PoseSpec};
-use super::LoadOptions;
-use crate::error::{Error, Result};
+use super::options::LoadOptions;
+use crate::error::Result;
 use crate::model::{JointSpec, Model};
 use nalgebra::Vector6;
 use serde::Deserialize;
@@ -149,16 +149,13 @@ impl ShapeSpec {
     }
 }
 
-/// The robot name used when a file gives none: the file name without directory and extension.
-pub(crate) fn default_name(file: &str) -> String {
-    let base = file.rsplit(['/', '\\']).next().unwrap_or(file);
-    base.split('.').next().unwrap_or(base).to_string()
-}
-
 /// Parses a native screwdyn TOML description (see the module documentation for the keys).
 ///
 /// # Errors
-/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
+/// [`Error::Parse`](crate::Error::Parse) for malformed text and
+/// [`Error::InvalidModel`](crate::Error::InvalidModel) for an inconsistent model, each naming the
+/// file and, where known, the line (and, with `strict`, the first physical-consistency
+/// problem).
 pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let f: NativeFile = common::from_toml(text, file)?;
     let header = common::Header {
@@ -172,7 +169,7 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
         let body = spanned.get_ref();
         let at = common::at_line(file, text, spanned);
         let what = format!("body '{}'", body.name);
-        let bad = |why: String| Error::Parse(format!("{at}: {what} {why}"));
+        let bad = |why: String| at.error(format!("{what} {why}"));
         let home = body
             .home
             .to_se3()
@@ -192,7 +189,7 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
         }
         .to_inertia()
         .map_err(bad)?;
-        b.locate(&body.name, at.clone());
+        b.locate(&body.name, at.to_string());
         let jname = body
             .joint
             .clone()

@@ -37,7 +37,7 @@
 //! ```
 
 use super::common::{self, FrameSpec};
-use super::LoadOptions;
+use super::options::LoadOptions;
 use crate::error::{Error, Result};
 use crate::model::{JointSpec, Model, ModelBuilder};
 use crate::spatial::{ang, lin, Se3, SpatialInertia, Twist};
@@ -203,16 +203,19 @@ fn se3_rows(rows: &[[f64; 4]; 4], what: &str, file: &str) -> Result<Se3> {
     if ok {
         Ok(h)
     } else {
-        Err(Error::Parse(format!(
-            "{file}: {what} is not a homogeneous transform [R p; 0 0 0 1] with R a rotation"
-        )))
+        Err(Error::parse(
+            file,
+            format!("{what} is not a homogeneous transform [R p; 0 0 0 1] with R a rotation"),
+        ))
     }
 }
 
 /// Parses a PoE TOML description (see the module documentation for the keys).
 ///
 /// # Errors
-/// [`Error::Io`] when the file cannot be read, [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model, each naming the file and, where known, the line (and, with `strict`, the first physical-consistency problem).
+/// [`Error::Parse`] for malformed text and [`Error::InvalidModel`] for an inconsistent model,
+/// each naming the file and, where known, the line (and, with `strict`, the first
+/// physical-consistency problem).
 pub fn parse_poe(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let f: PoeFile = common::from_toml(text, file)?;
     let n = f.Slist.len();
@@ -237,10 +240,10 @@ pub fn parse_poe(text: &str, file: &str, options: &LoadOptions) -> Result<Model>
     ] {
         if let Some(v) = v {
             if v.len() != n {
-                return Err(Error::Parse(format!(
-                    "{file}: {key} has {} values but Slist has {n} screws",
-                    v.len()
-                )));
+                return Err(Error::parse(
+                    file,
+                    format!("{key} has {} values but Slist has {n} screws", v.len()),
+                ));
             }
         }
     }

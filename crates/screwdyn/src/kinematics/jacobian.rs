@@ -24,15 +24,17 @@ pub enum Reference {
 }
 
 impl std::str::FromStr for Reference {
-    type Err = String;
-    fn from_str(s: &str) -> std::result::Result<Self, String> {
+    type Err = crate::Error;
+    fn from_str(s: &str) -> std::result::Result<Self, crate::Error> {
         match s {
             "world" => Ok(Reference::World),
             "local" => Ok(Reference::Local),
             "world-aligned" | "local-world-aligned" => Ok(Reference::LocalWorldAligned),
-            _ => Err(format!(
-                "unknown reference '{s}' (use world, local or world-aligned)"
-            )),
+            _ => Err(crate::Error::UnknownChoice {
+                what: "reference",
+                got: s.into(),
+                expected: "world, local or world-aligned",
+            }),
         }
     }
 }

@@ -88,7 +88,7 @@ pub fn sin_cos_f64(x: f64) -> (f64, f64) {
 }
 
 /// The angle `x = n π/2 + r − w` after the first piece of `π/2`, for the batch kernels'
-/// `sin`/`cos` ([`crate::batch::Lanes::sin_cos`]), which take the steps below lane by lane:
+/// `sin`/`cos` (`batch::Lanes::sin_cos`), which take the steps below lane by lane:
 /// [`Reduction::first`], [`Reduction::cancelled`], [`Reduction::rest`] for the lanes that need
 /// it, then [`Reduction::sin_cos`]. The same scheme as [`sin_cos_f64`] (the second and third
 /// pieces together, where that takes them one by one), with every product that is added

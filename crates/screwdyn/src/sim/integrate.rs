@@ -22,8 +22,8 @@ pub enum Integrator {
 }
 
 impl std::str::FromStr for Integrator {
-    type Err = String;
-    fn from_str(s: &str) -> std::result::Result<Self, String> {
+    type Err = crate::Error;
+    fn from_str(s: &str) -> std::result::Result<Self, crate::Error> {
         match s {
             "euler" | "symplectic-euler" => Ok(Integrator::SymplecticEuler),
             "rk4" => Ok(Integrator::Rk4),
@@ -31,9 +31,11 @@ impl std::str::FromStr for Integrator {
                 rtol: 1e-8,
                 atol: 1e-10,
             }),
-            _ => Err(format!(
-                "unknown integrator '{s}' (use euler, rk4 or dopri5)"
-            )),
+            _ => Err(crate::Error::UnknownChoice {
+                what: "integrator",
+                got: s.into(),
+                expected: "euler, rk4 or dopri5",
+            }),
         }
     }
 }

@@ -299,7 +299,12 @@ impl<W: Write> CsvSampleWriter<W> {
 }
 
 fn io_error(e: std::io::Error) -> Error {
-    Error::Io(format!("writing the run failed ({e})"))
+    Error::io(None, e.kind(), format!("writing the run failed ({e})"))
+}
+
+/// A JSON serialisation failure while writing a run (kind `Other`).
+fn json_error(e: serde_json::Error) -> Error {
+    Error::io(None, std::io::ErrorKind::Other, e.to_string())
 }
 
 impl<W: Write> SampleSink for CsvSampleWriter<W> {
@@ -371,10 +376,10 @@ impl<W: Write> JsonSampleWriter<W> {
     /// [`Error::Io`] when a spool cannot be read back or the writer fails.
     pub fn finish(mut self) -> Result<W> {
         use std::io::{Read, Seek};
-        let names = serde_json::to_string(&self.joints).map_err(|e| Error::Io(e.to_string()))?;
+        let names = serde_json::to_string(&self.joints).map_err(json_error)?;
         write!(self.out, "{{\"joints\":{names}").map_err(io_error)?;
         for (name, spool) in self.columns {
-            let key = serde_json::to_string(&name).map_err(|e| Error::Io(e.to_string()))?;
+            let key = serde_json::to_string(&name).map_err(json_error)?;
             write!(self.out, ",{key}:[").map_err(io_error)?;
             let mut file = spool.into_inner().map_err(|e| io_error(e.into_error()))?;
             file.rewind().map_err(io_error)?;
@@ -413,7 +418,11 @@ impl<W: Write> SampleSink for JsonSampleWriter<W> {
             .into_iter()
             .map(|n| {
                 let f = tempfile::tempfile().map_err(|e| {
-                    Error::Io(format!("cannot create a temporary file for the run ({e})"))
+                    Error::io(
+                        None,
+                        e.kind(),
+                        format!("cannot create a temporary file for the run ({e})"),
+                    )
                 })?;
                 Ok((n, std::io::BufWriter::new(f)))
             })
@@ -436,7 +445,7 @@ impl<W: Write> SampleSink for JsonSampleWriter<W> {
             let rows: Vec<Vec<f64>> = (0..4)
                 .map(|r| (0..4).map(|c| m[(r, c)]).collect())
                 .collect();
-            let text = serde_json::to_string(&rows).map_err(|e| Error::Io(e.to_string()))?;
+            let text = serde_json::to_string(&rows).map_err(json_error)?;
             write!(spool, ",{text}").map_err(io_error)?;
         }
         self.samples += 1;

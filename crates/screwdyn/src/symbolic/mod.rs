@@ -85,8 +85,8 @@ pub enum Quantity {
 }
 
 impl std::str::FromStr for Quantity {
-    type Err = String;
-    fn from_str(s: &str) -> std::result::Result<Self, String> {
+    type Err = crate::Error;
+    fn from_str(s: &str) -> std::result::Result<Self, crate::Error> {
         Ok(match s {
             "mass-matrix" | "M" => Quantity::MassMatrix,
             "coriolis" | "C" => Quantity::Coriolis,
@@ -97,10 +97,12 @@ impl std::str::FromStr for Quantity {
             "energy" => Quantity::Energy,
             "regressor" => Quantity::Regressor,
             _ => {
-                return Err(format!(
-                    "unknown quantity '{s}' (use mass-matrix, coriolis, gravity, torque, fk, \
-                     jacobian, energy or regressor)"
-                ))
+                return Err(crate::Error::UnknownChoice {
+                    what: "quantity",
+                    got: s.into(),
+                    expected:
+                        "mass-matrix, coriolis, gravity, torque, fk, jacobian, energy or regressor",
+                })
             }
         })
     }
@@ -142,14 +144,16 @@ pub enum CoriolisForm {
 }
 
 impl std::str::FromStr for CoriolisForm {
-    type Err = String;
-    fn from_str(s: &str) -> std::result::Result<Self, String> {
+    type Err = crate::Error;
+    fn from_str(s: &str) -> std::result::Result<Self, crate::Error> {
         match s {
             "seed" | "closed-form" => Ok(CoriolisForm::Seed),
             "christoffel" => Ok(CoriolisForm::Christoffel),
-            _ => Err(format!(
-                "unknown Coriolis form '{s}' (use seed or christoffel)"
-            )),
+            _ => Err(crate::Error::UnknownChoice {
+                what: "Coriolis form",
+                got: s.into(),
+                expected: "seed or christoffel",
+            }),
         }
     }
 }

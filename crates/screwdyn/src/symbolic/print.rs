@@ -38,15 +38,17 @@ pub enum Collect {
 }
 
 impl std::str::FromStr for Collect {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = crate::Error;
+    fn from_str(s: &str) -> std::result::Result<Self, crate::Error> {
         match s {
             "inertial" => Ok(Collect::Inertial),
             "config" | "configuration" => Ok(Collect::Config),
             "none" => Ok(Collect::None),
-            _ => Err(format!(
-                "unknown collect mode '{s}' (use inertial, config or none)"
-            )),
+            _ => Err(crate::Error::UnknownChoice {
+                what: "collect mode",
+                got: s.into(),
+                expected: "inertial, config or none",
+            }),
         }
     }
 }

@@ -16,6 +16,8 @@
 //! The last three are the files in `models/`, compiled in with `include_str!`, so a built-in
 //! and its file are the same robot.
 
+use super::options::LoadOptions;
+use super::toml_format::load_toml_str;
 use crate::error::{Error, Result};
 use crate::model::{JointSpec, Model, ModelBuilder};
 use crate::spatial::{Se3, SpatialInertia};
@@ -29,31 +31,46 @@ pub const FILES: &[(&str, &str, &str)] = &[
     (
         "planar2",
         "planar2.toml",
-        include_str!("../../../models/planar2.toml"),
+        include_str!("../../../../models/planar2.toml"),
     ),
-    ("ur5", "ur5.toml", include_str!("../../../models/ur5.toml")),
+    (
+        "ur5",
+        "ur5.toml",
+        include_str!("../../../../models/ur5.toml"),
+    ),
     (
         "panda",
         "panda.toml",
-        include_str!("../../../models/panda.toml"),
+        include_str!("../../../../models/panda.toml"),
     ),
     (
         "branched",
         "branched.toml",
-        include_str!("../../../models/branched.toml"),
+        include_str!("../../../../models/branched.toml"),
     ),
 ];
 
-fn from_file(name: &str) -> Result<Model> {
-    let (_, file, text) = FILES
+/// The shipped description a built-in robot is parsed from: `(file name in models/, text)`;
+/// `None` for the robots built in code (`planar2`, `pendulum`) and unknown names.
+fn shipped(name: &str) -> Option<(&'static str, &'static str)> {
+    if matches!(name, "planar2" | "pendulum") {
+        return None;
+    }
+    FILES
         .iter()
         .find(|(n, _, _)| *n == name)
-        .ok_or_else(|| Error::InvalidModel(format!("no shipped file for built-in '{name}'")))?;
-    crate::io::load_str(
-        text,
-        &format!("builtin:{name} (models/{file})"),
-        &Default::default(),
-    )
+        .map(|(_, file, text)| (*file, *text))
+}
+
+/// The text of the description the built-in robot `name` is parsed from (its file in
+/// `models/`); `None` for the robots built in code (`planar2`, `pendulum`) and unknown names.
+///
+/// ```
+/// assert!(screwdyn::builtin::description("ur5").unwrap().contains("format"));
+/// assert_eq!(screwdyn::builtin::description("pendulum"), None);
+/// ```
+pub fn description(name: &str) -> Option<&'static str> {
+    shipped(name).map(|(_, text)| text)
 }
 
 /// The built-in robot called `name` (without the `builtin:` prefix).
@@ -71,12 +88,18 @@ pub fn load(name: &str) -> Result<Model> {
     match name {
         "planar2" => Ok(planar2()),
         "pendulum" => Ok(pendulum()),
-        "ur5" | "panda" | "branched" => from_file(name),
-        _ => Err(Error::UnknownName {
-            kind: "built-in robot",
-            name: name.into(),
-            known: NAMES.join(", "),
-        }),
+        _ => match shipped(name) {
+            Some((file, text)) => load_toml_str(
+                text,
+                &format!("builtin:{name} (models/{file})"),
+                &LoadOptions::default(),
+            ),
+            None => Err(Error::UnknownName {
+                kind: "built-in robot",
+                name: name.into(),
+                known: NAMES.join(", "),
+            }),
+        },
     }
 }
 
