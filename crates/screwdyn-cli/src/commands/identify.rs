@@ -163,40 +163,33 @@ fn excite(m: &Model, a: &IdentifyArgs) -> Result<(), CliError> {
         2.0 * std::f64::consts::PI * a.frequency,
         a.seed,
     )?;
-    let tmp = path.with_extension("csv.tmp");
     let fail =
         |e: std::io::Error| CliError::input(format!("cannot write {} ({e})", path.display()));
-    let mut out = std::io::BufWriter::new(std::fs::File::create(&tmp).map_err(fail)?);
     let j = m.joint_names();
     let mut header = vec!["t".to_string()];
     for key in ["q", "v", "a", "tau"] {
         header.extend(j.iter().map(|n| format!("{key}.{n}")));
     }
-    writeln!(out, "{}", header.join(",")).map_err(fail)?;
     let mut rows = 0usize;
-    let result = excitation_log(
-        m,
-        &traj,
-        a.duration,
-        a.rate,
-        a.noise,
-        a.seed,
-        |t, q, v, acc, tau| {
-            let mut line = format!("{t:?}");
-            for x in q.iter().chain(v).chain(acc).chain(tau) {
-                line.push_str(&format!(",{x:?}"));
-            }
-            rows += 1;
-            writeln!(out, "{line}").map_err(fail)
-        },
-    );
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(e);
-    }
-    out.flush().map_err(fail)?;
-    drop(out);
-    std::fs::rename(&tmp, path).map_err(fail)?;
+    crate::write::atomic(path, |out| {
+        writeln!(out, "{}", header.join(",")).map_err(fail)?;
+        excitation_log(
+            m,
+            &traj,
+            a.duration,
+            a.rate,
+            a.noise,
+            a.seed,
+            |t, q, v, acc, tau| {
+                let mut line = format!("{t:?}");
+                for x in q.iter().chain(v).chain(acc).chain(tau) {
+                    line.push_str(&format!(",{x:?}"));
+                }
+                rows += 1;
+                writeln!(out, "{line}").map_err(fail)
+            },
+        )
+    })?;
     output::write_stdout(&format!(
         "wrote {rows} samples of a {}-harmonic Fourier trajectory ({} Hz base frequency) to {}\n",
         a.harmonics,

@@ -7,25 +7,20 @@ use crate::output::write_stdout;
 use crate::CliError;
 use screwdyn::kinematics::Reference;
 use screwdyn::symbolic::{derive, generate, Collect, CoriolisForm, Language, Options, Quantity};
+use std::io::Write;
 use std::path::Path;
 
-/// Writes `text` to `path` through a temporary file renamed into place; refuses the model file.
-pub fn write_output(path: &Path, text: &str, inputs: &[&str]) -> Result<(), CliError> {
-    if inputs.iter().any(|i| Path::new(i) == path) {
-        return Err(CliError::input(format!(
-            "--output {} is one of the command's inputs; pick another file",
-            path.display()
-        )));
-    }
-    let tmp = path.with_extension(format!(
-        "{}.tmp",
-        path.extension().and_then(|e| e.to_str()).unwrap_or("")
-    ));
-    let fail = |e: std::io::Error| {
-        CliError::input(format!("cannot write --output {} ({e})", path.display()))
-    };
-    std::fs::write(&tmp, text).map_err(fail)?;
-    std::fs::rename(&tmp, path).map_err(fail)
+/// Writes `text` to `path` atomically (see [`crate::write`]); refuses the model file.
+pub fn write_output(path: &Path, text: &str, model: &str) -> Result<(), CliError> {
+    let inputs: Vec<&Path> = (!model.starts_with("builtin:"))
+        .then(|| Path::new(model))
+        .into_iter()
+        .collect();
+    crate::write::refuse_inputs("--output", path, &inputs)?;
+    crate::write::atomic(path, |w| {
+        w.write_all(text.as_bytes())
+            .map_err(|e| CliError::input(format!("cannot write --output {} ({e})", path.display())))
+    })
 }
 
 /// `screwdyn symbolic MODEL --quantity Q [...]`.
@@ -89,7 +84,7 @@ pub fn symbolic(a: &SymbolicArgs) -> Result<(), CliError> {
         }
     };
     match &a.output {
-        Some(path) => write_output(path, &text, &[a.model.as_str()]),
+        Some(path) => write_output(path, &text, &a.model),
         None => write_stdout(&text),
     }
 }

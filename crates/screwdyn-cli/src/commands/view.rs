@@ -46,12 +46,12 @@ pub fn view(a: &ViewArgs) -> Result<(), CliError> {
     let model = &loaded.model;
     let q =
         a.q.as_deref()
-            .map(|text| super::parse_vector(Some(text), "q", &model))
+            .map(|text| super::parse_vector(Some(text), "q", model))
             .transpose()?;
     let run = a
         .run
         .as_deref()
-        .map(|p| read_run(p, &model, a.max_samples))
+        .map(|p| read_run(p, model, a.max_samples))
         .transpose()?;
     let (urdf, urdf_text) = loaded
         .urdf()
