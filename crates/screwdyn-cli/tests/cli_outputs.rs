@@ -48,7 +48,14 @@ fn writers(target: &Path) -> Vec<Vec<String>> {
     let t = s(target).to_string();
     let cmds: Vec<Vec<&str>> = vec![
         vec!["export", "builtin:ur5", "--to", "urdf", "--output", &t],
-        vec!["simulate", "builtin:planar2", "--duration", "0.5", "--output", &t],
+        vec![
+            "simulate",
+            "builtin:planar2",
+            "--duration",
+            "0.5",
+            "--output",
+            &t,
+        ],
         vec!["view", "builtin:planar2", "--output", &t],
     ];
     cmds.into_iter()
@@ -78,7 +85,14 @@ fn a_null_device_stays_a_device() {
     if !char_device(&dev, 1, 3) {
         return;
     }
-    ok(&["simulate", "builtin:planar2", "--duration", "0.2", "--plot", s(&dev)]);
+    ok(&[
+        "simulate",
+        "builtin:planar2",
+        "--duration",
+        "0.2",
+        "--plot",
+        s(&dev),
+    ]);
     ok(&[
         "torque-profile",
         "builtin:planar2",
@@ -176,8 +190,22 @@ fn a_fifo_reader_receives_the_output() {
 #[test]
 fn a_reader_going_away_ends_a_streamed_run_quietly() {
     for cmd in [
-        vec!["simulate", "builtin:ur5", "--duration", "20", "--format", "csv"],
-        vec!["simulate", "builtin:ur5", "--duration", "20", "--format", "json"],
+        vec![
+            "simulate",
+            "builtin:ur5",
+            "--duration",
+            "20",
+            "--format",
+            "csv",
+        ],
+        vec![
+            "simulate",
+            "builtin:ur5",
+            "--duration",
+            "20",
+            "--format",
+            "json",
+        ],
     ] {
         let mut child = Process::new(env!("CARGO_BIN_EXE_screwdyn"))
             .args(&cmd)
@@ -217,7 +245,10 @@ fn rows_before_a_bad_row_are_written() {
     // Row 3 (line 4) is bad: rows 1 and 2 come out, with the header, then the error.
     let (out, err, code) = rnea_rows("bad_third.csv", "q.shoulder_pan_joint\n0.1\n0.2\nx1\n");
     assert_eq!(code, Some(2), "{err}");
-    assert!(err.contains("bad_third.csv:4:") && err.contains("'x1'"), "{err}");
+    assert!(
+        err.contains("bad_third.csv:4:") && err.contains("'x1'"),
+        "{err}"
+    );
     let lines: Vec<&str> = out.lines().collect();
     assert_eq!(lines.len(), 3, "{out}");
     assert!(lines[0].starts_with("tau."), "{out}");
@@ -267,7 +298,10 @@ fn a_file_size_limit_is_an_error_not_a_signal() {
         .unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("cannot write") && err.contains("run.csv"), "{err}");
+    assert!(
+        err.contains("cannot write") && err.contains("run.csv"),
+        "{err}"
+    );
     assert_eq!(std::fs::read(&run).unwrap(), b"previous run\n");
     let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
     assert_eq!(left.len(), 1, "no temporary file is left");

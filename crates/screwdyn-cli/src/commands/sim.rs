@@ -540,9 +540,7 @@ fn run_streamed(
             return Err(CliError::stop())
         }
         // Writing the file failed (disk full, file-size limit): nothing replaced --output.
-        (Err(screwdyn::Error::Io { message: why, .. }), Some(p)) => {
-            return Err(unwritten(&why, p))
-        }
+        (Err(screwdyn::Error::Io { message: why, .. }), Some(p)) => return Err(unwritten(&why, p)),
         (Err(e), Some(p)) if sinks.first.is_some() => {
             let kept = match written {
                 Some(Ok(())) => format!(
