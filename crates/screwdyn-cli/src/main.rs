@@ -89,7 +89,22 @@ impl From<screwdyn::Error> for CliError {
     }
 }
 
+/// A write past the file-size limit (`ulimit -f`) then fails with `EFBIG` instead of killing
+/// the process with `SIGXFSZ`: the temporary file is removed and the error reported (status 2).
+/// The standard library has no call to set a signal's disposition, hence `libc` (already a
+/// dependency of the dependencies).
+#[cfg(unix)]
+fn ignore_file_size_signal() {
+    // SAFETY: installs the disposition SIG_IGN (no handler code runs), at the start of `main`,
+    // before any other thread exists.
+    unsafe {
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+    }
+}
+
 fn main() -> ExitCode {
+    #[cfg(unix)]
+    ignore_file_size_signal();
     // Never show a backtrace: an unexpected panic is reported as one line, exit status 1.
     std::panic::set_hook(Box::new(|info| {
         let msg = info

@@ -1,37 +1,41 @@
-//! Every file the CLI writes goes through here: written to a temporary file in the target's
-//! directory and renamed over the target only when complete, and never onto an input.
+//! Every file the CLI writes goes through here, by the library's one output rule
+//! ([`screwdyn::io::output`]): a regular file (or a new one) is written to a temporary file in
+//! the target's directory and renamed over the target only when complete; a device, FIFO or
+//! socket (`/dev/null`, `/dev/full`, `/dev/stdout` on a pipe) is written directly and never
+//! replaced. An output is never one of the command's inputs.
 //!
 //! A failure part-way (disk full, `ulimit -f`, a plot that cannot be drawn) removes the
 //! temporary file and leaves the previous target as it was; two processes writing the same
 //! target each rename a complete file of their own, so the result is one of them, whole.
 
 use crate::CliError;
+pub use screwdyn::io::output::OutputFile;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
-use tempfile::NamedTempFile;
 
-/// Writes `path` atomically: `f` writes the whole content into a buffered temporary file in the
-/// same directory, which then replaces `path` (a rename, on the same file system).
+/// Writes `path` (atomically when it is a regular file): `f` writes the whole content into a
+/// buffered writer, which is then committed.
 ///
 /// # Errors
-/// The error of `f`, or a one-sentence error naming `path` when the temporary file cannot be
-/// created, written, flushed or renamed; in every case the target is left untouched.
+/// The error of `f`, or a one-sentence error naming `path` when the file cannot be created,
+/// written, flushed or renamed; a replaced target is then left untouched.
 pub fn atomic<F>(path: &Path, f: F) -> Result<(), CliError>
 where
     F: FnOnce(&mut BufWriter<&File>) -> Result<(), CliError>,
 {
-    let tmp = temp_file(path)?;
+    let out = OutputFile::create(path)?;
     {
-        let mut w = BufWriter::new(tmp.as_file());
+        let mut w = BufWriter::new(out.file());
         f(&mut w)?;
         w.flush().map_err(|e| cannot_write(path, &e))?;
     }
-    finish(tmp, path)
+    Ok(out.commit()?)
 }
 
 /// Like [`atomic`] for a writer that opens a path itself (the plotting backends): `f` gets the
-/// temporary file's path, which keeps the target's extension.
+/// path of a temporary file, which keeps the target's extension. For a device or FIFO target
+/// the temporary file is a scratch file, copied to the target once complete.
 ///
 /// # Errors
 /// As [`atomic`].
@@ -39,51 +43,27 @@ pub fn atomic_path<F>(path: &Path, f: F) -> Result<(), CliError>
 where
     F: FnOnce(&Path) -> Result<(), CliError>,
 {
-    let tmp = temp_file(path)?;
-    f(tmp.path())?;
-    finish(tmp, path)
-}
-
-/// A file being written in a stream (a simulation run): a temporary file beside the target,
-/// renamed over it by [`AtomicFile::commit`]; dropped without a commit, it is removed and the
-/// target is untouched.
-pub struct AtomicFile {
-    tmp: NamedTempFile,
-    path: PathBuf,
-}
-
-impl AtomicFile {
-    /// Creates the temporary file for `path`.
-    ///
-    /// # Errors
-    /// One sentence naming `path` when the directory does not exist or is not writable.
-    pub fn create(path: &Path) -> Result<Self, CliError> {
-        Ok(AtomicFile {
-            tmp: temp_file(path)?,
-            path: path.to_path_buf(),
-        })
+    let out = OutputFile::create(path)?;
+    if let Some(tmp) = out.temp_path() {
+        f(tmp)?;
+        return Ok(out.commit()?);
     }
-
-    /// A buffered writer onto the temporary file (flush it before [`AtomicFile::commit`]).
-    ///
-    /// # Errors
-    /// When the file handle cannot be duplicated.
-    pub fn writer(&self) -> Result<BufWriter<File>, CliError> {
-        let f = self
-            .tmp
-            .as_file()
-            .try_clone()
-            .map_err(|e| cannot_write(&self.path, &e))?;
-        Ok(BufWriter::new(f))
-    }
-
-    /// Renames the complete file over the target.
-    ///
-    /// # Errors
-    /// When it cannot be synced or renamed (the temporary file is then removed).
-    pub fn commit(self) -> Result<(), CliError> {
-        finish(self.tmp, &self.path)
-    }
+    let suffix = path
+        .extension()
+        .map(|e| format!(".{}", e.to_string_lossy()))
+        .unwrap_or_default();
+    let scratch = tempfile::Builder::new()
+        .prefix(".screwdyn.")
+        .suffix(&suffix)
+        .tempfile()
+        .map_err(|e| cannot_write(path, &e))?;
+    f(scratch.path())?;
+    let bytes = std::fs::read(scratch.path()).map_err(|e| cannot_write(path, &e))?;
+    let mut w = out.file();
+    w.write_all(&bytes)
+        .and_then(|()| w.flush())
+        .map_err(|e| cannot_write(path, &e))?;
+    Ok(out.commit()?)
 }
 
 /// Refuses an output `path` (given as `flag`) that names one of the command's `inputs` (files
@@ -127,42 +107,6 @@ fn directory(path: &Path) -> &Path {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     }
-}
-
-/// A hidden temporary file next to `path`, `.NAME.XXXXXX.EXT`, with the permissions a new file
-/// gets (0666 less the umask), not `tempfile`'s private 0600.
-fn temp_file(path: &Path) -> Result<NamedTempFile, CliError> {
-    let name = path
-        .file_name()
-        .ok_or_else(|| {
-            CliError::input(format!("cannot write {}: not a file name", path.display()))
-        })?
-        .to_string_lossy();
-    let suffix = path
-        .extension()
-        .map(|e| format!(".{}", e.to_string_lossy()))
-        .unwrap_or_default();
-    let mut b = tempfile::Builder::new();
-    let prefix = format!(".{name}.");
-    b.prefix(&prefix).suffix(&suffix);
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        b.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    b.tempfile_in(directory(path))
-        .map_err(|e| cannot_write(path, &e))
-}
-
-/// Flushes the temporary file to disk and renames it onto `path`; on failure it is removed
-/// (dropping a `NamedTempFile` deletes it).
-fn finish(tmp: NamedTempFile, path: &Path) -> Result<(), CliError> {
-    tmp.as_file()
-        .sync_all()
-        .map_err(|e| cannot_write(path, &e))?;
-    tmp.persist(path)
-        .map_err(|e| cannot_write(path, &e.error))?;
-    Ok(())
 }
 
 fn cannot_write(path: &Path, e: &std::io::Error) -> CliError {

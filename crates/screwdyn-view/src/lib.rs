@@ -35,7 +35,6 @@ pub mod visual;
 pub use html::render_html;
 pub use run::{read_run, Run};
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Default cap on the triangles embedded in a page (all meshes together). The UR5's and the
@@ -121,7 +120,7 @@ pub struct Page {
 }
 
 impl Page {
-    /// Writes the page to `path` atomically, as [`write_atomically`] does.
+    /// Writes the page to `path`, as [`write_atomically`] does.
     ///
     /// # Errors
     /// As [`write_atomically`].
@@ -130,12 +129,15 @@ impl Page {
     }
 }
 
-/// Writes `bytes` to a temporary file beside `path` (same folder, so the rename stays on one
-/// file system), flushes it to disk, then renames it over `path`: a browser (or a reader of a
-/// run file) never sees a half-written file, and a failed write leaves no temporary behind.
+/// Writes `bytes` to `path` by the library's one output rule
+/// ([`screwdyn::io::output::write_file`]): a regular file (or a new one) is written to a
+/// temporary file beside it, flushed to disk and renamed over it, so a browser (or a reader of
+/// a run file) never sees a half-written file and a failed write leaves no temporary behind; a
+/// device or FIFO (`/dev/null`, `/dev/stdout` on a pipe) is written directly, never replaced.
 ///
 /// # Errors
-/// [`screwdyn::Error::Io`] naming `path` when the folder does not exist or cannot be written.
+/// [`screwdyn::Error::Io`] naming `path` when the folder does not exist or cannot be written,
+/// or the device reports an error.
 ///
 /// ```
 /// let dir = std::env::temp_dir().join(format!("screwdyn-view-doc-{}", std::process::id()));
@@ -148,20 +150,5 @@ impl Page {
 /// std::fs::remove_dir_all(&dir).unwrap();
 /// ```
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> screwdyn::Result<()> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    let result = std::fs::File::create(&tmp)
-        .and_then(|mut f| f.write_all(bytes).and_then(|_| f.sync_all()))
-        .and_then(|_| std::fs::rename(&tmp, path));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result.map_err(|e| screwdyn::Error::unwritable(path, &e))
+    screwdyn::io::output::write_file(path, bytes)
 }

@@ -449,7 +449,8 @@ impl Chunk {
 }
 
 /// Reads rows into the chunks that come back through `empty` and sends them on through `full`
-/// until the file ends, a row is bad (the error is sent) or the computing side hangs up.
+/// until the file ends, a row is bad (the rows before it are sent, then the error) or the
+/// computing side hangs up.
 fn read_chunks(
     mut rows: StateReader,
     empty: std::sync::mpsc::Receiver<Chunk>,
@@ -469,6 +470,10 @@ fn read_chunks(
                     break;
                 }
                 Err(e) => {
+                    // The rows before the bad one are computed and written first.
+                    if chunk.len > 0 && full.send(Ok(chunk)).is_err() {
+                        return;
+                    }
                     let _ = full.send(Err(e));
                     return;
                 }

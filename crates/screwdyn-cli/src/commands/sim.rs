@@ -4,7 +4,7 @@ use super::{load, names, parse_numbers, parse_per_joint, parse_vector, parse_wre
 use crate::args::{ControllerArg, Format, SimulateArgs, TorqueProfileArgs, TrajectoryArg};
 use crate::output::{fmt, resolve, table, Report, Value};
 use crate::plot::{plot_panels, Panel, Series};
-use crate::write::{self, AtomicFile};
+use crate::write::{self, OutputFile};
 use crate::CliError;
 use screwdyn::dynamics::ForwardMethod;
 use screwdyn::sim::{
@@ -484,9 +484,11 @@ fn run_streamed(
         }
     };
     let format = resolve(a.model.format);
-    // The run file is streamed into a temporary file, renamed over --output once complete.
-    let atomic = a.output.as_deref().map(AtomicFile::create).transpose()?;
-    let file: Option<Box<dyn std::io::Write>> = match &atomic {
+    // The run file is streamed into a temporary file, renamed over --output once complete (a
+    // device or FIFO is written directly).
+    let target = a.output.as_deref().map(OutputFile::create).transpose()?;
+    let direct = target.as_ref().is_some_and(OutputFile::is_direct);
+    let file: Option<Box<dyn std::io::Write>> = match &target {
         Some(f) => Some(Box::new(f.writer()?)),
         None if format != Format::Table => {
             Some(Box::new(std::io::BufWriter::new(std::io::stdout())))
@@ -518,20 +520,27 @@ fn run_streamed(
         b.finish_and_clear();
     }
     // A run that failed part-way keeps the samples written so far (complete rows); a file that
-    // could not be written leaves the previous --output as it was.
-    let written = sinks.file.take().map(|w| match w.finish() {
-        Ok(()) => atomic.map_or(Ok(()), AtomicFile::commit),
-        Err(e) => Err(CliError::from(e)),
+    // could not be written leaves the previous --output as it was. The reader of stdout going
+    // away (`| head`) ends the command quietly.
+    let written = sinks.file.take().map(|w| {
+        w.finish()
+            .and_then(|()| target.map_or(Ok(()), OutputFile::commit))
     });
+    let unwritten = |why: &str, p: &Path| {
+        let kept = if direct {
+            ""
+        } else {
+            "; the previous file, if any, is unchanged"
+        };
+        CliError::input(format!("cannot write {} ({why}){kept}", p.display()))
+    };
     let summary = match (result, &a.output) {
         (Ok(s), _) => s,
-        // Writing the file failed (disk full, file-size limit): nothing replaced --output.
-        (Err(screwdyn::Error::Io { message: why, .. }), Some(p)) => {
-            return Err(CliError::input(format!(
-                "cannot write {} ({why}); the previous file, if any, is unchanged",
-                p.display()
-            )))
+        (Err(e), None) if e.io_kind() == Some(std::io::ErrorKind::BrokenPipe) => {
+            return Err(CliError::stop())
         }
+        // Writing the file failed (disk full, file-size limit): nothing replaced --output.
+        (Err(screwdyn::Error::Io { message: why, .. }), Some(p)) => return Err(unwritten(&why, p)),
         (Err(e), Some(p)) if sinks.first.is_some() => {
             let kept = match written {
                 Some(Ok(())) => format!(
@@ -545,8 +554,20 @@ fn run_streamed(
         }
         (Err(e), _) => return Err(e.into()),
     };
-    if let Some(w) = written {
-        w?;
+    match (written, &a.output) {
+        (Some(Err(e)), None) if e.io_kind() == Some(std::io::ErrorKind::BrokenPipe) => {
+            return Err(CliError::stop())
+        }
+        (Some(Err(screwdyn::Error::Io { message: why, .. })), Some(p)) => {
+            // The commit's own error already names the file.
+            return Err(if why.starts_with("cannot write ") {
+                CliError::input(why)
+            } else {
+                unwritten(&why, p)
+            });
+        }
+        (Some(Err(e)), _) => return Err(e.into()),
+        _ => {}
     }
     Ok((summary, sinks))
 }
@@ -672,13 +693,21 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
         .map_err(in_flag_words)?;
     let rec = &p.samples;
     if let (Some(path), Some(kind)) = (&a.output, output_kind) {
-        let file = AtomicFile::create(path)?;
+        let file = OutputFile::create(path)?;
         let mut w = RunWriter::new(kind, Box::new(file.writer()?));
-        w.sink().begin(&rec.joints, &rec.frames)?;
-        for k in 0..rec.len() {
-            w.sink().push(&rec.sample(k)?)?;
-        }
-        w.finish()?;
+        let whole = (|| {
+            w.sink().begin(&rec.joints, &rec.frames)?;
+            for k in 0..rec.len() {
+                w.sink().push(&rec.sample(k)?)?;
+            }
+            w.finish()
+        })();
+        whole.map_err(|e| match e {
+            screwdyn::Error::Io { message: why, .. } => {
+                CliError::input(format!("cannot write {} ({why})", path.display()))
+            }
+            e => e.into(),
+        })?;
         file.commit()?;
     }
     let r = profile_report(a, &m, &p, traj.duration(), &what);

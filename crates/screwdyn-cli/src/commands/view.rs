@@ -73,8 +73,8 @@ pub fn view(a: &ViewArgs) -> Result<(), CliError> {
         eprintln!("warning: {w}");
     }
     page.save(&output)?;
-    println!(
-        "wrote {} ({:.1} MB: {} triangles{})",
+    crate::output::write_stdout(&format!(
+        "wrote {} ({:.1} MB: {} triangles{})\n",
         output.display(),
         page.html.len() as f64 / 1e6,
         page.triangles,
@@ -83,6 +83,5 @@ pub fn view(a: &ViewArgs) -> Result<(), CliError> {
         } else {
             String::new()
         }
-    );
-    Ok(())
+    ))
 }

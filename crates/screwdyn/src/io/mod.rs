@@ -9,6 +9,9 @@
 //!   written directly: [`native`];
 //! - **built-in robots**: `builtin:<name>` (see [`builtin`]).
 //!
+//! Output files are written by the one rule of [`output`]: a regular file is replaced atomically,
+//! a device or FIFO is written directly.
+//!
 //! [`load_model`] takes any of them by path; [`load_source`] also returns the text it read.
 //! Every loader reports a broken file as an [`Error::Parse`](crate::Error::Parse) (syntax,
 //! unknown keys, non-numbers) or [`Error::InvalidModel`](crate::Error::InvalidModel) (bad tree,
@@ -36,6 +39,7 @@
 pub mod builtin;
 pub mod dh;
 pub mod native;
+pub mod output;
 pub mod poe;
 pub mod urdf;
 
