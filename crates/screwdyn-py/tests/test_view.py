@@ -97,7 +97,7 @@ def test_notebook_display_and_save(arm, tmp_path):
     path = tmp_path / "robot.html"
     v.save(path)
     assert path.read_text(encoding="utf-8") == v.html
-    assert not [p for p in tmp_path.iterdir() if p.name.endswith(".tmp")]
+    assert [p.name for p in tmp_path.iterdir()] == ["robot.html"]  # no temporary file left
     assert "View(" in repr(v)
     with pytest.raises(OSError):
         v.save(tmp_path / "no-such-dir" / "robot.html")
