@@ -177,6 +177,15 @@ where
 {
     let threads = check_threads(how.threads)?;
     let width: usize = out_shape.iter().product();
+    // Every block of results is checked as the library's rule says: a NaN or ∞ computed from
+    // finite inputs is an overflow error naming the state and the entry, never returned.
+    let chunk = |m: &Model, s: &mut Scratch, first: usize, block: &mut [f64]| {
+        chunk(m, s, first, block)?;
+        match screwdyn::check_result(block, |i| format!("(entry {})", i % width.max(1))) {
+            Err(e) => Err(e.in_state(first + first_non_finite_row(block, width))),
+            ok => ok,
+        }
+    };
     let n = batch_len(args)?;
     if n.is_none() && out_shape.is_empty() && how.out.is_none() {
         // One state, a scalar result: a Python float.
@@ -221,6 +230,12 @@ where
     });
     result.map_err(call_err)?;
     Ok(target.into_result())
+}
+
+/// The row of a block's first non-finite value (only called when there is one).
+#[cold]
+fn first_non_finite_row(block: &[f64], width: usize) -> usize {
+    block.iter().position(|x| !x.is_finite()).unwrap_or(0) / width.max(1)
 }
 
 /// Where a call writes its result: a fresh array, or the caller's `out=` array, borrowed for

@@ -100,3 +100,20 @@ def test_a_rust_panic_becomes_runtime_error():
         screwdyn._screwdyn._panic_in_batch_for_tests()
     # and the module still works afterwards
     assert screwdyn.load("builtin:pendulum").nq == 1
+
+
+def test_results_that_overflow_are_errors_not_nan():
+    # Finite inputs too large for double precision: the library's rule (the CLI's too) says
+    # the NaN or inf they produce is an error naming the entry, and the state in a batch.
+    ur5 = screwdyn.load("builtin:ur5")
+    z = np.zeros(6)
+    with pytest.raises(ValueError, match=r"the result \(entry \d\) is not finite"):
+        ur5.rnea(z, np.full(6, 1e200), z)
+    with pytest.raises(ValueError, match="too large for double precision"):
+        ur5.forward_dynamics(z, z, np.full(6, 1e308))
+    v = np.zeros((3, 6))
+    v[1] = 1e200
+    with pytest.raises(ValueError, match=r"^state 1: the result \(entry \d\) is not finite"):
+        ur5.rnea(np.zeros((3, 6)), v, np.zeros((3, 6)))
+    # large but representable results are returned
+    assert np.isfinite(ur5.rnea(z, np.full(6, 1e100), z)).all()

@@ -39,6 +39,13 @@ pub enum Error {
         /// The value, as text.
         value: String,
     },
+    /// A result computed from finite inputs is NaN or infinite: the inputs are too large for
+    /// double precision (see [`check_result`](crate::check_result)).
+    #[error("the result {what} is not finite (NaN or infinite): the inputs are too large for double precision")]
+    Overflow {
+        /// The entry of the result (`tau.shoulder_pan_joint`, `(entry 3)`…).
+        what: String,
+    },
     /// A frame, body or joint name that the model does not have.
     #[error("the model has no {kind} named '{name}' (known: {known})")]
     UnknownName {

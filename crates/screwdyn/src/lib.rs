@@ -34,6 +34,6 @@ mod workspace;
 
 pub use error::{Error, Result};
 pub use io::builtin;
-pub use model::{Model, ModelBuilder};
+pub use model::{check_result, Model, ModelBuilder};
 pub use scalar::{real, Real};
 pub use workspace::{Workspace, EAGER_SQUARE_BUFFERS};

@@ -632,10 +632,15 @@ pub fn names(m: &Model) -> output::Labels {
 /// A report of a numeric command whose numbers are all finite: a NaN or ∞ (inputs too large for
 /// double precision, e.g. `--v 1e200`) is an error naming the quantity, never printed.
 fn finite(r: Report) -> Result<Report, CliError> {
-    match r.items.iter().find_map(|(k, v)| v.non_finite().map(|at| (k, at))) {
+    match r
+        .items
+        .iter()
+        .find_map(|(k, v)| v.non_finite().map(|at| (k, at)))
+    {
         None => Ok(r),
-        Some((key, at)) => Err(CliError::input(format!(
-            "the result {key}{at} is not finite (NaN or infinite): the inputs are too large for double precision"
-        ))),
+        Some((key, at)) => Err(screwdyn::Error::Overflow {
+            what: format!("{key}{at}"),
+        }
+        .into()),
     }
 }

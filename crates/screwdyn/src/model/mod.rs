@@ -22,5 +22,5 @@ mod motion;
 pub use builder::{JointSpec, ModelBuilder};
 pub use findings::{PhysicalFinding, Problem};
 pub use joint::{Joint, JointKind, JointLimits, Mimic};
-pub use model::{Body, Frame, FrameKind, Model};
+pub use model::{check_result, Body, Frame, FrameKind, Model};
 pub use motion::JointMotion;

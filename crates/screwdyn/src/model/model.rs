@@ -85,6 +85,29 @@ pub(crate) fn check_finite<T: Real>(x: &[T], what: &str) -> Result<()> {
     }
 }
 
+/// The rule every front-end applies to what it returns: a result computed from finite inputs
+/// that is NaN or infinite (say RNEA at `q̇ = 10²⁰⁰`) is an [`Error::Overflow`] naming the entry
+/// by `name(index)`, never a NaN handed back as a number.
+///
+/// # Errors
+/// [`Error::Overflow`] for the first non-finite entry.
+///
+/// ```
+/// let e = screwdyn::check_result(&[1.0, f64::INFINITY], |i| format!("tau[{i}]")).unwrap_err();
+/// assert_eq!(
+///     e.to_string(),
+///     "the result tau[1] is not finite (NaN or infinite): the inputs are too large for double precision"
+/// );
+/// assert!(screwdyn::check_result(&[1.0, 2.0], |i| i.to_string()).is_ok());
+/// ```
+#[inline]
+pub fn check_result<T: Real>(values: &[T], name: impl FnOnce(usize) -> String) -> Result<()> {
+    match first_non_finite(values) {
+        None => Ok(()),
+        Some(i) => Err(Error::Overflow { what: name(i) }),
+    }
+}
+
 /// The index of the first NaN or infinite entry, `None` when all are finite. A branch-free pass
 /// first (every call of every algorithm makes it): `0 · v` is ±0 for a finite `v` and NaN for
 /// ±∞ or NaN, and a NaN anywhere makes the sum NaN; the position only when something is wrong.
