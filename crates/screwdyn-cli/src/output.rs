@@ -528,37 +528,3 @@ pub fn write_stdout(text: &str) -> Result<(), CliError> {
         Err(e) => Err(CliError::internal(format!("cannot write to stdout ({e})"))),
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn csv_columns_follow_design() {
-        let j = labels(&["a", "b"]);
-        let mut r = Report::new();
-        r.add("joints", Value::Names(j.clone()))
-            .add("tau", Value::joints(&j, &[1.0, 2.0]))
-            .add(
-                "mass_matrix",
-                Value::joint_matrix(&j, &DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 3.0, 4.0])),
-            )
-            .add("kinetic_energy", Value::Scalar(0.5));
-        let names = r.csv_columns();
-        assert_eq!(
-            names,
-            [
-                "tau.a",
-                "tau.b",
-                "mass_matrix.a.a",
-                "mass_matrix.a.b",
-                "mass_matrix.b.a",
-                "mass_matrix.b.b",
-                "kinetic_energy"
-            ]
-        );
-        let j = r.to_json();
-        assert_eq!(j["mass_matrix"][1][0], 3.0);
-        assert_eq!(j["joints"][1], "b");
-    }
-}

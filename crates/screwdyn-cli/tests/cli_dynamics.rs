@@ -452,3 +452,45 @@ fn batch_of_1000_states() {
     assert!(out.starts_with("mass_matrix.shoulder_pan_joint.shoulder_pan_joint,mass_matrix.shoulder_pan_joint.shoulder_lift_joint,"));
     assert_eq!(out.lines().count(), 1001);
 }
+
+/// CSV columns follow the design of docs/cli.md: `<key>.<joint>` for vectors, the rows of a
+/// matrix in order as `<key>.<row joint>.<column joint>`, scalars by their key; JSON nests the
+/// same matrix row by row. The values are the two-link closed form.
+#[test]
+fn csv_columns_follow_design() {
+    let (m, _, _) = planar2(Q, V);
+    let out = ok(&[
+        "mass-matrix",
+        "builtin:planar2",
+        "--q",
+        &csv(&Q),
+        "--format",
+        "csv",
+    ]);
+    let mut lines = out.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "mass_matrix.joint1.joint1,mass_matrix.joint1.joint2,mass_matrix.joint2.joint1,mass_matrix.joint2.joint2"
+    );
+    let row: Vec<f64> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    close(&row, &[m[0][0], m[0][1], m[1][0], m[1][1]], 1e-12);
+    let j = json(&["mass-matrix", "builtin:planar2", "--q", &csv(&Q)]);
+    assert_eq!(j["joints"][1], "joint2");
+    close(&[f(&j["mass_matrix"][1][0])], &[m[1][0]], 1e-12);
+    let out = ok(&[
+        "energy",
+        "builtin:planar2",
+        "--q",
+        &csv(&Q),
+        "--v",
+        &csv(&V),
+        "--format",
+        "csv",
+    ]);
+    assert!(out.starts_with("kinetic_energy,potential_energy,total_energy,center_of_mass.x,"));
+}

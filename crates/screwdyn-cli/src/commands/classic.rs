@@ -1,7 +1,8 @@
 //! `explain --style craig|luh-walker-paul`: the classic vector Newton–Euler table per link
 //! (seeds 003/004), computed by `screwdyn::dynamics::classic_newton_euler`.
 
-use super::{load, names, run_states};
+use super::inputs::{load, names};
+use super::states::run_states;
 use crate::args::{ExplainArgs, ExplainStyle};
 use crate::output::{fmt, Report, Value};
 use crate::CliError;

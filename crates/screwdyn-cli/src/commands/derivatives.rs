@@ -1,7 +1,8 @@
 //! `derivatives`: the partial derivatives of inverse and forward dynamics at a state (issue 15).
 //! The library does the work; this parses, calls and prints.
 
-use super::{external_wrenches, load, names, run_states};
+use super::inputs::{external_wrenches, load, names};
+use super::states::run_states;
 use crate::args::DerivativesArgs;
 use crate::output::{Report, Value};
 use crate::CliError;

@@ -1,7 +1,8 @@
 //! Inverse and forward dynamics, the matrices of the equations of motion, energies, the seeds'
 //! closed form and seed 004's Lagrangian coefficients.
 
-use super::{external_wrenches, load, names, run_states};
+use super::inputs::{external_wrenches, load, names};
+use super::states::run_states;
 use crate::args::{
     ClosedFormArgs, ForwardDynamicsArgs, InverseDynamicsArgs, LagrangeArgs, QArgs, QvArgs,
 };

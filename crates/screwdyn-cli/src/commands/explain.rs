@@ -10,8 +10,9 @@
 //!   − W_ext^{i,i} + Σ_children Ad_{H_i^c}ᵀ W_i^{c,c}`, `τ_i = (S_i^{i,λ(i)})ᵀ W_{λ(i)}^{i,i}`
 //!   (seed 000's external wrench on link `i`, from `--wrench` and `--tip-wrench`).
 
+use super::inputs::{external_wrenches, load, names};
 use super::kinematics::TWIST_ROWS;
-use super::{external_wrenches, load, names, run_states};
+use super::states::run_states;
 use crate::args::ExplainArgs;
 use crate::output::{fmt, Report, Value};
 use crate::CliError;

@@ -1,7 +1,7 @@
 //! `identify`: inertial parameters from a log of states and torques, and exciting logs to record
 //! (issue 15). The library does the work; this reads the log, calls and prints.
 
-use super::{load, names};
+use super::inputs::{load, names};
 use crate::args::IdentifyArgs;
 use crate::output::{self, Report, Value};
 use crate::plot::{plot_panels, Panel, Series};

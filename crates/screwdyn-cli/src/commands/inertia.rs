@@ -2,7 +2,7 @@
 //! its corner, the cylinder about its end). The formulas are the library's
 //! [`screwdyn::inertia::Shape`].
 
-use super::{parse_fixed, parse_numbers};
+use super::inputs::{parse_fixed, parse_numbers};
 use crate::args::InertiaArgs;
 use crate::output::{self, Report, Value};
 use crate::CliError;

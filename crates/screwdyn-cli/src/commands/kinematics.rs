@@ -1,6 +1,7 @@
 //! `fk` and `jacobian`.
 
-use super::{load, names, run_states};
+use super::inputs::{load, names};
+use super::states::run_states;
 use crate::args::{FkArgs, JacobianArgs, ReferenceArg};
 use crate::output::{Report, Value};
 use crate::CliError;

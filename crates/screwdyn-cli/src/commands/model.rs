@@ -1,6 +1,6 @@
 //! `info`, `check` and `export`.
 
-use super::load;
+use super::inputs::load;
 use crate::args::{CheckArgs, ExportArgs, ExportFormat, Format, ModelArgs};
 use crate::output::{fmt, resolve, table, write_stdout};
 use crate::CliError;
@@ -202,7 +202,7 @@ pub fn export(a: &ExportArgs) -> Result<(), CliError> {
     if let Some(p) = &a.output {
         crate::write::refuse_inputs("--output", p, &[Path::new(&a.model)])?;
     }
-    let m = super::load_model(&a.model, a.strict)?;
+    let m = super::inputs::load_model(&a.model, a.strict)?;
     let text = match a.to {
         ExportFormat::Urdf => screwdyn::io::urdf::to_urdf_string(&m)?,
     };

@@ -1,7 +1,8 @@
 //! `regressor`: the regressor `Y` of `τ = Y π` at a state, or with `--base` the model's base
 //! parameters (issue 15). The library does the work; this parses, calls and prints.
 
-use super::{load, names, run_states};
+use super::inputs::{load, names};
+use super::states::run_states;
 use crate::args::RegressorArgs;
 use crate::output::{self, Report, Value};
 use crate::CliError;

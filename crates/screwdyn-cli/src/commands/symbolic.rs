@@ -1,7 +1,7 @@
 //! `symbolic`: the equations of motion as text, LaTeX, JSON or code (issue 14). Parses, calls
 //! `screwdyn::symbolic` and prints.
 
-use super::load;
+use super::inputs::load;
 use crate::args::{ModelArgs, ReferenceArg, SymbolicArgs, SymbolicFormat};
 use crate::output::write_stdout;
 use crate::CliError;

@@ -42,11 +42,11 @@ pub fn view(a: &ViewArgs) -> Result<(), CliError> {
             "--q cannot be combined with --run (the run gives the configurations)",
         ));
     }
-    let loaded = super::load_source(&a.model, a.strict)?;
+    let loaded = super::inputs::load_source(&a.model, a.strict)?;
     let model = &loaded.model;
     let q =
         a.q.as_deref()
-            .map(|text| super::parse_vector(Some(text), "q", model))
+            .map(|text| super::inputs::parse_vector(Some(text), "q", model))
             .transpose()?;
     let run = a
         .run

@@ -1,0 +1,246 @@
+//! `torque-profile`: the torques a trajectory needs against the effort limits, written as
+//! CSV/JSON (docs/cli.md) and plotted.
+
+use super::inputs::{load, names, parse_per_joint, parse_vector};
+use super::run_files::{
+    in_flag_words, joint_series, plot_kind, refuse_onto_inputs, run_file_kind, RunWriter,
+};
+use crate::args::{TorqueProfileArgs, TrajectoryArg};
+use crate::output::{fmt, resolve, table, Report, Value};
+use crate::plot::{plot_panels, Panel};
+use crate::write::OutputFile;
+use crate::CliError;
+use screwdyn::sim::{self, Quintic, Trajectory, Trapezoid};
+use screwdyn::Model;
+use std::path::Path;
+
+/// `screwdyn torque-profile MODEL --trajectory trapezoid|quintic --q0 --qf ...`.
+pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
+    let output_kind = a
+        .output
+        .as_deref()
+        .map(|p| run_file_kind(p, "--output"))
+        .transpose()?;
+    if let Some(p) = &a.plot {
+        plot_kind(p)?;
+    }
+    refuse_onto_inputs(&a.model.model, None, a.output.as_deref(), a.plot.as_deref())?;
+    let m = load(&a.model, a.gravity.as_deref())?;
+    let q0 = parse_vector(a.q0.as_deref(), "q0", &m)?;
+    let qf = parse_vector(Some(&a.qf), "qf", &m)?;
+    let (traj, what) = trajectory(a, &m, &q0, &qf)?;
+    let p = sim::torque_profile_limited(&m, traj.as_ref(), a.dt, a.max_samples)
+        .map_err(in_flag_words)?;
+    let rec = &p.samples;
+    if let (Some(path), Some(kind)) = (&a.output, output_kind) {
+        let file = OutputFile::create(path)?;
+        let mut w = RunWriter::new(kind, Box::new(file.writer()?));
+        let whole = (|| {
+            w.sink().begin(&rec.joints, &rec.frames)?;
+            for k in 0..rec.len() {
+                w.sink().push(&rec.sample(k)?)?;
+            }
+            w.finish()
+        })();
+        whole.map_err(|e| match e {
+            screwdyn::Error::Io { message: why, .. } => {
+                CliError::input(format!("cannot write {} ({why})", path.display()))
+            }
+            e => e.into(),
+        })?;
+        file.commit()?;
+    }
+    let r = profile_report(a, &m, &p, traj.duration(), &what);
+    if let Some(path) = &a.plot {
+        plot_profile(a, &m, &p, traj.duration(), path)?;
+    }
+    crate::output::print(&[r], resolve(a.model.format), false)
+}
+
+/// The trajectory of `--trajectory` and a phrase describing it.
+fn trajectory(
+    a: &TorqueProfileArgs,
+    m: &Model,
+    q0: &[f64],
+    qf: &[f64],
+) -> Result<(Box<dyn Trajectory>, String), CliError> {
+    Ok(match a.trajectory {
+        TrajectoryArg::Trapezoid => {
+            let vmax = parse_per_joint(&a.vmax, "vmax", m)?;
+            let amax = parse_per_joint(&a.amax, "amax", m)?;
+            if let Some(x) = vmax.iter().chain(&amax).find(|x| **x <= 0.0) {
+                return Err(CliError::input(format!(
+                    "--vmax and --amax must be positive (got {x})"
+                )));
+            }
+            let t = Trapezoid::new(q0, qf, &vmax, &amax, !a.unsynchronised)?;
+            let cruise: Vec<String> = t
+                .cruise_speeds()
+                .iter()
+                .map(|v| format!("{v:.3}"))
+                .collect();
+            let what = format!(
+                "trapezoid: accelerate from rest, cruise at ({}) rad/s, stop",
+                cruise.join(", ")
+            );
+            (Box::new(t), what)
+        }
+        TrajectoryArg::Quintic => (
+            Box::new(Quintic::rest_to_rest(q0, qf, a.duration).map_err(in_flag_words)?),
+            "quintic rest-to-rest".to_string(),
+        ),
+    })
+}
+
+/// Peak, RMS, limits and violations per joint (JSON keys and the table).
+fn profile_report(
+    a: &TorqueProfileArgs,
+    m: &Model,
+    p: &sim::TorqueProfile,
+    duration: f64,
+    what: &str,
+) -> Report {
+    let rec = &p.samples;
+    let j = names(m);
+    let viol: Vec<(String, Value)> = j
+        .iter()
+        .zip(&p.violation_summary)
+        .map(|(name, s)| {
+            let (count, first, worst) = s.map_or((0, f64::NAN, f64::NAN), |s| {
+                (s.count, s.first_time, s.worst)
+            });
+            (
+                name.clone(),
+                Value::Map(vec![
+                    ("count".into(), Value::Count(count)),
+                    ("first_time".into(), Value::Scalar(first)),
+                    ("worst".into(), Value::Scalar(worst)),
+                ]),
+            )
+        })
+        .collect();
+    let mut r = Report::new();
+    r.add("joints", Value::Names(j.clone()))
+        .add("duration", Value::Scalar(duration))
+        .add("peak", Value::joints(&j, &p.peak))
+        .add("peak_time", Value::joints(&j, &p.peak_time))
+        .add("rms", Value::joints(&j, &p.rms))
+        .add("effort_limit", Value::joints(&j, &p.effort_limit))
+        .add("violations", Value::Map(viol));
+    let mut t = table();
+    t.set_header(vec![
+        "joint",
+        "peak |τ| (N·m)",
+        "at t (s)",
+        "RMS τ (N·m)",
+        "limit (N·m)",
+        "samples over",
+        "first over (s)",
+        "worst |τ| (N·m)",
+    ]);
+    for (i, name) in j.iter().enumerate() {
+        let (count, first, worst) = match p.violation_summary[i] {
+            None => (0, "-".to_string(), "-".to_string()),
+            Some(s) => (s.count, fmt(s.first_time), fmt(s.worst)),
+        };
+        t.add_row(vec![
+            name.clone(),
+            fmt(p.peak[i]),
+            format!("{:.3}", p.peak_time[i]),
+            fmt(p.rms[i]),
+            fmt(p.effort_limit[i]),
+            count.to_string(),
+            first,
+            worst,
+        ]);
+    }
+    let over: Vec<&str> = p
+        .joints_over_limit()
+        .into_iter()
+        .map(|i| j[i].as_str())
+        .collect();
+    let verdict = if over.is_empty() {
+        "every joint stays within its effort limit".to_string()
+    } else {
+        format!("over the effort limit: {}", over.join(", "))
+    };
+    r.table = Some(format!(
+        "{} on {}: {what}, {} s, {} samples every {} s\n{t}\n{verdict}\n",
+        match a.trajectory {
+            TrajectoryArg::Trapezoid => "torque profile (trapezoid)",
+            TrajectoryArg::Quintic => "torque profile (quintic)",
+        },
+        m.name(),
+        fmt(duration),
+        rec.len(),
+        a.dt
+    ));
+    r
+}
+
+/// Required torques against the effort limits, velocities and positions.
+fn plot_profile(
+    a: &TorqueProfileArgs,
+    m: &Model,
+    p: &sim::TorqueProfile,
+    duration: f64,
+    path: &Path,
+) -> Result<(), CliError> {
+    let rec = &p.samples;
+    let mut lines = Vec::new();
+    let mut limits: Vec<(f64, Vec<String>)> = Vec::new();
+    for (i, l) in p.effort_limit.iter().enumerate() {
+        if !l.is_finite() {
+            continue;
+        }
+        match limits.iter_mut().find(|(x, _)| x == l) {
+            Some((_, js)) => js.push((i + 1).to_string()),
+            None => limits.push((*l, vec![(i + 1).to_string()])),
+        }
+    }
+    for (l, js) in &limits {
+        let which = if js.len() == 1 { "joint" } else { "joints" };
+        let label = format!(
+            "effort limit ±{} N·m ({which} {})",
+            fmt_short(*l),
+            js.join(", ")
+        );
+        lines.push((label.clone(), *l));
+        lines.push((label, -*l));
+    }
+    let panels = vec![
+        Panel {
+            title: "Required joint torques (inverse dynamics)".into(),
+            y_label: "τ (N·m)".into(),
+            series: joint_series(rec, &rec.tau),
+            lines,
+        },
+        Panel {
+            title: "Joint velocities".into(),
+            y_label: "dq/dt (rad/s)".into(),
+            series: joint_series(rec, &rec.v),
+            lines: vec![],
+        },
+        Panel {
+            title: "Joint positions".into(),
+            y_label: "q (rad)".into(),
+            series: joint_series(rec, &rec.q),
+            lines: vec![],
+        },
+    ];
+    let kind = match a.trajectory {
+        TrajectoryArg::Trapezoid => "trapezoid",
+        TrajectoryArg::Quintic => "quintic",
+    };
+    let title = format!(
+        "{}: torques for a {kind} motion of {} s",
+        m.name(),
+        fmt_short(duration)
+    );
+    plot_panels(path, &title, "t (s)", &panels).map(|_| ())
+}
+
+fn fmt_short(x: f64) -> String {
+    let s = format!("{x:.3}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
