@@ -525,4 +525,20 @@ fn runs_end_at_the_duration_and_csv_headers_quote_joint_names() {
         ],
         "more than the limit of 100",
     );
+    // A raised cap does not end in an allocation abort: what the profile must hold is refused
+    // up front, with the memory it would need (10^11 samples of the UR5: tens of TB).
+    let e = fails(
+        &[
+            "torque-profile",
+            "builtin:ur5",
+            "--qf",
+            "1,-1,1,0,0,0",
+            "--dt",
+            "1e-9",
+            "--max-samples",
+            "100000000000",
+        ],
+        "GB of memory",
+    );
+    assert!(!e.contains("panicked") && !e.contains("backtrace"), "{e}");
 }

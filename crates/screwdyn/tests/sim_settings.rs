@@ -339,3 +339,20 @@ fn bad_specs_are_refused_naming_the_vector() {
         assert!(e.starts_with(says), "{what}: {e}");
     }
 }
+
+#[test]
+fn a_profile_too_large_to_hold_is_refused_before_it_starts() {
+    // 10^12 samples of the two-link arm need hundreds of TB: an error naming the memory, not an
+    // allocation failure after gigabytes (which aborts the process).
+    let m = builtin::planar2();
+    let traj = Quintic::rest_to_rest(&[0.0, 0.0], &[1.0, 1.0], 1.0).unwrap();
+    let e = torque_profile_limited(&m, &traj, 1e-12, usize::MAX)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("samples needs about") && e.contains("GB of memory"),
+        "{e}"
+    );
+    // an ordinary profile is unaffected
+    assert!(torque_profile_limited(&m, &traj, 1e-3, usize::MAX).is_ok());
+}

@@ -125,6 +125,7 @@ pub fn torque_profile_limited(
         model.joint_names().into_iter().map(String::from).collect(),
         vec![],
     );
+    rec.reserve(wanted as usize)?;
     let effort_limit: Vec<f64> = model.joints().iter().map(|j| j.limits.effort).collect();
     let (mut peak, mut peak_time, mut sumsq) = (vec![0.0_f64; n], vec![0.0; n], vec![0.0; n]);
     let mut violations = Vec::new();

@@ -116,6 +116,51 @@ impl Recording {
         }
     }
 
+    /// Makes room for `samples` more samples, or refuses up front with the memory they would
+    /// need, so that a recording too large for the machine is an error and not an allocation
+    /// failure part-way (which aborts the process).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming the samples and the gigabytes they need.
+    ///
+    /// ```
+    /// let mut r = screwdyn::sim::Recording::new(vec!["j1".into()], vec![]);
+    /// r.reserve(1000).unwrap();
+    /// let e = r.reserve(1 << 50).unwrap_err().to_string();
+    /// assert!(e.contains("GB of memory"), "{e}");
+    /// ```
+    pub fn reserve(&mut self, samples: usize) -> Result<()> {
+        // Per sample: t and three energies, four joint vectors (their headers and values, with
+        // the allocator's overhead) and the frame poses.
+        let vector = 3 * 8 + 16 + 8 * self.joints.len();
+        let per_sample = 4 * 8 + 4 * vector + 24 + 16 + self.frames.len() * 96;
+        let bytes = (samples as f64) * (per_sample as f64);
+        let refuse = || {
+            Error::InvalidArgument(format!(
+                "holding {samples} samples needs about {:.1} GB of memory, more than can be allocated; use a larger step or a shorter motion",
+                bytes / 1e9
+            ))
+        };
+        // Probe the whole amount once (nothing is touched, so nothing is committed), then
+        // reserve the per-sample vectors.
+        let total = usize::try_from(bytes as u128).map_err(|_| refuse())?;
+        Vec::<u8>::new()
+            .try_reserve_exact(total)
+            .map_err(|_| refuse())?;
+        for x in [
+            &mut self.t,
+            &mut self.kinetic_energy,
+            &mut self.potential_energy,
+            &mut self.total_energy,
+        ] {
+            x.try_reserve_exact(samples).map_err(|_| refuse())?;
+        }
+        for x in [&mut self.q, &mut self.v, &mut self.a, &mut self.tau] {
+            x.try_reserve_exact(samples).map_err(|_| refuse())?;
+        }
+        Ok(())
+    }
+
     /// Number of samples.
     pub fn len(&self) -> usize {
         self.t.len()
