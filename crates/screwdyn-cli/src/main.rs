@@ -102,9 +102,42 @@ fn ignore_file_size_signal() {
     }
 }
 
+/// `SIGTERM` or `SIGINT` (Ctrl-C) ends the program after removing the temporary files of the
+/// outputs it was writing (their targets stay as they were), with one line on stderr and the
+/// status 128 + the signal's number, as a shell reports a signal.
+#[cfg(unix)]
+fn end_cleanly_on_signals() {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGTERM, SIGINT]) else {
+        return;
+    };
+    std::thread::spawn(move || {
+        if let Some(signal) = signals.forever().next() {
+            let removed = screwdyn::io::output::remove_pending();
+            let name = if signal == SIGINT {
+                "SIGINT"
+            } else {
+                "SIGTERM"
+            };
+            let files: Vec<String> = removed.iter().map(|p| p.display().to_string()).collect();
+            if files.is_empty() {
+                eprintln!("screwdyn: stopped by {name}");
+            } else {
+                eprintln!(
+                    "screwdyn: stopped by {name}; removed the unfinished {}",
+                    files.join(", ")
+                );
+            }
+            std::process::exit(128 + signal);
+        }
+    });
+}
+
 fn main() -> ExitCode {
     #[cfg(unix)]
     ignore_file_size_signal();
+    #[cfg(unix)]
+    end_cleanly_on_signals();
     // Never show a backtrace: an unexpected panic is reported as one line, exit status 1.
     std::panic::set_hook(Box::new(|info| {
         let msg = info

@@ -306,3 +306,90 @@ fn a_file_size_limit_is_an_error_not_a_signal() {
     let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
     assert_eq!(left.len(), 1, "no temporary file is left");
 }
+
+/// The names in `dir` other than `keep`.
+fn others(dir: &Path, keep: &str) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n != keep)
+        .collect()
+}
+
+#[test]
+fn sigterm_and_sigint_remove_the_unfinished_output() {
+    for (signal, code) in [("TERM", 143), ("INT", 130)] {
+        let dir = fresh_dir(&format!("signal-{signal}"));
+        let run = dir.join("run.csv");
+        std::fs::write(&run, "old\n").unwrap();
+        let mut child = Process::new(env!("CARGO_BIN_EXE_screwdyn"))
+            .args([
+                "simulate",
+                "builtin:ur5",
+                "--duration",
+                "5000",
+                "--output",
+                s(&run),
+            ])
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // Wait until the temporary file is being written.
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(30);
+        while others(&dir, "run.csv").is_empty() {
+            assert!(
+                std::time::Instant::now() < deadline,
+                "no temporary file appeared"
+            );
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        let sent = Process::new("kill")
+            .args([&format!("-{signal}"), &child.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(sent.success());
+        let status = child.wait().unwrap();
+        let mut err = String::new();
+        child
+            .stderr
+            .take()
+            .unwrap()
+            .read_to_string(&mut err)
+            .unwrap();
+        assert_eq!(status.code(), Some(code), "SIG{signal}: {err}");
+        assert!(
+            err.contains(&format!("stopped by SIG{signal}; removed the unfinished")),
+            "{err}"
+        );
+        assert_eq!(std::fs::read_to_string(&run).unwrap(), "old\n");
+        assert!(
+            others(&dir, "run.csv").is_empty(),
+            "{:?}",
+            others(&dir, "run.csv")
+        );
+    }
+}
+
+#[test]
+fn a_temporary_file_left_by_a_killed_writer_is_removed_by_the_next_write() {
+    // SIGKILL cannot be caught: its temporary file stays until the next write to the same
+    // path, which removes ours whose process is gone (and nobody else's).
+    let dir = fresh_dir("stale-temporary");
+    let run = dir.join("run.csv");
+    let stale = dir.join(".run.csv.999999999.AbCdEf.csv");
+    let foreign = dir.join(".run.csv.notes.csv");
+    std::fs::write(&stale, "partial").unwrap();
+    std::fs::write(&foreign, "someone else's").unwrap();
+    ok(&[
+        "simulate",
+        "builtin:planar2",
+        "--duration",
+        "0.01",
+        "--output",
+        s(&run),
+    ]);
+    assert!(!stale.exists());
+    assert!(foreign.exists());
+    assert!(run.exists());
+}

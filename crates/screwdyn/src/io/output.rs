@@ -168,12 +168,18 @@ impl OutputFile {
     pub fn commit(self) -> Result<()> {
         match self.dest {
             Destination::Replace(tmp, target) => {
-                tmp.as_file()
+                let tmp_path = tmp.path().to_path_buf();
+                let done = tmp
+                    .as_file()
                     .sync_all()
-                    .map_err(|e| Error::unwritable(&self.path, &e))?;
-                tmp.persist(&target)
-                    .map_err(|e| Error::unwritable(&self.path, &e.error))?;
-                Ok(())
+                    .map_err(|e| Error::unwritable(&self.path, &e))
+                    .and_then(|()| {
+                        tmp.persist(&target)
+                            .map(drop)
+                            .map_err(|e| Error::unwritable(&self.path, &e.error))
+                    });
+                forget_pending(&tmp_path);
+                done
             }
             Destination::Direct(_) => Ok(()),
         }
@@ -212,7 +218,8 @@ fn temp_file(path: &Path, target: &Path) -> Result<NamedTempFile> {
         .extension()
         .map(|e| format!(".{}", e.to_string_lossy()))
         .unwrap_or_default();
-    let prefix = format!(".{name}.");
+    // The process id in the name tells a later write whether the writer is still alive.
+    let prefix = format!(".{name}.{}.", std::process::id());
     let mut b = tempfile::Builder::new();
     b.prefix(&prefix).suffix(&suffix);
     #[cfg(unix)]
@@ -224,7 +231,60 @@ fn temp_file(path: &Path, target: &Path) -> Result<NamedTempFile> {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    b.tempfile_in(dir).map_err(|e| Error::unwritable(path, &e))
+    remove_stale(dir, &format!(".{name}."), &suffix);
+    let tmp = b
+        .tempfile_in(dir)
+        .map_err(|e| Error::unwritable(path, &e))?;
+    pending().push(tmp.path().to_path_buf());
+    Ok(tmp)
+}
+
+/// The temporary files this process is writing (removed from the list when committed or
+/// dropped), for [`remove_pending`].
+fn pending() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    static PENDING: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+    PENDING.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+fn forget_pending(tmp: &Path) {
+    pending().retain(|p| p != tmp);
+}
+
+/// Removes the temporary files this process is writing and returns them: what a program calls
+/// when a signal (`SIGTERM`, `SIGINT`) ends it before its outputs are complete, so that no
+/// partial file is left behind (the targets stay as they were).
+pub fn remove_pending() -> Vec<PathBuf> {
+    let files = std::mem::take(&mut *pending());
+    for f in &files {
+        let _ = std::fs::remove_file(f);
+    }
+    files
+}
+
+/// Removes temporary files of ours for the same target, `PREFIX<pid>.XXXXXX<suffix>`, whose
+/// process no longer runs (a writer killed by `SIGKILL` or a power cut). Only where the
+/// process table can be read (`/proc`); elsewhere they stay.
+fn remove_stale(dir: &Path, prefix: &str, suffix: &str) {
+    let proc_root = Path::new("/proc/self");
+    if !proc_root.exists() {
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(rest) = name.to_str().and_then(|n| n.strip_prefix(prefix)) else {
+            continue;
+        };
+        let Some((pid, random)) = rest.split_once('.') else {
+            continue;
+        };
+        let ours = pid.parse::<u32>().is_ok() && random.ends_with(suffix);
+        if ours && !Path::new("/proc").join(pid).exists() {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
 }
 
 #[cfg(test)]
