@@ -393,3 +393,38 @@ fn a_temporary_file_left_by_a_killed_writer_is_removed_by_the_next_write() {
     assert!(foreign.exists());
     assert!(run.exists());
 }
+
+#[test]
+fn a_plot_that_cannot_be_drawn_leaves_the_complete_run() {
+    // docs/cli.md, Output files: each output stands on its own.
+    let dir = fresh_dir("plot-fails");
+    let run = dir.join("run.csv");
+    std::fs::write(&run, "old\n").unwrap();
+    let plot = dir.join("no-such-dir").join("p.png");
+    let e = fails(
+        &[
+            "simulate",
+            "builtin:planar2",
+            "--duration",
+            "0.1",
+            "--output",
+            s(&run),
+            "--plot",
+            s(&plot),
+        ],
+        "cannot write",
+    );
+    assert!(e.contains("p.png"), "{e}");
+    let text = std::fs::read_to_string(&run).unwrap();
+    assert!(text.starts_with("t,q.joint1,"), "{text}");
+    assert_eq!(
+        text.lines().count(),
+        1 + 101,
+        "the header and every step of 0.1 s at 1 ms"
+    );
+    assert!(
+        others(&dir, "run.csv").is_empty(),
+        "{:?}",
+        others(&dir, "run.csv")
+    );
+}
