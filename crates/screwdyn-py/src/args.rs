@@ -77,17 +77,15 @@ impl PyModel {
     }
 }
 
-/// The frame a twist or Jacobian is written in: `world`, `local` or `world-aligned` (`_` may
-/// replace `-`).
+/// The frame a twist or Jacobian is written in: `world`, `local` or `world-aligned`
+/// (Pinocchio's `WORLD`, `LOCAL`, `LOCAL_WORLD_ALIGNED` too: the library's spelling rule).
 pub(crate) fn reference(s: &str) -> PyResult<Reference> {
-    s.replace('_', "-").parse::<Reference>().map_err(call_err)
+    s.parse::<Reference>().map_err(call_err)
 }
 
-/// A forward-dynamics method: `aba`, `crba` or `walker-orin` (`_` may replace `-`).
+/// A forward-dynamics method: `aba`, `crba` or `walker-orin`.
 pub(crate) fn method(s: &str) -> PyResult<ForwardMethod> {
-    s.replace('_', "-")
-        .parse::<ForwardMethod>()
-        .map_err(call_err)
+    s.parse::<ForwardMethod>().map_err(call_err)
 }
 
 /// An item of the model given by its name (looked up by `by_name`) or by its index below `n`;

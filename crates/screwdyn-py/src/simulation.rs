@@ -374,10 +374,7 @@ impl Controller for PyCallback<'_, '_> {
 
 /// The `integrator` argument, with the tolerances of the adaptive one.
 fn integrator(s: &str, rtol: f64, atol: f64) -> PyResult<Integrator> {
-    let i = s
-        .replace('_', "-")
-        .parse::<Integrator>()
-        .map_err(call_err)?;
+    let i = s.parse::<Integrator>().map_err(call_err)?;
     Ok(match i {
         Integrator::DormandPrince { .. } => Integrator::DormandPrince { rtol, atol },
         other => other,

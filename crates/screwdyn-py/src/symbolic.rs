@@ -73,7 +73,7 @@ fn _symbolic_derive<'py>(
     max_terms: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
     guard(|| {
-        let quantity: Quantity = quantity.replace('_', "-").parse().map_err(call_err)?;
+        let quantity: Quantity = quantity.parse().map_err(call_err)?;
         let coriolis: CoriolisForm = coriolis.parse().map_err(call_err)?;
         if max_terms == 0 {
             return Err(PyValueError::new_err("max_terms must be at least 1"));

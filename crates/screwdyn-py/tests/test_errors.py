@@ -117,3 +117,14 @@ def test_results_that_overflow_are_errors_not_nan():
         ur5.rnea(np.zeros((3, 6)), v, np.zeros((3, 6)))
     # large but representable results are returned
     assert np.isfinite(ur5.rnea(z, np.full(6, 1e100), z)).all()
+
+
+def test_pinocchio_reference_names_and_messages_quote_the_input():
+    ur5 = screwdyn.load("builtin:ur5")
+    q = np.zeros(6)
+    np.testing.assert_array_equal(ur5.frame_jacobian(q, "tool0", "LOCAL_WORLD_ALIGNED"),
+                                  ur5.frame_jacobian(q, "tool0", "world-aligned"))
+    np.testing.assert_array_equal(ur5.frame_jacobian(q, "tool0", "WORLD"),
+                                  ur5.frame_jacobian(q, "tool0", "world"))
+    with pytest.raises(ValueError, match="'LOCAL_WORLD'"):
+        ur5.frame_jacobian(q, "tool0", "LOCAL_WORLD")

@@ -270,3 +270,10 @@ impl Error {
 
 /// Shorthand for `std::result::Result<T, screwdyn::Error>`.
 pub type Result<T> = std::result::Result<T, Error>;
+
+/// The spelling every named choice (`FromStr`) is matched in: trimmed, lower case, `_` read as
+/// `-`, so that `LOCAL_WORLD_ALIGNED` (Pinocchio's name), `local_world_aligned` and
+/// `local-world-aligned` are one choice. Error messages quote what the user wrote.
+pub(crate) fn choice_key(s: &str) -> String {
+    s.trim().to_ascii_lowercase().replace('_', "-")
+}

@@ -442,3 +442,25 @@ fn every_from_str_refuses_an_unknown_word_with_the_choices() {
     offers_only_words_it_accepts::<CoriolisForm>("Coriolis form");
     offers_only_words_it_accepts::<Collect>("collect mode");
 }
+
+#[test]
+fn named_choices_take_any_case_and_underscores_and_quote_what_was_written() {
+    // Pinocchio's reference names are what its users type.
+    for (word, expected) in [
+        ("WORLD", Reference::World),
+        ("LOCAL", Reference::Local),
+        ("LOCAL_WORLD_ALIGNED", Reference::LocalWorldAligned),
+        (" world_aligned ", Reference::LocalWorldAligned),
+    ] {
+        assert_eq!(word.parse::<Reference>().unwrap(), expected, "{word}");
+    }
+    assert!(matches!(
+        "Walker_Orin".parse::<ForwardMethod>(),
+        Ok(ForwardMethod::WalkerOrin)
+    ));
+    let e = "LOCAL_WORLD_ALIGNEDX"
+        .parse::<Reference>()
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("'LOCAL_WORLD_ALIGNEDX'"), "{e}");
+}

@@ -87,7 +87,7 @@ class Model:
     def frame_poses(self, q: ArrayLike, *, threads: Optional[int] = None) -> Dict[str, FloatArray]: ...
     def frame_jacobian(self, q: ArrayLike, frame: FrameRef, reference: str = "world", *,
                        threads: Optional[int] = None, out: Optional[FloatArray] = None) -> FloatArray:
-        """(6, nq) or (N, 6, nq), angular rows first; reference world | local | world-aligned."""
+        """(6, nq) or (N, 6, nq), angular rows first; reference world | local | world-aligned (or WORLD | LOCAL | LOCAL_WORLD_ALIGNED)."""
     def link_jacobian(self, q: ArrayLike, link: FrameRef, *, threads: Optional[int] = None,
                       out: Optional[FloatArray] = None) -> FloatArray: ...
     def frame_twist(self, q: ArrayLike, v: ArrayLike, frame: FrameRef, reference: str = "world", *,

@@ -30,10 +30,10 @@ pub enum ForwardMethod {
 impl std::str::FromStr for ForwardMethod {
     type Err = crate::Error;
     fn from_str(s: &str) -> std::result::Result<Self, crate::Error> {
-        match s {
+        match crate::error::choice_key(s).as_str() {
             "aba" => Ok(ForwardMethod::Aba),
             "crba" => Ok(ForwardMethod::Crba),
-            "walker-orin" | "walker_orin" => Ok(ForwardMethod::WalkerOrin),
+            "walker-orin" => Ok(ForwardMethod::WalkerOrin),
             _ => Err(crate::Error::UnknownChoice {
                 what: "forward-dynamics method",
                 got: s.into(),

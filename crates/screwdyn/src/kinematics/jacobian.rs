@@ -26,7 +26,7 @@ pub enum Reference {
 impl std::str::FromStr for Reference {
     type Err = crate::Error;
     fn from_str(s: &str) -> std::result::Result<Self, crate::Error> {
-        match s {
+        match crate::error::choice_key(s).as_str() {
             "world" => Ok(Reference::World),
             "local" => Ok(Reference::Local),
             "world-aligned" | "local-world-aligned" => Ok(Reference::LocalWorldAligned),

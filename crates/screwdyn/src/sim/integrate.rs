@@ -24,7 +24,7 @@ pub enum Integrator {
 impl std::str::FromStr for Integrator {
     type Err = crate::Error;
     fn from_str(s: &str) -> std::result::Result<Self, crate::Error> {
-        match s {
+        match crate::error::choice_key(s).as_str() {
             "euler" | "symplectic-euler" => Ok(Integrator::SymplecticEuler),
             "rk4" => Ok(Integrator::Rk4),
             "dopri5" | "dormand-prince" => Ok(Integrator::DormandPrince {

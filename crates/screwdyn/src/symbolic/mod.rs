@@ -87,9 +87,9 @@ pub enum Quantity {
 impl std::str::FromStr for Quantity {
     type Err = crate::Error;
     fn from_str(s: &str) -> std::result::Result<Self, crate::Error> {
-        Ok(match s {
-            "mass-matrix" | "M" => Quantity::MassMatrix,
-            "coriolis" | "C" => Quantity::Coriolis,
+        Ok(match crate::error::choice_key(s).as_str() {
+            "mass-matrix" | "m" => Quantity::MassMatrix,
+            "coriolis" | "c" => Quantity::Coriolis,
             "gravity" | "g" => Quantity::Gravity,
             "torque" | "tau" | "inverse-dynamics" => Quantity::Torque,
             "fk" => Quantity::Fk,
@@ -146,7 +146,7 @@ pub enum CoriolisForm {
 impl std::str::FromStr for CoriolisForm {
     type Err = crate::Error;
     fn from_str(s: &str) -> std::result::Result<Self, crate::Error> {
-        match s {
+        match crate::error::choice_key(s).as_str() {
             "seed" | "closed-form" => Ok(CoriolisForm::Seed),
             "christoffel" => Ok(CoriolisForm::Christoffel),
             _ => Err(crate::Error::UnknownChoice {

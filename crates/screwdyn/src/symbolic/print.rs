@@ -40,7 +40,7 @@ pub enum Collect {
 impl std::str::FromStr for Collect {
     type Err = crate::Error;
     fn from_str(s: &str) -> std::result::Result<Self, crate::Error> {
-        match s {
+        match crate::error::choice_key(s).as_str() {
             "inertial" => Ok(Collect::Inertial),
             "config" | "configuration" => Ok(Collect::Config),
             "none" => Ok(Collect::None),
