@@ -9,7 +9,7 @@ use nalgebra::Vector3;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
-use screwdyn::io::LoadOptions;
+use screwdyn::io::{Format, LoadOptions};
 use screwdyn::Model;
 use std::path::PathBuf;
 use std::sync::Mutex;
@@ -154,23 +154,11 @@ fn load(path_or_builtin: &Bound<'_, PyAny>, strict: bool) -> PyResult<PyModel> {
 #[pyo3(signature = (text, format = None, *, name = "<string>", strict = false))]
 fn load_string(text: &str, format: Option<&str>, name: &str, strict: bool) -> PyResult<PyModel> {
     guard(|| {
-        let urdf = match format.map(|f| f.to_ascii_lowercase()) {
-            None => text.trim_start().starts_with('<'),
-            Some(f) if f == "urdf" || f == "xml" => true,
-            Some(f) if ["toml", "dh", "modified-dh", "poe", "screwdyn"].contains(&f.as_str()) => false,
-            Some(f) => {
-                return Err(PyValueError::new_err(format!(
-                    "unknown format '{f}' (use urdf or toml; a TOML text names dh, modified-dh, poe or screwdyn in its format key)"
-                )))
-            }
+        let format = match format {
+            None => Format::of_text(text),
+            Some(f) => f.parse::<Format>().map_err(call_err)?,
         };
-        let ext = if urdf { ".urdf" } else { ".toml" };
-        let lower = name.to_ascii_lowercase();
-        let file = if lower.ends_with(ext) || (urdf && lower.ends_with(".xml")) {
-            name.to_string()
-        } else {
-            format!("{name}{ext}")
-        };
+        let file = format.file_name(name);
         PyModel::rebuild(
             Source::Text {
                 text: text.to_string(),

@@ -441,6 +441,7 @@ fn every_from_str_refuses_an_unknown_word_with_the_choices() {
     offers_only_words_it_accepts::<Quantity>("quantity");
     offers_only_words_it_accepts::<CoriolisForm>("Coriolis form");
     offers_only_words_it_accepts::<Collect>("collect mode");
+    offers_only_words_it_accepts::<screwdyn::io::Format>("format");
 }
 
 #[test]

@@ -68,11 +68,6 @@ fn trajectory(
         TrajectoryArg::Trapezoid => {
             let vmax = parse_per_joint(&a.vmax, "vmax", m)?;
             let amax = parse_per_joint(&a.amax, "amax", m)?;
-            if let Some(x) = vmax.iter().chain(&amax).find(|x| **x <= 0.0) {
-                return Err(CliError::input(format!(
-                    "--vmax and --amax must be positive (got {x})"
-                )));
-            }
             let t = Trapezoid::new(q0, qf, &vmax, &amax, !a.unsynchronised)?;
             let cruise: Vec<String> = t
                 .cruise_speeds()

@@ -154,6 +154,61 @@ impl Format {
     }
 }
 
+impl Format {
+    /// The format of a description given as text alone: URDF when it starts with `<`, else
+    /// TOML.
+    ///
+    /// ```
+    /// use screwdyn::io::Format;
+    /// assert_eq!(Format::of_text("  <robot name='r'/>"), Format::Urdf);
+    /// assert_eq!(Format::of_text("format = \"dh\""), Format::Toml);
+    /// ```
+    pub fn of_text(text: &str) -> Format {
+        if text.trim_start().starts_with('<') {
+            Format::Urdf
+        } else {
+            Format::Toml
+        }
+    }
+
+    /// A file name for a text in this format called `name`: `name` itself when it already ends
+    /// in one of the format's extensions, else `name` with `.urdf` or `.toml` appended (the
+    /// loaders choose the format by the extension).
+    ///
+    /// ```
+    /// use screwdyn::io::Format;
+    /// assert_eq!(Format::Toml.file_name("arm"), "arm.toml");
+    /// assert_eq!(Format::Urdf.file_name("arm.xml"), "arm.xml");
+    /// ```
+    pub fn file_name(self, name: &str) -> String {
+        if Format::of_file(name) == Some(self) {
+            name.to_string()
+        } else {
+            match self {
+                Format::Urdf => format!("{name}.urdf"),
+                Format::Toml => format!("{name}.toml"),
+            }
+        }
+    }
+}
+
+/// A format by name: `urdf` (or `xml`), `toml`, or a TOML description's kind (`dh`,
+/// `modified-dh`, `poe`, `screwdyn`), any case.
+impl std::str::FromStr for Format {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match crate::error::choice_key(s).as_str() {
+            "urdf" | "xml" => Ok(Format::Urdf),
+            "toml" | "dh" | "modified-dh" | "poe" | "screwdyn" => Ok(Format::Toml),
+            _ => Err(Error::UnknownChoice {
+                what: "format",
+                got: s.into(),
+                expected: "urdf, xml, toml, dh, modified-dh, poe or screwdyn",
+            }),
+        }
+    }
+}
+
 impl Loaded {
     /// The URDF file and its text when the model was read from one (its `<visual>` elements
     /// can then be drawn); `None` for a TOML description or a built-in robot.
