@@ -181,10 +181,12 @@ where
     // finite inputs is an overflow error naming the state and the entry, never returned.
     let chunk = |m: &Model, s: &mut Scratch, first: usize, block: &mut [f64]| {
         chunk(m, s, first, block)?;
-        match screwdyn::check_result(block, |i| format!("(entry {})", i % width.max(1))) {
-            Err(e) => Err(e.in_state(first + first_non_finite_row(block, width))),
-            ok => ok,
-        }
+        let mut row = 0;
+        screwdyn::check_result(block, |i| {
+            row = i / width.max(1);
+            format!("(entry {})", i % width.max(1))
+        })
+        .map_err(|e| e.in_state(first + row))
     };
     let n = batch_len(args)?;
     if n.is_none() && out_shape.is_empty() && how.out.is_none() {
@@ -230,12 +232,6 @@ where
     });
     result.map_err(call_err)?;
     Ok(target.into_result())
-}
-
-/// The row of a block's first non-finite value (only called when there is one).
-#[cold]
-fn first_non_finite_row(block: &[f64], width: usize) -> usize {
-    block.iter().position(|x| !x.is_finite()).unwrap_or(0) / width.max(1)
 }
 
 /// Where a call writes its result: a fresh array, or the caller's `out=` array, borrowed for

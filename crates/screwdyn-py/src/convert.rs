@@ -31,7 +31,7 @@ impl<'py> FromPyObject<'_, 'py> for StateIn<'py> {
         if let Some(v) = ob
             .cast::<PyArray1<f64>>()
             .ok()
-            .filter(|v| is_aligned(v.data()))
+            .filter(|v| v.data().is_aligned())
         {
             if let Ok(x) = v.to_vec() {
                 let n = x.len();
@@ -136,18 +136,13 @@ impl States<'_> {
 /// array unpickled by Dask); a slice or view of it would be undefined behaviour, so it is read
 /// element by element.
 pub fn contiguous<'a>(arr: &'a ArrayIn<'_>) -> Cow<'a, [f64]> {
-    if !is_aligned(arr.data()) {
+    if !arr.data().is_aligned() {
         return Cow::Owned(unaligned_values(arr));
     }
     match arr.as_slice() {
         Ok(s) if arr.is_c_contiguous() => Cow::Borrowed(s),
         _ => Cow::Owned(arr.as_array().iter().copied().collect()),
     }
-}
-
-/// Whether a NumPy data pointer may be read as `f64`s in place.
-fn is_aligned(data: *const f64) -> bool {
-    data.is_aligned()
 }
 
 /// The values of an unaligned array in logical order, by unaligned loads at its strides.

@@ -12,11 +12,7 @@ use std::path::Path;
 
 /// Writes `text` to `path` atomically (see [`crate::write`]); refuses the model file.
 pub fn write_output(path: &Path, text: &str, model: &str) -> Result<(), CliError> {
-    let inputs: Vec<&Path> = (!model.starts_with("builtin:"))
-        .then(|| Path::new(model))
-        .into_iter()
-        .collect();
-    crate::write::refuse_inputs("--output", path, &inputs)?;
+    crate::write::refuse_inputs("--output", path, &[Path::new(model)])?;
     crate::write::atomic(path, |w| {
         w.write_all(text.as_bytes())
             .map_err(|e| CliError::input(format!("cannot write --output {} ({e})", path.display())))
