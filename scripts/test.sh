@@ -58,7 +58,9 @@ if ! "$PYTHON" -m venv "$work/venv" 2>/dev/null; then
 fi
 py="$work/venv/bin/python"
 (
-    "$py" -m pip install -q --disable-pip-version-check tomli >/dev/null 2>&1 || true
+    # pyproject.toml is read with tomllib (Python >= 3.11) or its backport.
+    "$py" -c 'import tomllib' 2>/dev/null \
+        || "$py" -m pip install -q --disable-pip-version-check tomli >/dev/null 2>&1 || true
     "$py" - <<'EOF' >"$work/requirements.txt"
 try:
     import tomllib
