@@ -39,6 +39,7 @@ pub struct JointSpec<T: Real = f64> {
     limits: JointLimits<T>,
     damping: T,
     friction: T,
+    armature: T,
     mimic: Option<Mimic>,
 }
 
@@ -51,6 +52,7 @@ impl<T: Real> JointSpec<T> {
             limits: JointLimits::default(),
             damping: T::zero(),
             friction: T::zero(),
+            armature: T::zero(),
             mimic: None,
         }
     }
@@ -109,6 +111,11 @@ impl<T: Real> JointSpec<T> {
     /// Coulomb friction magnitude.
     pub fn friction(mut self, f: T) -> Self {
         self.friction = f;
+        self
+    }
+    /// Armature: rotor inertia reflected to the joint, added to the joint's diagonal of `M(q)`.
+    pub fn armature(mut self, a: T) -> Self {
+        self.armature = a;
         self
     }
     /// Records a URDF mimic tag (information only: the joint stays independent).
@@ -433,6 +440,7 @@ impl<T: Real> ModelBuilder<T> {
                         limits: l.joint.limits,
                         damping: l.joint.damping,
                         friction: l.joint.friction,
+                        armature: l.joint.armature,
                         mimic: l.joint.mimic.clone(),
                     });
                     m.bodies.push(Body {

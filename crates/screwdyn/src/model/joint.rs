@@ -94,6 +94,9 @@ pub struct Joint<T: Real = f64> {
     pub damping: T,
     /// Coulomb friction magnitude (N·m or N).
     pub friction: T,
+    /// Armature: the rotor inertia reflected to the joint (kg·m² or kg), added to `M(q)`'s
+    /// diagonal entry of this joint (MuJoCo's `armature`). Zero unless the model gives one.
+    pub armature: T,
     /// The URDF mimic tag, if any (information only).
     pub mimic: Option<Mimic>,
 }

@@ -528,6 +528,7 @@ impl Model<f64> {
                     },
                     damping: c(&j.damping),
                     friction: c(&j.friction),
+                    armature: c(&j.armature),
                     mimic: j.mimic.clone(),
                 })
                 .collect(),
