@@ -15,6 +15,7 @@
 //! ```
 
 mod forward;
+pub mod ik;
 mod jacobian;
 mod motion;
 

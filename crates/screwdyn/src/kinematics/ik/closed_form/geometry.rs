@@ -1,0 +1,123 @@
+//! What the families are recognised by: lines that are parallel, lines that meet, and how far
+//! a model's axes are from the ideal geometry (the defect the solutions inherit).
+
+use super::super::subproblems::Axis;
+use nalgebra::{Matrix3, Vector3};
+
+/// Two axes are parallel when the sine of the angle between them is at most this (rad); axes
+/// that must cross do so by more. URDF files round `π/2` to about 10 digits, which tilts axes
+/// by ~10⁻⁹ rad: well inside.
+pub(crate) const ANGLE_TOL: f64 = 1e-6;
+
+/// Lines meet when they pass within this distance (m) of one point; parallel lines, or a point
+/// and a line, are distinct when farther apart than this.
+pub(crate) const DISTANCE_TOL: f64 = 1e-6;
+
+/// How far the model's axes are from the ideal geometry the subproblems solve: the largest
+/// angle (sine) between axes taken as parallel, and the largest distance (m) between lines
+/// taken as meeting. Both are zero for a model whose axes are exactly parallel or meeting.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Defect {
+    /// rad (sine of the angle).
+    pub angle: f64,
+    /// m.
+    pub distance: f64,
+}
+
+impl Defect {
+    /// The larger of both parts.
+    pub(crate) fn max(self, other: Defect) -> Defect {
+        Defect {
+            angle: self.angle.max(other.angle),
+            distance: self.distance.max(other.distance),
+        }
+    }
+}
+
+/// `|ω̂_a × ω̂_b|`, the sine of the angle between two axes.
+pub(crate) fn sine(a: &Axis, b: &Axis) -> f64 {
+    a.w.cross(&b.w).norm()
+}
+
+/// Whether two axes are parallel (within [`ANGLE_TOL`]).
+pub(crate) fn parallel(a: &Axis, b: &Axis) -> bool {
+    sine(a, b) <= ANGLE_TOL
+}
+
+/// The distance from the point `x` to the line of `a`.
+pub(crate) fn distance_to_line(x: &Vector3<f64>, a: &Axis) -> f64 {
+    let u = x - a.r;
+    (u - a.w * a.w.dot(&u)).norm()
+}
+
+/// The same line along `±n` (the sign of `ω̂·n` kept): an axis made exactly parallel to `n`.
+pub(crate) fn along(a: &Axis, n: &Vector3<f64>) -> Axis {
+    Axis {
+        w: if a.w.dot(n) >= 0.0 { *n } else { -n },
+        r: a.r,
+    }
+}
+
+/// The point `x` minimising the sum of squared distances to the given (not all parallel)
+/// lines, and the largest of those distances: `Σ (I − ω̂ω̂ᵀ)(x − r) = 0`.
+pub(crate) fn meeting_point(axes: &[&Axis]) -> Option<(Vector3<f64>, f64)> {
+    let mut a = Matrix3::zeros();
+    let mut b = Vector3::zeros();
+    for axis in axes {
+        let projector = Matrix3::identity() - axis.w * axis.w.transpose();
+        a += projector;
+        b += projector * axis.r;
+    }
+    let x = a.try_inverse()? * b;
+    let worst = axes
+        .iter()
+        .map(|axis| distance_to_line(&x, axis))
+        .fold(0.0, f64::max);
+    Some((x, worst))
+}
+
+/// Where two crossing lines meet (within [`DISTANCE_TOL`]): their meeting point and distance,
+/// `None` for lines parallel or passing farther apart.
+pub(crate) fn meet(a: &Axis, b: &Axis) -> Option<(Vector3<f64>, f64)> {
+    if sine(a, b) <= ANGLE_TOL {
+        return None;
+    }
+    let (x, distance) = meeting_point(&[a, b])?;
+    (distance <= DISTANCE_TOL).then_some((x, 2.0 * distance))
+}
+
+/// A unit vector perpendicular to `a`'s direction, taken from `hint` when it is not parallel.
+pub(crate) fn perpendicular_unit(a: &Axis, hint: &Vector3<f64>) -> Vector3<f64> {
+    let candidates = [*hint, Vector3::x(), Vector3::y()];
+    let mut best = Vector3::z();
+    let mut best_norm = 0.0;
+    for c in candidates {
+        let p = c - a.w * a.w.dot(&c);
+        if p.norm() > 0.1 {
+            return p.normalize();
+        }
+        if p.norm() > best_norm {
+            best_norm = p.norm();
+            best = p;
+        }
+    }
+    best.normalize()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_meet_where_they_cross() {
+        let a = Axis::through(Vector3::new(1.0, 0.0, 0.0), Vector3::z());
+        let b = Axis::through(Vector3::new(0.0, 0.0, 2.0), Vector3::x());
+        let (x, d) = meet(&a, &b).unwrap();
+        assert!((x - Vector3::new(1.0, 0.0, 2.0)).norm() < 1e-15 && d < 1e-15);
+        let c = Axis::through(Vector3::new(0.0, 0.1, 2.0), Vector3::x());
+        assert!(meet(&a, &c).is_none());
+        assert!(meet(&a, &along(&b, &Vector3::z())).is_none());
+        let p = perpendicular_unit(&a, &Vector3::z());
+        assert!(p.dot(&a.w).abs() < 1e-15 && (p.norm() - 1.0).abs() < 1e-15);
+    }
+}
