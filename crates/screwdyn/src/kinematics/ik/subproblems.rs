@@ -121,32 +121,41 @@ impl Axis {
         let rotation = self.rotation(s, c);
         Se3::new(rotation, self.r - rotation * self.r)
     }
+}
 
-    /// `u⊥ = u − ω̂ (ω̂·u)`: the part of `u` the rotation turns.
-    #[inline]
-    fn perpendicular(&self, u: &Vector3<f64>) -> Vector3<f64> {
-        u - self.w * self.w.dot(u)
-    }
+/// The answer of subproblem 1: the angle and how far it misses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Turn {
+    /// `θ`, in `(−π, π]`.
+    pub theta: f64,
+    /// `|e^{[S]θ} p − q|`: zero when the problem is exact.
+    pub miss: f64,
 }
 
 /// Subproblem 1, rotation about one axis: the `θ` with `e^{[S]θ} p = q`.
 ///
 /// About `r`: `R(ω̂, θ) u⊥ = w⊥`, so `θ = atan2(ω̂·(u⊥ × w⊥), u⊥·w⊥)`. When `ω̂·u ≠ ω̂·w` or
-/// `|u⊥| ≠ |w⊥|` there is no exact answer and this `θ` minimises `|e^{[S]θ} p − q|`. When `p` or
-/// `q` lies on the axis (`|u⊥|` or `|w⊥|` below 10⁻¹² of the larger of `|u|`, `|w|`) every `θ`
-/// is as good: the answer is `θ = 0`.
+/// `|u⊥| ≠ |w⊥|` there is no exact answer and this `θ` minimises `|e^{[S]θ} p − q|`, which is
+/// then `√((ω̂·u − ω̂·w)² + (|u⊥| − |w⊥|)²)`. When `p` or `q` lies on the axis (`|u⊥|` or `|w⊥|`
+/// below 10⁻¹² of the larger of `|u|`, `|w|`) every `θ` is as good: the answer is `θ = 0`.
 #[inline]
-pub(crate) fn sp1(axis: &Axis, p: &Vector3<f64>, q: &Vector3<f64>) -> f64 {
+pub(crate) fn sp1(axis: &Axis, p: &Vector3<f64>, q: &Vector3<f64>) -> Turn {
     let (u, w) = (p - axis.r, q - axis.r);
-    let (u_perp, w_perp) = (axis.perpendicular(&u), axis.perpendicular(&w));
-    let size = u.norm_squared().max(w.norm_squared());
-    let degenerate = DEGENERATE * DEGENERATE * size;
-    if u_perp.norm_squared() <= degenerate || w_perp.norm_squared() <= degenerate {
-        return 0.0;
-    }
-    axis.w
-        .dot(&u_perp.cross(&w_perp))
-        .atan2(u_perp.dot(&w_perp))
+    let (along_u, along_w) = (axis.w.dot(&u), axis.w.dot(&w));
+    let (u_perp, w_perp) = (u - axis.w * along_u, w - axis.w * along_w);
+    let (u_norm, w_norm) = (u_perp.norm(), w_perp.norm());
+    // √(x² + y²) written out: `hypot`'s guard against overflow costs as much as the rest.
+    let (da, dn) = (along_u - along_w, u_norm - w_norm);
+    let miss = (da * da + dn * dn).sqrt();
+    let degenerate = DEGENERATE * u.norm().max(w.norm());
+    let theta = if u_norm <= degenerate || w_norm <= degenerate {
+        0.0
+    } else {
+        axis.w
+            .dot(&u_perp.cross(&w_perp))
+            .atan2(u_perp.dot(&w_perp))
+    };
+    Turn { theta, miss }
 }
 
 /// Up to two angles: `count` of them in `theta`. `count = 1` also answers a problem without an
@@ -182,7 +191,7 @@ pub(crate) fn sp4(axis: &Axis, h: &Vector3<f64>, p: &Vector3<f64>, d: f64) -> Ro
     let a = h.dot(&(u - axis.w * along));
     let b = h.dot(&axis.w.cross(&u));
     let c = d - h.dot(&axis.r) - h.dot(&axis.w) * along;
-    let rho = a.hypot(b);
+    let rho = (a * a + b * b).sqrt();
     if rho <= f64::MIN_POSITIVE {
         return Roots::one(0.0);
     }
@@ -218,6 +227,8 @@ pub(crate) struct Pairs {
     pub theta1: [f64; 2],
     /// `θ₂` of each pair.
     pub theta2: [f64; 2],
+    /// A bound on `|e^{[S₁]θ₁} e^{[S₂]θ₂} p − q|` of each pair: zero when it is exact.
+    pub miss: [f64; 2],
     /// How many pairs are answers (1 or 2).
     pub count: usize,
 }
@@ -235,9 +246,10 @@ pub(crate) struct Pairs {
 /// ```
 ///
 /// then `θ₂` takes `p` to `z` and `θ₁` takes `z` to `q` (subproblem 1), once for each sign of
-/// `γ`. When `γ² < 0` the two circles do not meet: the one pair with `γ = 0` turns `p` and `q`
-/// as close as they come to the point `z` of the plane of the axes. (`|u|²` is taken as the
-/// mean of `|u|²` and `|w|²`, equal when the problem is exact.)
+/// `γ`; the pair misses by at most the sum of the two misses. When `γ² < 0` the two circles do
+/// not meet: the one pair with `γ = 0` turns `p` and `q` as close as they come to the point `z`
+/// of the plane of the axes. (`|u|²` is taken as the mean of `|u|²` and `|w|²`, equal when the
+/// problem is exact.)
 #[inline]
 pub(crate) fn sp2(first: &Axis, second: &Axis, p: &Vector3<f64>, q: &Vector3<f64>) -> Pairs {
     let c = first.r;
@@ -255,13 +267,16 @@ pub(crate) fn sp2(first: &Axis, second: &Axis, p: &Vector3<f64>, q: &Vector3<f64
     let mut pairs = Pairs {
         theta1: [0.0; 2],
         theta2: [0.0; 2],
+        miss: [0.0; 2],
         count: if gamma2 > 0.0 { 2 } else { 1 },
     };
     let gamma = gamma2.max(0.0).sqrt();
     for (i, sign) in [1.0, -1.0].into_iter().enumerate().take(pairs.count) {
         let z = c + in_plane + normal * (sign * gamma);
-        pairs.theta2[i] = sp1(second, p, &z);
-        pairs.theta1[i] = sp1(first, &z, q);
+        let (second_turn, first_turn) = (sp1(second, p, &z), sp1(first, &z, q));
+        pairs.theta2[i] = second_turn.theta;
+        pairs.theta1[i] = first_turn.theta;
+        pairs.miss[i] = second_turn.miss + first_turn.miss;
     }
     pairs
 }
@@ -319,10 +334,14 @@ mod tests {
             let p = vec3(&mut rng);
             let theta = rng.gen_range(-PI..PI);
             let q = moved(&a, theta, &p);
-            assert!(same_angle(sp1(&a, &p, &q), theta));
-            // A q off the circle: no angle on a fine grid does better than sp1's.
+            let turn = sp1(&a, &p, &q);
+            assert!(same_angle(turn.theta, theta) && turn.miss < 1e-14);
+            // A q off the circle: no angle on a fine grid does better than sp1's, and the
+            // miss is what it says.
             let q = q + vec3(&mut rng) * 0.3;
-            let best = (moved(&a, sp1(&a, &p, &q), &p) - q).norm();
+            let turn = sp1(&a, &p, &q);
+            let best = (moved(&a, turn.theta, &p) - q).norm();
+            assert!((turn.miss - best).abs() < 1e-14);
             for k in 0..2000 {
                 let t = -PI + 2.0 * PI * k as f64 / 2000.0;
                 assert!(best <= (moved(&a, t, &p) - q).norm() + 1e-12);
@@ -330,7 +349,9 @@ mod tests {
         }
         // p on the axis: every angle is an answer, θ = 0 is chosen.
         let a = Axis::through(Vector3::zeros(), Vector3::z());
-        assert_eq!(sp1(&a, &Vector3::new(0.0, 0.0, 2.0), &Vector3::x()), 0.0);
+        let turn = sp1(&a, &Vector3::new(0.0, 0.0, 2.0), &Vector3::x());
+        assert_eq!(turn.theta, 0.0);
+        assert!((turn.miss - 5.0_f64.sqrt()).abs() < 1e-15);
     }
 
     #[test]
@@ -403,7 +424,7 @@ mod tests {
             );
             for i in 0..2 {
                 let back = moved(&a1, pairs.theta1[i], &moved(&a2, pairs.theta2[i], &p));
-                assert!((back - q).norm() < 1e-12);
+                assert!((back - q).norm() < 1e-12 && pairs.miss[i] < 1e-12);
             }
         }
         // Two circles that do not meet: one finite pair.
@@ -414,5 +435,11 @@ mod tests {
         let pairs = sp2(&a1, &a2, &Vector3::x(), &Vector3::z());
         assert_eq!(pairs.count, 1);
         assert!(pairs.theta1[0].is_finite() && pairs.theta2[0].is_finite());
+        let back = moved(
+            &a1,
+            pairs.theta1[0],
+            &moved(&a2, pairs.theta2[0], &Vector3::x()),
+        );
+        assert!(pairs.miss[0] >= (back - Vector3::z()).norm() - 1e-15 && pairs.miss[0] > 0.1);
     }
 }

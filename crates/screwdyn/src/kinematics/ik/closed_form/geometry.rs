@@ -1,5 +1,4 @@
-//! What the families are recognised by: lines that are parallel, lines that meet, and how far
-//! a model's axes are from the ideal geometry (the defect the solutions inherit).
+//! What the families are recognised by: lines that are parallel and lines that meet.
 
 use super::super::subproblems::Axis;
 use nalgebra::{Matrix3, Vector3};
@@ -12,27 +11,6 @@ pub(crate) const ANGLE_TOL: f64 = 1e-6;
 /// Lines meet when they pass within this distance (m) of one point; parallel lines, or a point
 /// and a line, are distinct when farther apart than this.
 pub(crate) const DISTANCE_TOL: f64 = 1e-6;
-
-/// How far the model's axes are from the ideal geometry the subproblems solve: the largest
-/// angle (sine) between axes taken as parallel, and the largest distance (m) between lines
-/// taken as meeting. Both are zero for a model whose axes are exactly parallel or meeting.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct Defect {
-    /// rad (sine of the angle).
-    pub angle: f64,
-    /// m.
-    pub distance: f64,
-}
-
-impl Defect {
-    /// The larger of both parts.
-    pub(crate) fn max(self, other: Defect) -> Defect {
-        Defect {
-            angle: self.angle.max(other.angle),
-            distance: self.distance.max(other.distance),
-        }
-    }
-}
 
 /// `|ω̂_a × ω̂_b|`, the sine of the angle between two axes.
 pub(crate) fn sine(a: &Axis, b: &Axis) -> f64 {
@@ -76,14 +54,14 @@ pub(crate) fn meeting_point(axes: &[&Axis]) -> Option<(Vector3<f64>, f64)> {
     Some((x, worst))
 }
 
-/// Where two crossing lines meet (within [`DISTANCE_TOL`]): their meeting point and distance,
-/// `None` for lines parallel or passing farther apart.
-pub(crate) fn meet(a: &Axis, b: &Axis) -> Option<(Vector3<f64>, f64)> {
+/// Where two crossing lines meet (the midpoint of their closest points, when within
+/// [`DISTANCE_TOL`]); `None` for lines parallel or passing farther apart.
+pub(crate) fn meet(a: &Axis, b: &Axis) -> Option<Vector3<f64>> {
     if sine(a, b) <= ANGLE_TOL {
         return None;
     }
-    let (x, distance) = meeting_point(&[a, b])?;
-    (distance <= DISTANCE_TOL).then_some((x, 2.0 * distance))
+    let (x, half_distance) = meeting_point(&[a, b])?;
+    (2.0 * half_distance <= DISTANCE_TOL).then_some(x)
 }
 
 /// A unit vector perpendicular to `a`'s direction, taken from `hint` when it is not parallel.
@@ -112,8 +90,8 @@ mod tests {
     fn lines_meet_where_they_cross() {
         let a = Axis::through(Vector3::new(1.0, 0.0, 0.0), Vector3::z());
         let b = Axis::through(Vector3::new(0.0, 0.0, 2.0), Vector3::x());
-        let (x, d) = meet(&a, &b).unwrap();
-        assert!((x - Vector3::new(1.0, 0.0, 2.0)).norm() < 1e-15 && d < 1e-15);
+        let x = meet(&a, &b).unwrap();
+        assert!((x - Vector3::new(1.0, 0.0, 2.0)).norm() < 1e-15);
         let c = Axis::through(Vector3::new(0.0, 0.1, 2.0), Vector3::x());
         assert!(meet(&a, &c).is_none());
         assert!(meet(&a, &along(&b, &Vector3::z())).is_none());

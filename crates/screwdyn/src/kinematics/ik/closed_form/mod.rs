@@ -18,7 +18,6 @@ use super::subproblems::{wrap, Axis};
 use crate::error::Result;
 use crate::model::{JointKind, Model};
 use crate::spatial::Se3;
-use geometry::Defect;
 use nalgebra::Vector3;
 use spherical_wrist::SphericalWrist;
 use three_parallel::ThreeParallel;
@@ -27,9 +26,18 @@ use three_parallel::ThreeParallel;
 /// arise as the two halves of a branch that meet at a singularity.
 const SAME_SOLUTION: f64 = 1e-6;
 
-/// A solution is kept when it reproduces the target within `1e-9` (m per metre of the arm's
-/// size, and rad), widened by ten times the geometry's [`Defect`] (see [`ClosedForm::detect`]).
+/// A branch is kept when each of its subproblems is exact within `1e-9` (m per metre of the
+/// arm's size for points, rad for directions).
 const ACCURACY: f64 = 1e-9;
+
+/// How far a subproblem may miss for its branch to count as exact.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Tolerance {
+    /// For points (m).
+    position: f64,
+    /// For directions (rad).
+    orientation: f64,
+}
 
 /// The kinematic families with a closed-form inverse.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -52,11 +60,10 @@ enum Plan {
 }
 
 impl Plan {
-    fn detect(axes: &[Axis; 6]) -> Option<(Plan, Defect)> {
-        if let Some((wrist, defect)) = SphericalWrist::detect(axes) {
-            return Some((Plan::Wrist(wrist), defect));
-        }
-        ThreeParallel::detect(axes).map(|(parallel, defect)| (Plan::Parallel(parallel), defect))
+    fn detect(axes: &[Axis; 6]) -> Option<Plan> {
+        SphericalWrist::detect(axes)
+            .map(Plan::Wrist)
+            .or_else(|| ThreeParallel::detect(axes).map(Plan::Parallel))
     }
 }
 
@@ -99,10 +106,7 @@ pub struct ClosedForm {
     home: Se3,
     /// `M⁻¹`.
     home_inverse: Se3,
-    /// The model's own axes (not idealised), base to tip, to check each solution with.
-    axes: [Axis; 6],
-    position_tolerance: f64,
-    orientation_tolerance: f64,
+    tolerance: Tolerance,
 }
 
 impl ClosedForm {
@@ -158,10 +162,10 @@ impl ClosedForm {
         let home = pose.compose(&f.placement);
         // The family, read from the base or else from the tip.
         let reversed_axes = [5, 4, 3, 2, 1, 0].map(|k| axes[k].reversed());
-        let (plan, defect, reversed) = match Plan::detect(&axes) {
-            Some((plan, defect)) => (plan, defect, false),
+        let (plan, reversed) = match Plan::detect(&axes) {
+            Some(plan) => (plan, false),
             None => match Plan::detect(&reversed_axes) {
-                Some((plan, defect)) => (plan, defect, true),
+                Some(plan) => (plan, true),
                 None => return Ok(None),
             },
         };
@@ -181,9 +185,10 @@ impl ClosedForm {
             reversed,
             home,
             home_inverse: home.inverse(),
-            axes,
-            position_tolerance: ACCURACY * size + 10.0 * (defect.distance + defect.angle * size),
-            orientation_tolerance: ACCURACY + 10.0 * defect.angle,
+            tolerance: Tolerance {
+                position: ACCURACY * size,
+                orientation: ACCURACY,
+            },
         }))
     }
 
@@ -202,15 +207,16 @@ impl ClosedForm {
     /// the frame at `target_in_world`: up to 8, written to the first entries of `out`; returns
     /// how many. Allocates nothing.
     ///
-    /// Each solution is checked by forward kinematics of the model's own axes and kept only
-    /// when it reproduces the target within `1e-9` (m per metre of the arm's size, and rad;
-    /// wider for a geometry that is not exactly ideal, see [`detect`](ClosedForm::detect)).
-    /// So an unreachable target, or one with NaN, gives 0 solutions, and a target reached by
-    /// fewer branches (at a stretched elbow, or out of reach of one shoulder side) gives
-    /// fewer. Angles are in `(−π, π]`, not wrapped into the joint limits. At a singularity where
-    /// a continuum of solutions exists (two wrist axes aligned), one member is returned: one of
-    /// the aligned joints is set to 0 (`θ₄` of a spherical wrist, `θ₆` of a three-parallel arm)
-    /// and the others take the whole turn.
+    /// Each of the up to 2 × 2 × 2 branches is kept only when every subproblem on it is exact
+    /// (misses by less than `1e-9` m per metre of the arm's size for points, `1e-9` rad for
+    /// directions), that is when `e^{[S₁]θ₁} ⋯ e^{[S₆]θ₆} M` of the ideal geometry (see
+    /// [`detect`](ClosedForm::detect)) is the target. So an unreachable target, or one with
+    /// NaN, gives 0 solutions, and a target reached by fewer branches (at a stretched elbow, or
+    /// out of reach of one shoulder side) gives fewer. Angles are in `(−π, π]`, not wrapped
+    /// into the joint limits. At a singularity where a continuum of solutions exists (two
+    /// wrist axes aligned), one member is returned: one of the aligned joints is set to 0
+    /// (`θ₄` of a spherical wrist, `θ₆` of a three-parallel arm) and the others take the whole
+    /// turn.
     pub fn solve(&self, target_in_world: &Se3, out: &mut [[f64; 6]; 8]) -> usize {
         // G = T_d M⁻¹ = e^{[S₁]θ₁} ⋯ e^{[S₆]θ₆}; read from the tip, G⁻¹.
         let mut g = target_in_world.compose(&self.home_inverse);
@@ -227,27 +233,15 @@ impl ClosedForm {
             let known = out[..count]
                 .iter()
                 .any(|other| (0..6).all(|k| wrap(other[k] - theta[k]).abs() < SAME_SOLUTION));
-            if count < out.len() && !known && self.reaches(&theta, target_in_world) {
+            if count < out.len() && !known {
                 out[count] = theta;
                 count += 1;
             }
         };
         match &self.plan {
-            Plan::Wrist(wrist) => wrist.solve(&g, &mut keep),
-            Plan::Parallel(parallel) => parallel.solve(&g, &mut keep),
+            Plan::Wrist(wrist) => wrist.solve(&g, &self.tolerance, &mut keep),
+            Plan::Parallel(parallel) => parallel.solve(&g, &self.tolerance, &mut keep),
         }
         count
-    }
-
-    /// Whether `T(θ) = e^{[S₁]θ₁} ⋯ e^{[S₆]θ₆} M` with the model's axes is `target` within the
-    /// tolerances.
-    fn reaches(&self, theta: &[f64; 6], target: &Se3) -> bool {
-        let mut pose = self.axes[0].exp(theta[0]);
-        for k in 1..6 {
-            pose = pose.compose(&self.axes[k].exp(theta[k]));
-        }
-        let pose = pose.compose(&self.home);
-        (pose.translation - target.translation).norm() <= self.position_tolerance
-            && (pose.rotation - target.rotation).amax() <= self.orientation_tolerance
     }
 }

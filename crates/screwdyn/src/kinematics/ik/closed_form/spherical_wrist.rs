@@ -11,9 +11,10 @@
 
 use super::super::subproblems::{sp1, sp2, sp3, sp4, Axis};
 use super::geometry::{
-    along, distance_to_line, meet, meeting_point, parallel, perpendicular_unit, sine, Defect,
-    ANGLE_TOL, DISTANCE_TOL,
+    along, distance_to_line, meet, meeting_point, parallel, perpendicular_unit, sine, ANGLE_TOL,
+    DISTANCE_TOL,
 };
+use super::Tolerance;
 use crate::scalar::sin_cos_f64;
 use crate::spatial::Se3;
 use nalgebra::{Matrix3, Vector3};
@@ -47,7 +48,7 @@ fn rotation(axis: &Axis, theta: f64) -> Matrix3<f64> {
 
 impl SphericalWrist {
     /// The family's geometry when the six axes (world frame, home pose, base to tip) have it.
-    pub(crate) fn detect(axes: &[Axis; 6]) -> Option<(SphericalWrist, Defect)> {
+    pub(crate) fn detect(axes: &[Axis; 6]) -> Option<SphericalWrist> {
         let [a1, a2, a3, a4, a5, a6] = axes;
         // Axes 4, 5, 6 cross each other (4 ∦ 5, 5 ∦ 6) and meet in one point.
         if sine(a4, a5) <= ANGLE_TOL || sine(a5, a6) <= ANGLE_TOL {
@@ -57,10 +58,6 @@ impl SphericalWrist {
         if spread > DISTANCE_TOL || distance_to_line(&wrist_center, a3) <= DISTANCE_TOL {
             return None;
         }
-        let mut defect = Defect {
-            angle: 0.0,
-            distance: spread,
-        };
         let mut ideal = *axes;
         for (i, axis) in [a4, a5, a6].into_iter().enumerate() {
             ideal[3 + i] = Axis {
@@ -72,36 +69,28 @@ impl SphericalWrist {
         let position = if parallel(a2, a3) && !parallel(a1, a2) && distinct_23 {
             // Axis 3 made exactly parallel to axis 2.
             ideal[2] = along(a3, &a2.w);
-            defect.angle = sine(a2, a3);
             Position::Parallel23 { n: a2.w }
         } else {
-            let (c, distance) = meet(a1, a2)?;
+            let c = meet(a1, a2)?;
             if distance_to_line(&c, a3) <= DISTANCE_TOL {
                 return None;
             }
             ideal[0].r = c;
             ideal[1].r = c;
-            defect = defect.max(Defect {
-                angle: 0.0,
-                distance,
-            });
             Position::Meeting12 { c }
         };
         let across_6 = perpendicular_unit(a6, &a5.w);
-        Some((
-            SphericalWrist {
-                axes: ideal,
-                wrist_center,
-                position,
-                across_6,
-            },
-            defect,
-        ))
+        Some(SphericalWrist {
+            axes: ideal,
+            wrist_center,
+            position,
+            across_6,
+        })
     }
 
-    /// Every branch for `G = T_d M⁻¹`, handed to `emit` (up to 2 × 2 × 2); exact or not, the
-    /// caller checks.
-    pub(crate) fn solve(&self, g: &Se3, emit: &mut impl FnMut([f64; 6])) {
+    /// Every exact solution for `G = T_d M⁻¹`, handed to `emit` (up to 2 × 2 × 2 branches; a
+    /// branch is dropped as soon as one of its subproblems misses by more than `tolerance`).
+    pub(crate) fn solve(&self, g: &Se3, tolerance: &Tolerance, emit: &mut impl FnMut([f64; 6])) {
         let [a1, a2, a3, ..] = &self.axes;
         let wrist = &self.wrist_center;
         let target = g.act_point(wrist);
@@ -115,10 +104,13 @@ impl SphericalWrist {
                     // |e^{[S₃]θ₃} p_w − r₂| = |e^{−[S₁]θ₁} p_d − r₂| (subproblem 3).
                     let third = sp3(a3, wrist, &a2.r, (y - a2.r).norm());
                     for &theta3 in &third.theta[..third.count] {
-                        // e^{[S₂]θ₂} (e^{[S₃]θ₃} p_w) = e^{−[S₁]θ₁} p_d (subproblem 1).
+                        // e^{[S₂]θ₂} (e^{[S₃]θ₃} p_w) = e^{−[S₁]θ₁} p_d (subproblem 1); its miss
+                        // is the miss of the wrist centre.
                         let moved = a3.exp(theta3).act_point(wrist);
-                        let theta2 = sp1(a2, &moved, &y);
-                        self.orient(g, [theta1, theta2, theta3], emit);
+                        let second = sp1(a2, &moved, &y);
+                        if second.miss <= tolerance.position {
+                            self.orient(g, [theta1, second.theta, theta3], tolerance, emit);
+                        }
                     }
                 }
             }
@@ -131,8 +123,10 @@ impl SphericalWrist {
                     let moved = a3.exp(theta3).act_point(wrist);
                     let pairs = sp2(a1, a2, &moved, &target);
                     for i in 0..pairs.count {
-                        let arm = [pairs.theta1[i], pairs.theta2[i], theta3];
-                        self.orient(g, arm, emit);
+                        if pairs.miss[i] <= tolerance.position {
+                            let arm = [pairs.theta1[i], pairs.theta2[i], theta3];
+                            self.orient(g, arm, tolerance, emit);
+                        }
                     }
                 }
             }
@@ -140,7 +134,13 @@ impl SphericalWrist {
     }
 
     /// The wrist angles for one placement of the first three joints.
-    fn orient(&self, g: &Se3, arm: [f64; 3], emit: &mut impl FnMut([f64; 6])) {
+    fn orient(
+        &self,
+        g: &Se3,
+        arm: [f64; 3],
+        tolerance: &Tolerance,
+        emit: &mut impl FnMut([f64; 6]),
+    ) {
         let [a1, a2, a3, a4, a5, a6] = &self.axes;
         let [theta1, theta2, theta3] = arm;
         // R_w = (R₁ R₂ R₃)ᵀ R_G.
@@ -151,11 +151,14 @@ impl SphericalWrist {
         let pairs = sp2(&d4, &d5, &a6.w, &(r_w * a6.w));
         for i in 0..pairs.count {
             let (theta4, theta5) = (pairs.theta1[i], pairs.theta2[i]);
-            // R₆ x = (R₄ R₅)ᵀ R_w x for x ⟂ ω̂₆ (subproblem 1).
+            // R₆ x = (R₄ R₅)ᵀ R_w x for x ⟂ ω̂₆ (subproblem 1). With R₄ R₅ R₆ ω̂₆ = R_w ω̂₆, both
+            // exact means R₄ R₅ R₆ = R_w.
             let r45 = rotation(a4, theta4) * rotation(a5, theta5);
             let x = &self.across_6;
-            let theta6 = sp1(&d6, x, &r45.tr_mul(&(r_w * x)));
-            emit([theta1, theta2, theta3, theta4, theta5, theta6]);
+            let sixth = sp1(&d6, x, &r45.tr_mul(&(r_w * x)));
+            if pairs.miss[i] <= tolerance.orientation && sixth.miss <= tolerance.orientation {
+                emit([theta1, theta2, theta3, theta4, theta5, sixth.theta]);
+            }
         }
     }
 }
