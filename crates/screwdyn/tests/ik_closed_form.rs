@@ -115,6 +115,22 @@ fn kuka_like() -> Model {
     dh_model("kuka_like", &rows, false)
 }
 
+/// An ABB IRB 120 as a standard-DH table from the dimensions of its product specification
+/// (0.29, 0.27, 0.07, 0.302 and 0.072 m); axes 1 and 2 meet, so the wrist centre can reach
+/// axis 1.
+fn irb120() -> Model {
+    let mut rows = [
+        row(0.0, -FRAC_PI_2, 0.29, FULL),
+        row(0.27, 0.0, 0.0, FULL),
+        row(0.07, -FRAC_PI_2, 0.0, FULL),
+        row(0.0, FRAC_PI_2, 0.302, FULL),
+        row(0.0, -FRAC_PI_2, 0.0, FULL),
+        row(0.0, 0.0, 0.072, FULL),
+    ];
+    rows[1].theta = -FRAC_PI_2;
+    dh_model("irb120", &rows, false)
+}
+
 /// A spherical wrist whose first two axes meet while axes 2 and 3 are skew (60°).
 fn skew_elbow() -> Model {
     dh_model(
@@ -385,6 +401,7 @@ fn puma560_every_solution_of_random_poses() {
 #[test]
 fn other_spherical_wrists() {
     round_trips(&kuka_like(), ClosedFormFamily::SphericalWrist, 5, 300);
+    round_trips(&irb120(), ClosedFormFamily::SphericalWrist, 12, 300);
     round_trips(&skew_elbow(), ClosedFormFamily::SphericalWrist, 6, 300);
 }
 
@@ -528,6 +545,42 @@ fn puma_singularities() {
     assert!(count >= 1);
     check_solutions(&puma, &ik, &q, &out[..count], 1e-10);
     assert!(contains(&ik, &out[..count], &q, 1e-6));
+}
+
+#[test]
+fn shoulder_singularity() {
+    // The IRB 120's wrist centre (the origin of link 4) on axis 1 (the world z axis): θ₁ is
+    // free, the solver takes θ₁ = 0 and the wrist takes up the turn.
+    let irb = irb120();
+    let frame = tool(&irb);
+    let ik = ClosedForm::detect(&irb, frame).unwrap().unwrap();
+    let wrist_x = |t2: f64| {
+        let mut ws = Workspace::new(&irb);
+        forward_kinematics(&irb, &mut ws, &[0.0, t2, 0.3, 0.0, 0.0, 0.0]).unwrap();
+        ws.pose_in_world[3].translation.x
+    };
+    // Bisection for wrist_x(θ₂) = 0 on a bracket found by scanning.
+    let grid: Vec<f64> = (0..=64).map(|k| -PI + 2.0 * PI * k as f64 / 64.0).collect();
+    let k = (0..64)
+        .find(|&k| wrist_x(grid[k]) * wrist_x(grid[k + 1]) < 0.0)
+        .unwrap();
+    let (mut lo, mut hi) = (grid[k], grid[k + 1]);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if wrist_x(lo) * wrist_x(mid) <= 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let q = [0.4, 0.5 * (lo + hi), 0.3, 0.7, 0.6, -0.5];
+    let mut out = [[0.0; 6]; 8];
+    let count = ik.solve(&pose(&irb, frame, &q), &mut out);
+    assert!(count >= 1);
+    check_solutions(&irb, &ik, &q, &out[..count], 1e-10);
+    assert!(out[..count]
+        .iter()
+        .any(|t| t[0] == 0.0 && same_angle(t[1], q[1], 1e-7) && same_angle(t[2], q[2], 1e-7)));
 }
 
 #[test]

@@ -21,7 +21,7 @@ use nalgebra::{Matrix3, Vector3};
 use std::f64::consts::PI;
 
 /// Relative size below which the part of a vector that a rotation turns counts as zero: the
-/// angle is then free, and [`sp1`] answers `θ = 0`.
+/// angle is then free, and [`sp1`] and [`sp4`] answer `θ = 0`.
 const DEGENERATE: f64 = 1e-12;
 
 /// The angle `θ` wrapped into `(−π, π]`.
@@ -183,7 +183,8 @@ impl Roots {
 /// `A cos θ + B sin θ = C` with `A = h·u⊥`, `B = h·(ω̂ × u)`, `C = d − h·r − (h·ω̂)(ω̂·u)`; with
 /// `ρ = √(A² + B²)` and `φ = atan2(B, A)`, `θ = φ ± acos(C/ρ)`. When `|C| ≥ ρ` the plane is
 /// out of reach (or just touched): the one answer `θ = φ` (or `φ + π` for `C < 0`) minimises
-/// `|h·(e^{[S]θ} p) − d|`. When `ρ = 0` the left side does not depend on `θ`: `θ = 0`.
+/// `|h·(e^{[S]θ} p) − d|`. When `ρ` is below 10⁻¹² of `|h| |u|` the left side does not depend
+/// on `θ` (`p` on the axis, or `h` along it): the answer is `θ = 0`.
 #[inline]
 pub(crate) fn sp4(axis: &Axis, h: &Vector3<f64>, p: &Vector3<f64>, d: f64) -> Roots {
     let u = p - axis.r;
@@ -192,7 +193,7 @@ pub(crate) fn sp4(axis: &Axis, h: &Vector3<f64>, p: &Vector3<f64>, d: f64) -> Ro
     let b = h.dot(&axis.w.cross(&u));
     let c = d - h.dot(&axis.r) - h.dot(&axis.w) * along;
     let rho = (a * a + b * b).sqrt();
-    if rho <= f64::MIN_POSITIVE {
+    if rho <= DEGENERATE * h.norm() * u.norm() || rho == 0.0 {
         return Roots::one(0.0);
     }
     let phi = b.atan2(a);

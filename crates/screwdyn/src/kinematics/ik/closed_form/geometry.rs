@@ -64,22 +64,23 @@ pub(crate) fn meet(a: &Axis, b: &Axis) -> Option<Vector3<f64>> {
     (2.0 * half_distance <= DISTANCE_TOL).then_some(x)
 }
 
-/// A unit vector perpendicular to `a`'s direction, taken from `hint` when it is not parallel.
+/// A unit vector perpendicular to `a`'s direction: `hint` with its part along `ω̂` removed,
+/// or, when `hint` is (nearly) along `ω̂`, the coordinate axis farthest from `ω̂` treated so.
 pub(crate) fn perpendicular_unit(a: &Axis, hint: &Vector3<f64>) -> Vector3<f64> {
-    let candidates = [*hint, Vector3::x(), Vector3::y()];
-    let mut best = Vector3::z();
-    let mut best_norm = 0.0;
-    for c in candidates {
-        let p = c - a.w * a.w.dot(&c);
-        if p.norm() > 0.1 {
-            return p.normalize();
-        }
-        if p.norm() > best_norm {
-            best_norm = p.norm();
-            best = p;
-        }
+    let across = |v: Vector3<f64>| v - a.w * a.w.dot(&v);
+    let from_hint = across(*hint);
+    if from_hint.norm() > 0.1 * hint.norm() {
+        return from_hint.normalize();
     }
-    best.normalize()
+    let w = a.w.abs();
+    let axis = if w.x <= w.y && w.x <= w.z {
+        Vector3::x()
+    } else if w.y <= w.z {
+        Vector3::y()
+    } else {
+        Vector3::z()
+    };
+    across(axis).normalize()
 }
 
 #[cfg(test)]
@@ -95,7 +96,9 @@ mod tests {
         let c = Axis::through(Vector3::new(0.0, 0.1, 2.0), Vector3::x());
         assert!(meet(&a, &c).is_none());
         assert!(meet(&a, &along(&b, &Vector3::z())).is_none());
-        let p = perpendicular_unit(&a, &Vector3::z());
-        assert!(p.dot(&a.w).abs() < 1e-15 && (p.norm() - 1.0).abs() < 1e-15);
+        for hint in [Vector3::z(), Vector3::new(0.3, -0.2, 1.0)] {
+            let p = perpendicular_unit(&a, &hint);
+            assert!(p.dot(&a.w).abs() < 1e-15 && (p.norm() - 1.0).abs() < 1e-15);
+        }
     }
 }

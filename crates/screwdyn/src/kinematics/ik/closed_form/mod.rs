@@ -41,7 +41,6 @@ struct Tolerance {
 
 /// The kinematic families with a closed-form inverse.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[non_exhaustive]
 pub enum ClosedFormFamily {
     /// The last three axes meet in one point (the wrist centre), and the first three place it
     /// by subproblems: axes 2 ∥ 3 with axis 1 not parallel to them, or axes 1 and 2 meeting
@@ -50,6 +49,21 @@ pub enum ClosedFormFamily {
     /// Axes 2 ∥ 3 ∥ 4, and axes 5 and 6 meet (Universal Robots UR3/5/10/16 and e-series).
     /// Also the same geometry read from the tip.
     ThreeParallel,
+}
+
+impl ClosedFormFamily {
+    /// A short lowercase name: `spherical wrist` or `three parallel axes`.
+    ///
+    /// ```
+    /// use screwdyn::kinematics::ik::ClosedFormFamily;
+    /// assert_eq!(ClosedFormFamily::ThreeParallel.name(), "three parallel axes");
+    /// ```
+    pub fn name(&self) -> &'static str {
+        match self {
+            ClosedFormFamily::SphericalWrist => "spherical wrist",
+            ClosedFormFamily::ThreeParallel => "three parallel axes",
+        }
+    }
 }
 
 /// The subproblem sequence of a family.
@@ -213,10 +227,11 @@ impl ClosedForm {
     /// [`detect`](ClosedForm::detect)) is the target. So an unreachable target, or one with
     /// NaN, gives 0 solutions, and a target reached by fewer branches (at a stretched elbow, or
     /// out of reach of one shoulder side) gives fewer. Angles are in `(−π, π]`, not wrapped
-    /// into the joint limits. At a singularity where a continuum of solutions exists (two
-    /// wrist axes aligned), one member is returned: one of the aligned joints is set to 0
+    /// into the joint limits. At a singularity where a continuum of solutions exists, one
+    /// member is returned: with two wrist axes aligned, one of the aligned joints is set to 0
     /// (`θ₄` of a spherical wrist, `θ₆` of a three-parallel arm) and the others take the whole
-    /// turn.
+    /// turn; with the wrist centre on axis 1 (a spherical wrist's shoulder singularity),
+    /// `θ₁ = 0`.
     pub fn solve(&self, target_in_world: &Se3, out: &mut [[f64; 6]; 8]) -> usize {
         // G = T_d M⁻¹ = e^{[S₁]θ₁} ⋯ e^{[S₆]θ₆}; read from the tip, G⁻¹.
         let mut g = target_in_world.compose(&self.home_inverse);
