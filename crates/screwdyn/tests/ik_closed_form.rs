@@ -592,9 +592,9 @@ fn unreachable_and_non_finite_targets_have_no_solution() {
     for model in [builtin::load("ur5").unwrap(), puma560(), kuka_like()] {
         let frame = tool(&model);
         let ik = ClosedForm::detect(&model, frame).unwrap().unwrap();
-        let far = pose(&model, frame, &vec![0.0; 6]).with_translation([3.0, 0.5, 0.2].into());
+        let far = pose(&model, frame, &[0.0; 6]).with_translation([3.0, 0.5, 0.2].into());
         assert_eq!(ik.solve(&far, &mut out), 0, "{}", model.name());
-        let mut nan = pose(&model, frame, &vec![0.1; 6]);
+        let mut nan = pose(&model, frame, &[0.1; 6]);
         nan.translation.x = f64::NAN;
         assert_eq!(ik.solve(&nan, &mut out), 0);
         nan.translation.x = 0.1;
@@ -660,7 +660,7 @@ fn solve_allocates_nothing() {
         let frame = tool(&model);
         let ik = ClosedForm::detect(&model, frame).unwrap().unwrap();
         let targets: Vec<Se3> = (0..20)
-            .map(|i| pose(&model, frame, &vec![0.1 * i as f64 - 0.7; 6]))
+            .map(|i| pose(&model, frame, &[0.1 * i as f64 - 0.7; 6]))
             .collect();
         let mut out = [[0.0; 6]; 8];
         COUNT.with(|c| c.set(0));

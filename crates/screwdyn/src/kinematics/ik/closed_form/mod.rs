@@ -207,12 +207,26 @@ impl ClosedForm {
     }
 
     /// The family the arm was recognised as.
+    ///
+    /// ```
+    /// use screwdyn::kinematics::ik::{ClosedForm, ClosedFormFamily};
+    /// let ur5 = screwdyn::builtin::load("ur5").unwrap();
+    /// let ik = ClosedForm::detect(&ur5, ur5.frame_id("tool0").unwrap()).unwrap().unwrap();
+    /// assert_eq!(ik.family(), ClosedFormFamily::ThreeParallel);
+    /// ```
     pub fn family(&self) -> ClosedFormFamily {
         self.family
     }
 
     /// The six joints moving the frame, base to tip, as indices into `q`: solution `θ` of
     /// [`solve`](ClosedForm::solve) sets `q[joints()[k]] = θ[k]`.
+    ///
+    /// ```
+    /// use screwdyn::kinematics::ik::ClosedForm;
+    /// let ur5 = screwdyn::builtin::load("ur5").unwrap();
+    /// let ik = ClosedForm::detect(&ur5, ur5.frame_id("tool0").unwrap()).unwrap().unwrap();
+    /// assert_eq!(ik.joints(), [0, 1, 2, 3, 4, 5]);
+    /// ```
     pub fn joints(&self) -> [usize; 6] {
         self.joints
     }
@@ -232,6 +246,20 @@ impl ClosedForm {
     /// (`θ₄` of a spherical wrist, `θ₆` of a three-parallel arm) and the others take the whole
     /// turn; with the wrist centre on axis 1 (a spherical wrist's shoulder singularity),
     /// `θ₁ = 0`.
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// use screwdyn::kinematics::ik::ClosedForm;
+    /// use screwdyn::spatial::Se3;
+    /// let ur5 = screwdyn::builtin::load("ur5").unwrap();
+    /// let ik = ClosedForm::detect(&ur5, ur5.frame_id("tool0").unwrap()).unwrap().unwrap();
+    /// let mut out = [[0.0; 6]; 8];
+    /// // 3 m away: out of reach.
+    /// assert_eq!(ik.solve(&Se3::from_translation(Vector3::new(3.0, 0.0, 0.0)), &mut out), 0);
+    /// // In front of the base, the tool pointing down: reachable.
+    /// let up = Se3::from_rpy(std::f64::consts::PI, 0.0, 0.0).with_translation(Vector3::new(0.3, 0.2, 0.5));
+    /// assert!(ik.solve(&up, &mut out) > 0);
+    /// ```
     pub fn solve(&self, target_in_world: &Se3, out: &mut [[f64; 6]; 8]) -> usize {
         // G = T_d M⁻¹ = e^{[S₁]θ₁} ⋯ e^{[S₆]θ₆}; read from the tip, G⁻¹.
         let mut g = target_in_world.compose(&self.home_inverse);
