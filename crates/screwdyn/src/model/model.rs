@@ -423,6 +423,35 @@ impl<T: Real> Model<T> {
                 known: list(self.frames.iter().map(|f| f.name.clone())),
             })
     }
+    /// The index of the frame of the link called `name`: a moving body or a link attached by a
+    /// fixed joint (merged into the body it hangs from), the base included; extra frames (a
+    /// tool point, a sensor) are not links.
+    ///
+    /// # Errors
+    /// [`Error::UnknownName`](crate::Error::UnknownName) listing the links.
+    ///
+    /// ```
+    /// let m = screwdyn::builtin::planar2();
+    /// assert_eq!(m.link_frame_id("link2").unwrap(), m.frame_id("link2").unwrap());
+    /// let e = m.link_frame_id("hand").unwrap_err().to_string();
+    /// assert!(e.contains("no link named 'hand'"));
+    /// ```
+    pub fn link_frame_id(&self, name: &str) -> Result<usize> {
+        let is_link = |f: &Frame<T>| f.kind != FrameKind::Extra;
+        match self.frame_index.get(name) {
+            Some(&k) if is_link(&self.frames[k]) => Ok(k),
+            _ => Err(Error::UnknownName {
+                kind: "link",
+                name: name.into(),
+                known: list(
+                    self.frames
+                        .iter()
+                        .filter(|f| is_link(f))
+                        .map(|f| f.name.clone()),
+                ),
+            }),
+        }
+    }
     /// The index of the moving body (link) called `name`.
     ///
     /// # Errors
