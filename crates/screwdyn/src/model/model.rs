@@ -74,6 +74,8 @@ pub struct Model<T: Real = f64> {
     pub(crate) frame_index: HashMap<String, usize>,
     /// Physical-consistency problems found when the model was built.
     pub(crate) findings: Vec<PhysicalFinding>,
+    /// Named configurations (MJCF `<keyframe>`s), each `q` in joint order.
+    pub(crate) keyframes: Vec<(String, Vec<T>)>,
 }
 
 /// `Err(NonFinite)` naming `what` and the position of the first NaN or infinite value.
@@ -143,6 +145,38 @@ fn list(names: impl Iterator<Item = String>) -> String {
 }
 
 impl<T: Real> Model<T> {
+    /// The names of the model's keyframes (named configurations), in file order.
+    pub fn keyframe_names(&self) -> Vec<&str> {
+        self.keyframes.iter().map(|(n, _)| n.as_str()).collect()
+    }
+
+    /// The named configuration `name` (an MJCF `<key>`), `q` in joint order.
+    ///
+    /// # Errors
+    /// [`Error::UnknownName`] when the model has no keyframe of that name.
+    ///
+    /// ```
+    /// use screwdyn::io::{load_str, LoadOptions};
+    /// let text = r#"<mujoco><worldbody><body name="a"><joint name="j" axis="0 0 1"/>
+    ///   <geom size="0.1"/></body></worldbody>
+    ///   <keyframe><key name="up" qpos="0.5"/></keyframe></mujoco>"#;
+    /// let m = load_str(text, "one.xml", &LoadOptions::default()).unwrap();
+    /// assert_eq!(m.keyframe("up").unwrap(), &[0.5]);
+    /// assert_eq!(m.keyframe_names(), vec!["up"]);
+    /// assert!(m.keyframe("down").is_err());
+    /// ```
+    pub fn keyframe(&self, name: &str) -> Result<&[T]> {
+        self.keyframes
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, q)| q.as_slice())
+            .ok_or_else(|| Error::UnknownName {
+                kind: "keyframe",
+                name: name.into(),
+                known: self.keyframe_names().join(", "),
+            })
+    }
+
     /// The physical-consistency problems found when the model was built (an empty list for a
     /// consistent model): each names the link, where it was declared and what is wrong. They
     /// do not stop any algorithm; forward dynamics refuses only a mass matrix that is really
@@ -594,6 +628,11 @@ impl Model<f64> {
             body_frames: Vec::new(),
             frame_index: self.frame_index.clone(),
             findings: self.findings.clone(),
+            keyframes: self
+                .keyframes
+                .iter()
+                .map(|(n, q)| (n.clone(), q.iter().map(c).collect()))
+                .collect(),
         }
         .with_motions()
     }
