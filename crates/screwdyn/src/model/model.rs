@@ -376,6 +376,35 @@ impl<T: Real> Model<T> {
         }
         Ok(m)
     }
+    /// A copy with every joint's armature `I_a,i` (the rotor inertia reflected to the joint,
+    /// kg·m² or kg) set from `armature`, one value per joint; it is added to `M(q)`'s diagonal
+    /// and so enters every dynamics algorithm.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch)/[`Error::NonFinite`](crate::Error::NonFinite) for a vector of the wrong length or with NaN/∞; [`Error::InvalidArgument`](crate::Error::InvalidArgument) for a negative value.
+    ///
+    /// ```
+    /// use screwdyn::{builtin, dynamics::crba, Workspace};
+    /// let m = builtin::pendulum().with_armature(&[0.25]).unwrap();
+    /// let mut ws = Workspace::new(&m);
+    /// // M = m l² + I_a for the 1 kg, 1 m point-mass pendulum.
+    /// assert!((crba(&m, &mut ws, &[0.3]).unwrap()[(0, 0)] - 1.25).abs() < 1e-12);
+    /// assert!(builtin::pendulum().with_armature(&[-1.0]).is_err());
+    /// ```
+    pub fn with_armature(&self, armature: &[T]) -> Result<Self> {
+        self.check_vector(armature, "armature")?;
+        let mut m = self.clone();
+        for (j, &a) in m.joints.iter_mut().zip(armature) {
+            if a < T::zero() {
+                return Err(Error::InvalidArgument(format!(
+                    "joint '{}': the armature must be non-negative (got {a:?})",
+                    j.name
+                )));
+            }
+            j.armature = a;
+        }
+        Ok(m)
+    }
     /// Joint names in coordinate order.
     pub fn joint_names(&self) -> Vec<&str> {
         self.joints.iter().map(|j| j.name.as_str()).collect()
