@@ -1,5 +1,6 @@
 //! Motion planning in time: the fastest timing of a joint-space path within velocity,
-//! acceleration and torque limits (TOPP-RA), and jerk-limited point-to-point motion.
+//! acceleration and torque limits (TOPP-RA, [`time_optimal`]), and jerk-limited point-to-point
+//! motion ([`JerkLimited`]); the user guide is `docs/motion.md`.
 //!
 //! ```
 //! use screwdyn::motion::{time_optimal, CubicSpline, TimeOptimalOptions, TimingLimits};
@@ -14,11 +15,13 @@
 //! assert!(profile.peak.iter().zip(&profile.effort_limit).all(|(p, l)| *p <= l * 1.001));
 //! ```
 
+mod jerk_limited;
 mod path_dynamics;
 mod reachability;
 mod spline;
 mod time_optimal;
 
+pub use jerk_limited::JerkLimited;
 pub use path_dynamics::{PathDynamics, PathPoint};
 pub use reachability::LimitKind;
 pub use spline::{CubicSpline, Path};
