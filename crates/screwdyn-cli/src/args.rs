@@ -12,7 +12,14 @@ use std::path::PathBuf;
 /// tau.<joint>; a missing column is zero). Output: `--format table|json|csv` (table on a
 /// terminal, JSON otherwise). Bad input exits with status 2 and one sentence on stderr.
 #[derive(Parser, Debug)]
-#[command(name = "screwdyn", version, about, long_about)]
+// `about` is the first paragraph (with its full stop, which clap would drop) and `long_about`
+// the whole comment, so that `screwdyn` alone (the short help, on stderr) starts with the same
+// line as `--help`.
+#[command(
+    name = "screwdyn",
+    version,
+    about = "Kinematics and dynamics of robot manipulators, in the screw-theory notation."
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,

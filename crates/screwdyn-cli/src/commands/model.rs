@@ -207,10 +207,14 @@ pub fn export(a: &ExportArgs) -> Result<(), CliError> {
         ExportFormat::Urdf => screwdyn::io::urdf::to_urdf_string(&m)?,
     };
     match &a.output {
-        Some(p) => crate::write::atomic(p, |w| {
-            std::io::Write::write_all(w, text.as_bytes())
-                .map_err(|e| CliError::input(format!("cannot write {} ({e})", p.display())))
-        }),
+        Some(p) => {
+            crate::write::atomic(p, |w| {
+                std::io::Write::write_all(w, text.as_bytes())
+                    .map_err(|e| CliError::input(format!("cannot write {} ({e})", p.display())))
+            })?;
+            crate::write::announce(p);
+            Ok(())
+        }
         None => write_stdout(&text),
     }
 }

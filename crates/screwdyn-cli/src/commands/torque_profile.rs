@@ -49,6 +49,7 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
             e => e.into(),
         })?;
         file.commit()?;
+        crate::write::announce(path);
     }
     let r = profile_report(a, &m, &p, traj.duration(), &what);
     if let Some(path) = &a.plot {
