@@ -23,7 +23,10 @@ macro_rules! rnea_doc {
             "External wrenches (applied to every state): `fext={link: (6,)}` — the wrench of the\n",
             "environment on the link, in the link frame; `fext_world={link: (6,)}` — the same in the\n",
             "base frame (moment about the base origin); `tip_wrenches={frame: (6,)}` — the wrench the\n",
-            "frame applies to the environment, in that frame. Wrenches are `(m, f)`, moment first."
+            "frame applies to the environment, in that frame. Wrenches are `(m, f)`, moment first.\n",
+            "A link is named (any link, one attached by a fixed joint included: its wrench is moved\n",
+            "to the body it is merged into, `W^b = Ad_{H_b^f}ᵀ W^f`) or given by its index in\n",
+            "`link_names`."
         )
     };
 }

@@ -16,6 +16,7 @@ use numpy::PyUntypedArrayMethods;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
+use screwdyn::dynamics::link_wrench_on_body;
 use screwdyn::sim::{
     self, Controller, ControllerSpec, Disturbance, Integrator, JointEffects, Recording, SimOptions,
 };
@@ -207,12 +208,17 @@ impl PyModel {
             })?;
             let w: ArrayIn<'_> = t.get_item(1)?.extract()?;
             let w = fixed_states(&w, "a disturbance wrench", 6, false)?;
+            let in_world: bool = t.get_item(4)?.extract()?;
+            let link = self.link_frame(&t.get_item(0)?)?;
+            let w = Vector6::from_column_slice(w.row(0));
+            let (body, wrench) =
+                link_wrench_on_body(&self.model, link, w, in_world).map_err(call_err)?;
             out.push(Disturbance {
-                body: self.link(&t.get_item(0)?)?,
-                wrench: Vector6::from_column_slice(w.row(0)),
+                body,
+                wrench,
                 start: t.get_item(2)?.extract()?,
                 end: t.get_item(3)?.extract()?,
-                in_world: t.get_item(4)?.extract()?,
+                in_world,
             });
         }
         Ok(out)

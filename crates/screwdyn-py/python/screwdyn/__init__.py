@@ -158,7 +158,8 @@ class TorqueSeries:
 
 class Disturbance:
     """An external wrench ``(m, f)`` on ``link`` during ``[start, end)`` seconds, written in the
-    link frame (``frame="local"``) or in the base frame (``frame="world"``)."""
+    link frame (``frame="local"``) or in the base frame (``frame="world"``). ``link`` is a link
+    name (one attached by a fixed joint included) or an index in ``Model.link_names``."""
 
     def __init__(self, link, wrench, start: float = 0.0, end: float = math.inf, frame: str = "local"):
         if frame not in ("local", "world"):
