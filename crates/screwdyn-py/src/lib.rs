@@ -6,7 +6,7 @@
 //! # Where things are
 //!
 //! The files mirror the library's topics. `model` holds the class `Model` (`PyModel`): loading,
-//! properties, pickling. Its methods are in `kinematics`, `dynamics`, `energy`, `worked` (the
+//! properties, pickling. Its methods are in `configuration`, `kinematics`, `dynamics`, `energy`, `worked` (the
 //! closed form, Lagrangian coefficients and RNEA trace), `derivatives`, `identification`,
 //! `simulation` and `view`; `trajectory` holds the class `Trajectory`, `symbolic` the entry of
 //! `screwdyn.symbolic`. The infrastructure: `convert` (NumPy in and out), `batch` (one state
@@ -28,6 +28,7 @@
 mod args;
 mod batch;
 mod compute;
+mod configuration;
 mod convert;
 mod derivatives;
 mod dynamics;

@@ -77,8 +77,20 @@ class Model:
     physical_problems: List[str]
     """Physical-consistency findings of the description (empty for a consistent model)."""
 
+    configuration_ranges: FloatArray
+    """(nq, 2) rows ``[lo, hi]`` random configurations are drawn from: the limits, an infinite
+    bound replaced by ∓π (revolute, continuous, helical) or ∓1 m (prismatic)."""
+
     def with_joint_friction(self, damping: ArrayLike, friction: ArrayLike) -> Model: ...
     def to_urdf(self) -> str: ...
+
+    # configurations to start from
+    def neutral(self) -> FloatArray:
+        """(nq,): zero, or the point of the joint's range nearest zero when zero is outside it."""
+    def random_configuration(self, rng: Union[np.random.Generator, int, None] = None,
+                             n: Optional[int] = None) -> FloatArray:
+        """(nq,) or (n, nq), uniform over ``configuration_ranges``; ``rng`` a NumPy Generator,
+        an int seed (screwdyn's SplitMix64: the same on every machine) or None (fresh)."""
 
     # kinematics
     def frame_pose(self, q: ArrayLike, frame: FrameRef, *, threads: Optional[int] = None,
