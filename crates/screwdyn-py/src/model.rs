@@ -3,7 +3,7 @@
 //! each with its own `#[pymethods]` block.
 
 use crate::batch::Scratch;
-use crate::convert::{self, fixed_states, joint_states, ArrayIn};
+use crate::convert::{self, fixed_states, ArrayIn};
 use crate::errors::{call_err, guard, load_err, ModelError};
 use nalgebra::Vector3;
 use pyo3::exceptions::{PyTypeError, PyValueError};
@@ -382,18 +382,15 @@ impl PyModel {
         self.model.total_mass()
     }
 
-    /// A copy of the model with the given viscous damping and Coulomb friction per joint.
+    /// A copy of the model with the given viscous damping and Coulomb friction per joint (each
+    /// one value per joint or one number for all of them).
     fn with_joint_friction(
         &self,
         damping: ArrayIn<'_>,
         friction: ArrayIn<'_>,
     ) -> PyResult<PyModel> {
-        let d = joint_states(&self.model, &damping, "damping")?;
-        let f = joint_states(&self.model, &friction, "friction")?;
-        let (d, f) = (
-            d.single("with_joint_friction")?.to_vec(),
-            f.single("with_joint_friction")?.to_vec(),
-        );
+        let d = convert::model_per_joint(&self.model, &damping, "damping")?;
+        let f = convert::model_per_joint(&self.model, &friction, "friction")?;
         PyModel::rebuild(self.source.clone(), self.strict, self.gravity, Some((d, f)))
     }
 

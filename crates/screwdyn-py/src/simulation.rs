@@ -6,7 +6,7 @@
 
 use crate::args::method;
 use crate::compute::{arg, optional};
-use crate::convert::{self, fixed_states, joint_states, python_class, rows_array, values_1d};
+use crate::convert::{self, fixed_states, python_class, rows_array, values_1d};
 use crate::convert::{as_float, as_int, empty_tuple, vector, ArrayIn, StateIn};
 use crate::errors::call_err;
 use crate::model::PyModel;
@@ -340,10 +340,9 @@ impl<'a, 'py> ControllerArg<'a, 'py> {
     }
 }
 
-/// A joint vector of a controller (one state only).
+/// A joint vector of a controller: one value per joint or one number for all of them.
 fn joint_vector(m: &Model, a: &ArrayIn<'_>, name: &'static str) -> PyResult<Vec<f64>> {
-    let s = joint_states(m, a, name)?;
-    Ok(s.single("the controller")?.to_vec())
+    convert::model_per_joint(m, a, name)
 }
 
 /// The controller of a run: one the library builds (and runs with the GIL released), or a

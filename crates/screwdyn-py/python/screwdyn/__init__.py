@@ -65,7 +65,8 @@ __all__ = [
 
 def Trapezoid(q0, qf, vmax, amax, synchronised: bool = True) -> Trajectory:
     """Trapezoidal velocity profiles from ``q0`` to ``qf`` under per-joint limits ``vmax``
-    (rad/s) and ``amax`` (rad/s²); see :meth:`Trajectory.trapezoid`."""
+    (rad/s) and ``amax`` (rad/s²), each one value per joint or one number for every joint (as
+    ``Trapezoid(q0, qf, vmax=1.0, amax=2.0)``); see :meth:`Trajectory.trapezoid`."""
     return Trajectory.trapezoid(q0, qf, vmax, amax, synchronised)
 
 
@@ -107,8 +108,8 @@ def _list(x):
 
 
 class PD:
-    """PD control with gravity compensation, ``τ = Kp (q* − q) − Kd q̇ + g(q)``. Gains left
-    ``None`` take the library's defaults, ``Kp = ω² M_ii(q*)``, ``Kd = 2ω M_ii(q*)`` (ω = 10
+    """PD control with gravity compensation, ``τ = Kp (q* − q) − Kd q̇ + g(q)``; the target and
+    the gains are one value per joint or one number for every joint. Gains left ``None`` take the library's defaults, ``Kp = ω² M_ii(q*)``, ``Kd = 2ω M_ii(q*)`` (ω = 10
     rad/s: each joint critically damped)."""
 
     def __init__(self, target, kp=None, kd=None):

@@ -1,6 +1,7 @@
 """Type stubs of the native module screwdyn._screwdyn (re-exported by ``screwdyn``).
 
-Conventions: float64 NumPy arrays in model joint order; one state ``(nq,)`` or ``N`` stacked
+Conventions: float64 NumPy arrays in model joint order; a per-joint parameter (limits, gains,
+damping, friction, a trajectory's end points) is one value per joint or one number for all; one state ``(nq,)`` or ``N`` stacked
 states ``(N, nq)`` (a single argument is broadcast against stacked ones); twists and wrenches
 angular first ``(ω, v)`` / ``(m, f)``; SI units and radians. ``threads=None`` uses all cores,
 ``threads=1`` the calling thread only. ``out=`` (NumPy's convention) takes a float64,
@@ -81,7 +82,8 @@ class Model:
     """(nq, 2) rows ``[lo, hi]`` random configurations are drawn from: the limits, an infinite
     bound replaced by ∓π (revolute, continuous, helical) or ∓1 m (prismatic)."""
 
-    def with_joint_friction(self, damping: ArrayLike, friction: ArrayLike) -> Model: ...
+    def with_joint_friction(self, damping: ArrayLike, friction: ArrayLike) -> Model:
+        """Each one value per joint or one number for every joint."""
     def to_urdf(self) -> str: ...
 
     # configurations to start from
@@ -207,7 +209,8 @@ class Model:
     def __reduce__(self) -> Tuple[Any, ...]: ...
 
 class Trajectory:
-    """A joint-space trajectory."""
+    """A joint-space trajectory. Per-joint arguments (end points, limits, boundary velocities
+    and accelerations) are one value per joint or one number for every joint."""
 
     duration: float
     nq: int
