@@ -258,6 +258,26 @@ impl PyModel {
         self.model.frames().iter().map(|f| f.name.clone()).collect()
     }
 
+    /// The index of a frame (its position in :attr:`frame_names`) from its name, or from its
+    /// index (checked); Pinocchio's ``model.getFrameId(name)``. Every method taking a frame takes
+    /// either.
+    fn frame_id(&self, frame: &Bound<'_, PyAny>) -> PyResult<usize> {
+        self.frame(frame)
+    }
+
+    /// The name of a frame from its index (or its name, checked); ``frame_names[i]``.
+    fn frame_name(&self, frame: &Bound<'_, PyAny>) -> PyResult<String> {
+        let f = self.frame(frame)?;
+        Ok(self.model.frames()[f].name.clone())
+    }
+
+    /// The index of a joint (its position in :attr:`joint_names`, the coordinate it moves in
+    /// ``q``) from its name, or from its index (checked); Pinocchio's ``getJointId`` minus one
+    /// (Pinocchio's joint 0 is the universe).
+    fn joint_id(&self, joint: &Bound<'_, PyAny>) -> PyResult<usize> {
+        self.joint(joint)
+    }
+
     /// The parent link of each link (`None` for a link attached to the base): the seeds' `λ(i)`.
     #[getter]
     fn parents(&self) -> Vec<Option<usize>> {

@@ -45,7 +45,7 @@ SYMBOLIC_DEFAULT_MAX_TERMS: int
 
 # Private entry points of the Python layer (screwdyn.symbolic, SimResult.save, View.save); use
 # those instead.
-def _symbolic_derive(model: Model, quantity: str, symbols: str, frame: Optional[str],
+def _symbolic_derive(model: Model, quantity: str, symbols: str, frame: Optional[FrameRef],
                      reference_frame: str, coriolis: str, max_terms: int) -> Dict[str, Any]: ...
 def _save_recording(path: str, result: Union[SimResult, TorqueProfile]) -> None: ...
 def _write_text_atomically(path: str, text: str) -> None: ...
@@ -85,6 +85,14 @@ class Model:
     def with_joint_friction(self, damping: ArrayLike, friction: ArrayLike) -> Model:
         """Each one value per joint or one number for every joint."""
     def to_urdf(self) -> str: ...
+
+    # frames and joints by name or index (every method taking a frame takes either)
+    def frame_id(self, frame: FrameRef) -> int:
+        """The index of a frame in ``frame_names`` (Pinocchio's ``getFrameId``)."""
+    def frame_name(self, frame: FrameRef) -> str:
+        """``frame_names[i]``."""
+    def joint_id(self, joint: FrameRef) -> int:
+        """The index of a joint in ``joint_names`` (its coordinate in ``q``)."""
 
     # configurations to start from
     def neutral(self) -> FloatArray:

@@ -39,7 +39,7 @@ past ``max_terms``) raises ``ValueError`` with the library's sentence.
 from __future__ import annotations
 
 import fractions
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 from . import _screwdyn
 
@@ -191,7 +191,7 @@ def _latex_name(name: str) -> str:
     return {"Cθ̇": "C\\dot{\\theta}", "τ": "\\tau"}.get(name, name)
 
 
-def derive(model, quantity: str, *, symbols: str = "", frame: Optional[str] = None,
+def derive(model, quantity: str, *, symbols: str = "", frame: Union[str, int, None] = None,
            reference: str = "local", coriolis: str = "seed",
            max_terms: int = DEFAULT_MAX_TERMS) -> Derivation:
     """Derives ``quantity`` of ``model`` symbolically (the library's symbolic engine, as
@@ -202,7 +202,8 @@ def derive(model, quantity: str, *, symbols: str = "", frame: Optional[str] = No
         ``"jacobian"`` (6 × n, angular rows first), ``"energy"`` (``K`` and ``P``) or
         ``"regressor"`` (``Y``, ``τ = Y π``); underscores are accepted for hyphens.
     symbols: the parameters kept as symbols (see the module documentation).
-    frame: the frame of ``fk`` and ``jacobian`` (default: the last body's frame).
+    frame: the frame of ``fk`` and ``jacobian``, by name or index (default: the last body's
+        frame).
     reference: the Jacobian's reference, ``"local"``, ``"world"`` or ``"world-aligned"``.
     coriolis: ``"seed"`` (seed 000's literal ``C``) or ``"christoffel"`` (``Ṁ − 2C``
         skew-symmetric).
@@ -244,12 +245,12 @@ def inverse_dynamics(model, symbols: str = "", **options):
 torque = inverse_dynamics
 
 
-def forward_kinematics(model, frame: Optional[str] = None, symbols: str = "", **options):
+def forward_kinematics(model, frame: Union[str, int, None] = None, symbols: str = "", **options):
     """``H_f^0(θ)`` of ``frame`` (default: the last body's frame), 4 × 4."""
     return derive(model, "fk", symbols=symbols, frame=frame, **options)["H"]
 
 
-def jacobian(model, frame: Optional[str] = None, reference: str = "local", symbols: str = "",
+def jacobian(model, frame: Union[str, int, None] = None, reference: str = "local", symbols: str = "",
              **options):
     """The 6 × n Jacobian of ``frame`` (angular rows first) in ``reference``."""
     return derive(model, "jacobian", symbols=symbols, frame=frame, reference=reference,
