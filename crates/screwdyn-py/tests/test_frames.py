@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import screwdyn
+import screwdyn.symbolic
 
 ROOT = pathlib.Path(__file__).resolve().parents[3]
 Q = np.array([0.3, -1.1, 0.8, -0.4, 1.2, 0.6])
