@@ -37,6 +37,7 @@ mod errors;
 mod identification;
 mod kinematics;
 mod model;
+mod se3;
 mod simulation;
 mod symbolic;
 mod trajectory;
@@ -78,6 +79,7 @@ fn _screwdyn(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<trajectory::PyTrajectory>()?;
     symbolic::register(m)?;
     view::register(m)?;
+    se3::register(m)?;
     m.add_function(wrap_pyfunction!(_panic_for_tests, m)?)?;
     m.add_function(wrap_pyfunction!(_panic_in_batch_for_tests, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

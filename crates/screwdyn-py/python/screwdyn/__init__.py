@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from . import _screwdyn
+from . import _screwdyn, se3
 from ._screwdyn import Model, ModelError, Trajectory, builtin_names, load, load_string
 from ._view import View
 from ._results import (
@@ -58,6 +58,7 @@ __all__ = [
     "load",
     "load_string",
     "builtin_names",
+    "se3",
 ]
 
 
