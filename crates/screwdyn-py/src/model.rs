@@ -278,7 +278,7 @@ impl PyModel {
         self.joint(joint)
     }
 
-    /// The parent link of each link (`None` for a link attached to the base): the seeds' `λ(i)`.
+    /// The parent link of each link (`None` for a link attached to the base): `λ(i)` of docs/notation.md.
     #[getter]
     fn parents(&self) -> Vec<Option<usize>> {
         self.model.parents().to_vec()

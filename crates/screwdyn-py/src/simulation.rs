@@ -28,7 +28,8 @@ const CONTROLLERS: &str = "controller is None, an array of constant torques, scr
 
 #[pymethods]
 impl PyModel {
-    /// Simulates the robot from ``(q0, v0)`` for ``duration`` seconds (seed 004 §6.4).
+    /// Simulates the robot from ``(q0, v0)`` for ``duration`` seconds: forward dynamics
+    /// integrated in time.
     ///
     /// controller: ``None`` (zero torque), an array (constant torque), :class:`PD`,
     ///     :class:`ComputedTorque`, :class:`TorqueSeries`, or a callable ``f(t, q, v) -> tau``
@@ -94,8 +95,8 @@ impl PyModel {
         python_class(py, "screwdyn._results", "SimResult")?.call1((rec,))
     }
 
-    /// Inverse dynamics along ``trajectory`` every ``dt`` seconds (end included) — seed 003's
-    /// "how much torque to accelerate from rest to a constant velocity and stop again" — with
+    /// Inverse dynamics along ``trajectory`` every ``dt`` seconds (end included) — how much
+    /// torque it takes to accelerate from rest to a constant velocity and stop again — with
     /// peak and RMS torque per joint against the effort limits (a :class:`TorqueProfile`).
     #[pyo3(signature = (trajectory, dt = 0.01))]
     fn torque_profile<'py>(

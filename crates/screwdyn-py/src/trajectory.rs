@@ -36,8 +36,8 @@ impl Traj {
     }
 }
 
-/// A joint-space trajectory (seed 003's "from rest to constant velocity, and then back to
-/// stop"): make one with `Trajectory.trapezoid`, `Trajectory.quintic` or
+/// A joint-space trajectory (from rest to constant velocity, and then back to stop, or through
+/// waypoints): make one with `Trajectory.trapezoid`, `Trajectory.quintic` or
 /// `Trajectory.waypoints`; sample it with `sample(t)`.
 #[pyclass(name = "Trajectory", module = "screwdyn._screwdyn", frozen)]
 pub(crate) struct PyTrajectory {

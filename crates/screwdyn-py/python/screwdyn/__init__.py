@@ -1,10 +1,10 @@
-"""screwdyn: robot kinematics, dynamics and simulation in the screw-theory notation of the
-lecture notes (twists and wrenches angular first, ``V = (ω, v)``, ``W = (m, f)``), for NumPy,
-Jupyter and clusters.
+"""screwdyn: robot kinematics, dynamics and simulation in screw-theory notation (docs/notation.md:
+twists and wrenches angular first, ``V = (ω, v)``, ``W = (m, f)``, as in Lynch & Park's *Modern
+Robotics*), for NumPy, Jupyter and clusters.
 
 >>> import screwdyn
 >>> arm = screwdyn.load("builtin:planar2")
->>> arm.rnea([0.0, 0.0], [0.0, 0.0], [0.0, 0.0])   # seed 003: g(0) = [3 g, g]
+>>> arm.rnea([0.0, 0.0], [0.0, 0.0], [0.0, 0.0])   # two-link arm: g(0) = [3 g, g]
 array([29.43,  9.81])
 
 Every per-state function takes one state (``q`` of shape ``(nq,)``) or ``N`` stacked states
