@@ -95,7 +95,12 @@ impl PyModel {
     pub(crate) fn urdf_source(&self) -> Option<(PathBuf, String)> {
         match &self.source {
             Source::Text { file, text } => {
-                let urdf = screwdyn::io::Format::of_file(file) == Some(screwdyn::io::Format::Urdf);
+                use screwdyn::io::Format;
+                let urdf = match Format::of_file(file) {
+                    Some(Format::Urdf) => true,
+                    Some(Format::Mjcf) => Format::of_text(text) == Format::Urdf,
+                    _ => false,
+                };
                 let p = PathBuf::from(file);
                 (urdf && p.is_file()).then(|| (p, text.clone()))
             }
@@ -147,9 +152,9 @@ fn load(path_or_builtin: &Bound<'_, PyAny>, strict: bool) -> PyResult<PyModel> {
     })
 }
 
-/// Loads a model from the text of a description. `format` is `"urdf"` or `"toml"` (a TOML
-/// description says which of dh, modified-dh, poe or screwdyn it is with its `format` key);
-/// `None` guesses from the text (URDF starts with `<`). `name` names the text in messages.
+/// Loads a model from the text of a description. `format` is `"urdf"`, `"mjcf"` or `"toml"` (a
+/// TOML description says which of dh, modified-dh, poe or screwdyn it is with its `format`
+/// key); `None` guesses from the text (MJCF's root element is `<mujoco>`, URDF's `<robot>`). `name` names the text in messages.
 #[pyfunction]
 #[pyo3(signature = (text, format = None, *, name = "<string>", strict = false))]
 fn load_string(text: &str, format: Option<&str>, name: &str, strict: bool) -> PyResult<PyModel> {

@@ -74,6 +74,8 @@ pub struct Model<T: Real = f64> {
     pub(crate) frame_index: HashMap<String, usize>,
     /// Physical-consistency problems found when the model was built.
     pub(crate) findings: Vec<PhysicalFinding>,
+    /// Named configurations (MJCF `<keyframe>`s), each `q` in joint order.
+    pub(crate) keyframes: Vec<(String, Vec<T>)>,
 }
 
 /// `Err(NonFinite)` naming `what` and the position of the first NaN or infinite value.
@@ -143,6 +145,38 @@ fn list(names: impl Iterator<Item = String>) -> String {
 }
 
 impl<T: Real> Model<T> {
+    /// The names of the model's keyframes (named configurations), in file order.
+    pub fn keyframe_names(&self) -> Vec<&str> {
+        self.keyframes.iter().map(|(n, _)| n.as_str()).collect()
+    }
+
+    /// The named configuration `name` (an MJCF `<key>`), `q` in joint order.
+    ///
+    /// # Errors
+    /// [`Error::UnknownName`] when the model has no keyframe of that name.
+    ///
+    /// ```
+    /// use screwdyn::io::{load_str, LoadOptions};
+    /// let text = r#"<mujoco><worldbody><body name="a"><joint name="j" axis="0 0 1"/>
+    ///   <geom size="0.1"/></body></worldbody>
+    ///   <keyframe><key name="up" qpos="0.5"/></keyframe></mujoco>"#;
+    /// let m = load_str(text, "one.xml", &LoadOptions::default()).unwrap();
+    /// assert_eq!(m.keyframe("up").unwrap(), &[0.5]);
+    /// assert_eq!(m.keyframe_names(), vec!["up"]);
+    /// assert!(m.keyframe("down").is_err());
+    /// ```
+    pub fn keyframe(&self, name: &str) -> Result<&[T]> {
+        self.keyframes
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, q)| q.as_slice())
+            .ok_or_else(|| Error::UnknownName {
+                kind: "keyframe",
+                name: name.into(),
+                known: self.keyframe_names().join(", "),
+            })
+    }
+
     /// The physical-consistency problems found when the model was built (an empty list for a
     /// consistent model): each names the link, where it was declared and what is wrong. They
     /// do not stop any algorithm; forward dynamics refuses only a mass matrix that is really
@@ -339,6 +373,35 @@ impl<T: Real> Model<T> {
             }
             j.damping = damping[i];
             j.friction = friction[i];
+        }
+        Ok(m)
+    }
+    /// A copy with every joint's armature `I_a,i` (the rotor inertia reflected to the joint,
+    /// kg·m² or kg) set from `armature`, one value per joint; it is added to `M(q)`'s diagonal
+    /// and so enters every dynamics algorithm.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch)/[`Error::NonFinite`](crate::Error::NonFinite) for a vector of the wrong length or with NaN/∞; [`Error::InvalidArgument`](crate::Error::InvalidArgument) for a negative value.
+    ///
+    /// ```
+    /// use screwdyn::{builtin, dynamics::crba, Workspace};
+    /// let m = builtin::pendulum().with_armature(&[0.25]).unwrap();
+    /// let mut ws = Workspace::new(&m);
+    /// // M = m l² + I_a for the 1 kg, 1 m point-mass pendulum.
+    /// assert!((crba(&m, &mut ws, &[0.3]).unwrap()[(0, 0)] - 1.25).abs() < 1e-12);
+    /// assert!(builtin::pendulum().with_armature(&[-1.0]).is_err());
+    /// ```
+    pub fn with_armature(&self, armature: &[T]) -> Result<Self> {
+        self.check_vector(armature, "armature")?;
+        let mut m = self.clone();
+        for (j, &a) in m.joints.iter_mut().zip(armature) {
+            if a < T::zero() {
+                return Err(Error::InvalidArgument(format!(
+                    "joint '{}': the armature must be non-negative (got {a:?})",
+                    j.name
+                )));
+            }
+            j.armature = a;
         }
         Ok(m)
     }
@@ -594,6 +657,11 @@ impl Model<f64> {
             body_frames: Vec::new(),
             frame_index: self.frame_index.clone(),
             findings: self.findings.clone(),
+            keyframes: self
+                .keyframes
+                .iter()
+                .map(|(n, q)| (n.clone(), q.iter().map(c).collect()))
+                .collect(),
         }
         .with_motions()
     }

@@ -371,7 +371,7 @@ impl<'m> Recorder<'m> {
             v,
             a,
             tau: &plant.tau,
-            kinetic_energy: kinetic_energy_given_twists(self.model, &self.ws),
+            kinetic_energy: kinetic_energy_given_twists(self.model, &self.ws, v),
             potential_energy: potential_energy_given_poses(self.model, &self.ws),
             poses: &self.poses,
         })?;
