@@ -1,7 +1,7 @@
 //! `screwdyn.Trajectory` (the library's `sim` trajectories): trapezoidal velocity profiles,
 //! quintics and waypoints, sampled at given times.
 
-use crate::convert::{self, values_1d, vector, ArrayIn};
+use crate::convert::{self, joint_count, per_joint, values_1d, vector, ArrayIn};
 use crate::errors::{call_err, guard};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -36,8 +36,8 @@ impl Traj {
     }
 }
 
-/// A joint-space trajectory (seed 003's "from rest to constant velocity, and then back to
-/// stop"): make one with `Trajectory.trapezoid`, `Trajectory.quintic` or
+/// A joint-space trajectory (from rest to constant velocity, and then back to stop, or through
+/// waypoints): make one with `Trajectory.trapezoid`, `Trajectory.quintic` or
 /// `Trajectory.waypoints`; sample it with `sample(t)`.
 #[pyclass(name = "Trajectory", module = "screwdyn._screwdyn", frozen)]
 pub(crate) struct PyTrajectory {
@@ -49,6 +49,7 @@ pub(crate) struct PyTrajectory {
 impl PyTrajectory {
     /// Trapezoidal velocity profiles from `q0` to `qf` under per-joint velocity and
     /// acceleration limits (positive); `synchronised=True` makes every joint arrive together.
+    /// Each argument is one value per joint or one number for all of them.
     #[staticmethod]
     #[pyo3(signature = (q0, qf, vmax, amax, synchronised = true))]
     fn trapezoid(
@@ -59,11 +60,12 @@ impl PyTrajectory {
         synchronised: bool,
     ) -> PyResult<Self> {
         guard(|| {
+            let n = joint_count(&[&q0, &qf]);
             let t = Trapezoid::new(
-                &values_1d(&q0, "q0")?,
-                &values_1d(&qf, "qf")?,
-                &values_1d(&vmax, "vmax")?,
-                &values_1d(&amax, "amax")?,
+                &per_joint(&q0, "q0", n)?,
+                &per_joint(&qf, "qf", n)?,
+                &per_joint(&vmax, "vmax", n)?,
+                &per_joint(&amax, "amax", n)?,
                 synchronised,
             )
             .map_err(call_err)?;
@@ -75,7 +77,8 @@ impl PyTrajectory {
     }
 
     /// A quintic polynomial per joint from `(q0, v0, a0)` to `(qf, vf, af)` in `duration`
-    /// seconds (velocities and accelerations default to zero: rest to rest).
+    /// seconds (velocities and accelerations default to zero: rest to rest). Each argument is one
+    /// value per joint or one number for all of them.
     #[staticmethod]
     #[pyo3(signature = (q0, qf, duration, v0 = None, vf = None, a0 = None, af = None))]
     #[allow(clippy::too_many_arguments)]
@@ -89,12 +92,12 @@ impl PyTrajectory {
         af: Option<ArrayIn<'_>>,
     ) -> PyResult<Self> {
         guard(|| {
-            let q0 = values_1d(&q0, "q0")?;
-            let qf = values_1d(&qf, "qf")?;
-            let zero = vec![0.0; q0.len()];
+            let n = joint_count(&[&q0, &qf]);
+            let q0 = per_joint(&q0, "q0", n)?;
+            let qf = per_joint(&qf, "qf", n)?;
             let opt = |x: &Option<ArrayIn<'_>>, name| match x {
-                Some(a) => values_1d(a, name),
-                None => Ok(zero.clone()),
+                Some(a) => per_joint(a, name, n),
+                None => Ok(vec![0.0; n]),
             };
             let (v0, vf, a0, af) = (
                 opt(&v0, "v0")?,
