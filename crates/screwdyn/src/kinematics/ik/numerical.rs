@@ -114,20 +114,20 @@ struct Search {
 /// ```
 #[derive(Clone, Debug)]
 pub struct IkSolver {
-    model: Model,
-    tasks: Vec<IkTask>,
-    options: IkOptions,
+    pub(super) model: Model,
+    pub(super) tasks: Vec<IkTask>,
+    pub(super) options: IkOptions,
     /// The joints the solver moves, ascending.
-    active: Vec<usize>,
-    lower: Vec<f64>,
-    upper: Vec<f64>,
+    pub(super) active: Vec<usize>,
+    pub(super) lower: Vec<f64>,
+    pub(super) upper: Vec<f64>,
     /// Continuous joints, wrapped to within π of `q0`.
-    wraps: Vec<bool>,
+    pub(super) wraps: Vec<bool>,
     /// Where restarts draw each joint from.
-    ranges: Vec<(f64, f64)>,
+    pub(super) ranges: Vec<(f64, f64)>,
     /// More moving joints than weighed task axes.
-    redundant: bool,
-    closed_form: Option<ClosedForm>,
+    pub(super) redundant: bool,
+    pub(super) closed_form: Option<ClosedForm>,
 }
 
 impl IkSolver {
@@ -304,25 +304,35 @@ impl IkSolver {
         q0: &[f64],
         q_out: &mut [f64],
     ) -> Result<IkResult> {
-        self.solve_stream(ws, targets, q0, q_out, 0)
+        self.solve_from(ws, targets, q0, q_out, 0, None)
     }
 
-    /// [`solve`](IkSolver::solve) with the random restarts drawn from `stream` of the seed.
-    pub(super) fn solve_stream(
+    /// [`solve`](IkSolver::solve) with the random restarts drawn from `stream` of the seed;
+    /// or, given a `start`, one attempt from there (no restarts).
+    pub(super) fn solve_from(
         &self,
         ws: &mut IkWorkspace,
         targets: &[Se3],
         q0: &[f64],
         q_out: &mut [f64],
         stream: u64,
+        start: Option<&[f64]>,
     ) -> Result<IkResult> {
         ws.check(self)?;
-        self.check_inputs(targets, q0, q_out)?;
+        self.check_inputs(targets, q0, q_out.len())?;
         let deadline = self.options.time_limit.map(|t| Instant::now() + t);
         let mut rng = SplitMix::new(self.options.seed, stream);
         ws.q.copy_from_slice(q0);
         ws.best.copy_from_slice(q0);
-        if let Some(cf) = &self.closed_form {
+        let max_restarts = if start.is_some() {
+            0
+        } else {
+            self.options.max_restarts
+        };
+        if let Some(start) = start {
+            ws.q.copy_from_slice(start);
+            self.project(&mut ws.q, q0);
+        } else if let Some(cf) = &self.closed_form {
             let count = cf.solve(&targets[0], &mut ws.solutions);
             nearest_closed_form(
                 cf,
@@ -347,7 +357,7 @@ impl IkSolver {
                 search.best_end = end;
             }
             let out_of_time = end == End::OutOfTime;
-            if out_of_time || search.best_score <= 1.0 || restarts >= self.options.max_restarts {
+            if out_of_time || search.best_score <= 1.0 || restarts >= max_restarts {
                 break out_of_time;
             }
             restarts += 1;
@@ -358,7 +368,7 @@ impl IkSolver {
             }
             self.project(&mut ws.q, q0);
         };
-        if search.best_score > 1.0 && !out_of_time {
+        if search.best_score > 1.0 && !out_of_time && start.is_none() {
             // No attempt met the tasks: descend monotonically from the best q to the nearest
             // pose (a refused step raises the damping), so that the reported errors are the
             // nearest pose's.
@@ -589,7 +599,7 @@ impl IkSolver {
         Ok(blocked > free)
     }
 
-    fn check_inputs(&self, targets: &[Se3], q0: &[f64], q_out: &[f64]) -> Result<()> {
+    pub(super) fn check_inputs(&self, targets: &[Se3], q0: &[f64], q_out_len: usize) -> Result<()> {
         if targets.len() != self.tasks.len() {
             return Err(Error::InvalidArgument(format!(
                 "{} IK targets were given for {} tasks",
@@ -609,10 +619,10 @@ impl IkSolver {
                 )));
             }
         }
-        if q_out.len() != self.model.nq() {
+        if q_out_len != self.model.nq() {
             return Err(Error::InvalidArgument(format!(
                 "the IK output q has {} values, the model has {} joints",
-                q_out.len(),
+                q_out_len,
                 self.model.nq()
             )));
         }
