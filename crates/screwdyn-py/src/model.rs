@@ -263,6 +263,23 @@ impl PyModel {
         self.model.frames().iter().map(|f| f.name.clone()).collect()
     }
 
+    /// Names of the model's keyframes (named configurations, an MJCF file's `<key>`s).
+    #[getter]
+    fn keyframe_names(&self) -> Vec<String> {
+        self.model
+            .keyframe_names()
+            .into_iter()
+            .map(String::from)
+            .collect()
+    }
+
+    /// The named configuration `name` (an MJCF `<key>`): `q`, `(nq,)`. Raises
+    /// screwdyn.ModelError for a name the model does not have.
+    fn keyframe<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        let q = self.model.keyframe(name).map_err(call_err)?;
+        convert::vector(py, q)
+    }
+
     /// The parent link of each link (`None` for a link attached to the base): the seeds' `λ(i)`.
     #[getter]
     fn parents(&self) -> Vec<Option<usize>> {

@@ -60,6 +60,7 @@ class Model:
     joint_types: List[str]
     link_names: List[str]
     frame_names: List[str]
+    keyframe_names: List[str]
     parents: List[Optional[int]]
     lower_limits: FloatArray
     upper_limits: FloatArray
@@ -79,6 +80,7 @@ class Model:
 
     def with_joint_friction(self, damping: ArrayLike, friction: ArrayLike) -> Model: ...
     def to_urdf(self) -> str: ...
+    def keyframe(self, name: str) -> FloatArray: ...
 
     # kinematics
     def frame_pose(self, q: ArrayLike, frame: FrameRef, *, threads: Optional[int] = None,
