@@ -109,8 +109,9 @@ impl PyModel {
     }
 }
 
-/// Loads a model from a `.urdf` file, a `.toml` file (DH, modified DH, product of exponentials or
-/// the native format, chosen by its `format` key) or `builtin:<name>`.
+/// Loads a model from a `.urdf` file, a `.xml` file (MuJoCo's MJCF), a `.toml` file (DH, modified
+/// DH, product of exponentials or the native format, chosen by its `format` key) or
+/// `builtin:<name>`.
 ///
 /// Raises FileNotFoundError for a missing file and screwdyn.ModelError (a ValueError) for a
 /// description that cannot be loaded; the message names the file and line. Physically
