@@ -5,9 +5,10 @@ use std::path::PathBuf;
 
 /// Kinematics and dynamics of robot manipulators, in the screw-theory notation.
 ///
-/// MODEL is a .urdf or .toml file, or builtin:<name> (builtin:planar2, builtin:pendulum,
-/// builtin:ur5, builtin:panda, builtin:branched). Joint-space vectors are comma-separated numbers
-/// in model joint order (`--q 0.1,0.2`); an absent vector is all zeros. Numeric commands take one
+/// MODEL is a .urdf, .xml (MuJoCo's MJCF) or .toml file, or builtin:<name> (builtin:planar2,
+/// builtin:pendulum, builtin:ur5, builtin:panda, builtin:branched). Joint-space vectors are
+/// comma-separated numbers in model joint order (`--q 0.1,0.2`), or for `--q` a model's named
+/// configuration (`--q key:home`, an MJCF <key>); an absent vector is all zeros. Numeric commands take one
 /// state from flags or many from `--input states.csv` (columns q.<joint>, v.<joint>, a.<joint>,
 /// tau.<joint>; a missing column is zero). Output: `--format table|json|csv` (table on a
 /// terminal, JSON otherwise). Bad input exits with status 2 and one sentence on stderr.
@@ -89,7 +90,7 @@ pub enum Command {
 pub struct DerivativesArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Joint velocities q̇ (default: all zero).
@@ -106,7 +107,7 @@ pub struct DerivativesArgs {
 pub struct RegressorArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Joint velocities q̇ (default: all zero).
@@ -193,7 +194,7 @@ pub struct ModelArgs {
 
 #[derive(Args, Debug)]
 pub struct CheckArgs {
-    /// A .urdf or .toml file, or builtin:<name>.
+    /// A .urdf, .xml (MJCF) or .toml file, or builtin:<name>.
     pub model: String,
     /// Output format (default: table on a terminal, JSON otherwise).
     #[arg(long, value_enum)]
@@ -218,7 +219,7 @@ pub struct Common {
 pub struct QArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
 }
@@ -227,7 +228,7 @@ pub struct QArgs {
 pub struct QvArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Joint velocities q̇, comma-separated (default: all zero).
@@ -239,7 +240,7 @@ pub struct QvArgs {
 pub struct FkArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Only this frame.
@@ -251,7 +252,7 @@ pub struct FkArgs {
 pub struct JacobianArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// The frame whose Jacobian to compute (default: the last frame of the model).
@@ -279,7 +280,7 @@ pub struct WrenchArgs {
 pub struct InverseDynamicsArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Joint velocities q̇ (default: all zero).
@@ -296,7 +297,7 @@ pub struct InverseDynamicsArgs {
 pub struct ForwardDynamicsArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Joint velocities q̇ (default: all zero).

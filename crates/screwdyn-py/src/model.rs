@@ -109,8 +109,9 @@ impl PyModel {
     }
 }
 
-/// Loads a model from a `.urdf` file, a `.toml` file (DH, modified DH, product of exponentials or
-/// the native format, chosen by its `format` key) or `builtin:<name>`.
+/// Loads a model from a `.urdf` file, a `.xml` file (MuJoCo's MJCF), a `.toml` file (DH, modified
+/// DH, product of exponentials or the native format, chosen by its `format` key) or
+/// `builtin:<name>`.
 ///
 /// Raises FileNotFoundError for a missing file and screwdyn.ModelError (a ValueError) for a
 /// description that cannot be loaded; the message names the file and line. Physically
@@ -281,6 +282,23 @@ impl PyModel {
     /// (Pinocchio's joint 0 is the universe).
     fn joint_id(&self, joint: &Bound<'_, PyAny>) -> PyResult<usize> {
         self.joint(joint)
+    }
+
+    /// Names of the model's keyframes (named configurations, an MJCF file's `<key>`s).
+    #[getter]
+    fn keyframe_names(&self) -> Vec<String> {
+        self.model
+            .keyframe_names()
+            .into_iter()
+            .map(String::from)
+            .collect()
+    }
+
+    /// The named configuration `name` (an MJCF `<key>`): `q`, `(nq,)`. Raises
+    /// screwdyn.ModelError for a name the model does not have.
+    fn keyframe<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        let q = self.model.keyframe(name).map_err(call_err)?;
+        convert::vector(py, q)
     }
 
     /// The parent link of each link (`None` for a link attached to the base): `λ(i)` of docs/notation.md.

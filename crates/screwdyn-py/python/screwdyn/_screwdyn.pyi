@@ -71,6 +71,7 @@ class Model:
     joint_types: List[str]
     link_names: List[str]
     frame_names: List[str]
+    keyframe_names: List[str]
     parents: List[Optional[int]]
     lower_limits: FloatArray
     upper_limits: FloatArray
@@ -95,6 +96,7 @@ class Model:
     def with_joint_friction(self, damping: ArrayLike, friction: ArrayLike) -> Model:
         """Each one value per joint or one number for every joint."""
     def to_urdf(self) -> str: ...
+    def keyframe(self, name: str) -> FloatArray: ...
 
     # frames and joints by name or index (every method taking a frame takes either)
     def frame_id(self, frame: FrameRef) -> int:
