@@ -67,6 +67,8 @@ class Model:
     effort_limits: FloatArray
     damping: FloatArray
     friction: FloatArray
+    armature: FloatArray
+    """Rotor inertias reflected to the joints (kg·m² or kg), added to the mass matrix's diagonal."""
     screw_axes: FloatArray
     """``S_i^{i,λ(i)}``, (nq, 6)."""
     spatial_inertias: FloatArray
@@ -79,6 +81,8 @@ class Model:
 
     def with_joint_friction(self, damping: ArrayLike, friction: ArrayLike) -> Model: ...
     def to_urdf(self) -> str: ...
+    def to_mjcf(self) -> str:
+        """MJCF (MuJoCo) text: armature, limits, damping, friction, motors, frames as sites."""
 
     # kinematics
     def frame_pose(self, q: ArrayLike, frame: FrameRef, *, threads: Optional[int] = None,
