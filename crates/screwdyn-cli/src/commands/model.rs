@@ -221,7 +221,13 @@ pub fn export(a: &ExportArgs) -> Result<(), CliError> {
             }
             text
         }
-        ExportFormat::Mjcf => screwdyn::io::mjcf_export::to_mjcf_string(&m)?,
+        ExportFormat::Mjcf => {
+            let text = screwdyn::io::mjcf_export::to_mjcf_string(&m)?;
+            for w in screwdyn::io::mjcf_export::mjcf_export_warnings(&m) {
+                eprintln!("screwdyn: warning: {w}");
+            }
+            text
+        }
     };
     match &a.output {
         Some(p) => crate::write::atomic(p, |w| {

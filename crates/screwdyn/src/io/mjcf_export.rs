@@ -6,7 +6,8 @@
 //! point of the axis closest to the body origin, since `v = −ω × p`) or a `slide` with
 //! `axis = v`. MuJoCo's joint coordinate is then screwdyn's `q_i` (`ref = 0`). The inertia is
 //! an `<inertial>` at the centre of mass with `fullinertia` about it in MuJoCo's order
-//! `xx yy zz xy xz yz`. Position limits become `range`, damping `damping`, Coulomb friction
+//! `xx yy zz xy xz yz` (`diaginertia` when the body axes are principal; a singular inertia in
+//! its principal axes, with `boundmass`/`boundinertia`, see [`mjcf_export_warnings`]). Position limits become `range`, damping `damping`, Coulomb friction
 //! `frictionloss`, the armature `armature`, and a finite effort limit a `<motor>` with
 //! `forcerange` (and `ctrlrange`) `±effort`. Every frame that is not a body frame (merged fixed
 //! links, tool points) becomes a `<site>` of the same name; gravity goes to
@@ -131,14 +132,51 @@ fn joint_element(j: &Joint) -> Result<String> {
     Ok(s)
 }
 
+/// The bound MuJoCo's compiler gives masses and principal moments of inertia
+/// (`boundmass`, `boundinertia`) when some moving body has none: MuJoCo refuses a moving body
+/// whose mass or any principal moment is below `mjMINVAL` (1e-15).
+pub const MUJOCO_INERTIA_BOUND: f64 = 1e-14;
+
+/// Whether MuJoCo would refuse body `b` as it is: no mass, or a principal moment of inertia
+/// (about the centre of mass) below the bound (a point mass, a thin rod).
+fn needs_bound(i: &SpatialInertia) -> bool {
+    let smallest = i.inertia_com.symmetric_eigenvalues().min();
+    i.mass < MUJOCO_INERTIA_BOUND || smallest < MUJOCO_INERTIA_BOUND
+}
+
 /// The `<inertial …/>` element: centre of mass, mass, and the inertia about the centre of mass
-/// as `fullinertia="xx yy zz xy xz yz"`.
+/// as `fullinertia="xx yy zz xy xz yz"` (MuJoCo's order); `diaginertia` when the body axes are
+/// principal, and in the principal axes (`quat`) when the inertia is singular, which
+/// `fullinertia` cannot hold.
 fn inertial_element(i: &SpatialInertia) -> String {
     let c = &i.inertia_com;
+    let head = format!("<inertial pos=\"{}\" mass=\"{}\"", v3(&i.com), num(i.mass));
+    if c[(0, 1)] == 0.0 && c[(0, 2)] == 0.0 && c[(1, 2)] == 0.0 {
+        return format!(
+            "{head} diaginertia=\"{} {} {}\"/>",
+            num(c[(0, 0)]),
+            num(c[(1, 1)]),
+            num(c[(2, 2)])
+        );
+    }
+    let eig = c.symmetric_eigen();
+    if eig.eigenvalues.min() <= MUJOCO_INERTIA_BOUND {
+        // I_c = R diag(λ) Rᵀ with R the eigenvectors, made a rotation (det = +1).
+        let mut r = eig.eigenvectors;
+        if r.determinant() < 0.0 {
+            r.column_mut(2).neg_mut();
+        }
+        let principal = Se3::new(r, i.com);
+        let l = eig.eigenvalues.map(|x| x.max(0.0));
+        return format!(
+            "<inertial {} mass=\"{}\" diaginertia=\"{}\"/>",
+            placement(&principal),
+            num(i.mass),
+            v3(&l)
+        );
+    }
     format!(
-        "<inertial pos=\"{}\" mass=\"{}\" fullinertia=\"{} {} {} {} {} {}\"/>",
-        v3(&i.com),
-        num(i.mass),
+        "{head} fullinertia=\"{} {} {} {} {} {}\"/>",
         num(c[(0, 0)]),
         num(c[(1, 1)]),
         num(c[(2, 2)]),
@@ -146,6 +184,34 @@ fn inertial_element(i: &SpatialInertia) -> String {
         num(c[(0, 2)]),
         num(c[(1, 2)])
     )
+}
+
+/// What an export to MJCF changes, one sentence each: a moving body without mass or with a
+/// singular rotational inertia (a point mass, a thin rod) is refused by MuJoCo, so the file
+/// raises masses and principal moments to [`MUJOCO_INERTIA_BOUND`] (`boundmass`,
+/// `boundinertia`), which changes `M(q)` by about that much. Empty when nothing changes.
+///
+/// ```
+/// use screwdyn::io::mjcf_export::mjcf_export_warnings;
+/// let w = mjcf_export_warnings(&screwdyn::builtin::planar2()); // point masses
+/// assert_eq!(w.len(), 2);
+/// assert!(w[0].contains("link1"));
+/// assert!(mjcf_export_warnings(&screwdyn::builtin::load("ur5").unwrap()).is_empty());
+/// ```
+pub fn mjcf_export_warnings(model: &Model) -> Vec<String> {
+    model
+        .bodies()
+        .iter()
+        .filter(|b| needs_bound(&b.inertia))
+        .map(|b| {
+            format!(
+                "link '{}' has no mass or a singular rotational inertia (a point mass or a thin \
+                 rod), which MuJoCo refuses for a moving body: the MJCF file raises them to {} \
+                 (boundmass, boundinertia), changing M by about as much",
+                b.name, MUJOCO_INERTIA_BOUND
+            )
+        })
+        .collect()
 }
 
 /// Writes `model` as MJCF (see the module documentation for the mapping): loading the text in
@@ -159,7 +225,7 @@ fn inertial_element(i: &SpatialInertia) -> String {
 /// use screwdyn::io::mjcf_export::to_mjcf_string;
 /// let m = screwdyn::builtin::planar2().with_armature(&[0.1, 0.0]).unwrap();
 /// let xml = to_mjcf_string(&m).unwrap();
-/// assert!(xml.contains("<compiler angle=\"radian\" autolimits=\"true\"/>"));
+/// assert!(xml.contains("<compiler angle=\"radian\" autolimits=\"true\""));
 /// assert!(xml.contains("type=\"hinge\"") && xml.contains("armature=\"0.1\""));
 /// ```
 pub fn to_mjcf_string(model: &Model) -> Result<String> {
@@ -175,7 +241,20 @@ pub fn to_mjcf_string(model: &Model) -> Result<String> {
         xml_comment(model.name())
     );
     let _ = writeln!(out, "<mujoco model=\"{}\">", xml_escape(model.name()));
-    let _ = writeln!(out, "  <compiler angle=\"radian\" autolimits=\"true\"/>");
+    if model.bodies().iter().any(|b| needs_bound(&b.inertia)) {
+        // See mjcf_export_warnings.
+        let b = num(MUJOCO_INERTIA_BOUND);
+        let _ = writeln!(
+            out,
+            "  <!-- MuJoCo refuses moving bodies without mass or rotational inertia: raised to {b}. -->"
+        );
+        let _ = writeln!(
+            out,
+            "  <compiler angle=\"radian\" autolimits=\"true\" boundmass=\"{b}\" boundinertia=\"{b}\"/>"
+        );
+    } else {
+        let _ = writeln!(out, "  <compiler angle=\"radian\" autolimits=\"true\"/>");
+    }
     let _ = writeln!(out, "  <option gravity=\"{}\"/>", v3(&model.gravity()));
     let _ = writeln!(out, "  <worldbody>");
     let sites = |body: Option<usize>, indent: &str, out: &mut String| {
@@ -210,9 +289,7 @@ pub fn to_mjcf_string(model: &Model) -> Result<String> {
         );
         let inner = format!("{indent}  ");
         let _ = writeln!(out, "{inner}{}", elements[i]);
-        if b.inertia.mass > 0.0 || b.inertia.inertia_com.amax() > 0.0 {
-            let _ = writeln!(out, "{inner}{}", inertial_element(&b.inertia));
-        }
+        let _ = writeln!(out, "{inner}{}", inertial_element(&b.inertia));
         sites(Some(i), &inner, &mut out);
         stack.push((i, depth, false));
         let children = model.children(i).unwrap_or(&[]);
