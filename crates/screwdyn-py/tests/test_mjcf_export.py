@@ -189,6 +189,10 @@ def test_mujoco_agrees_with_the_exported_model(name, model):
 
 def test_limits_damping_friction_and_motors_reach_mujoco():
     model = screwdyn.load_string(DH_ARM, "toml", name="dh_arm.toml")
+    # The TOML's armature keys, read-only on the model.
+    assert list(model.armature) == [0.3, 0.15, 0.05, 0.01]
+    with pytest.raises(AttributeError):
+        model.armature = [0.0] * 4
     mj = mujoco.MjModel.from_xml_string(model.to_mjcf())
     j1, j3 = mj.joint("joint1"), mj.joint("joint3")
     assert j1.limited[0] and j3.limited[0] and not mj.joint("joint4").limited[0]
