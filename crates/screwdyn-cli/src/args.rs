@@ -498,14 +498,16 @@ pub struct TorqueProfileArgs {
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ExportFormat {
     Urdf,
+    /// MuJoCo's XML format.
+    Mjcf,
 }
 
 #[derive(Args, Debug)]
 pub struct ExportArgs {
     /// A .urdf or .toml file, or builtin:<name>.
     pub model: String,
-    /// The format to write.
-    #[arg(long, value_enum)]
+    /// The format to write: urdf or mjcf (MuJoCo).
+    #[arg(long, value_enum, alias = "format")]
     pub to: ExportFormat,
     /// Write to this file instead of stdout.
     #[arg(long)]

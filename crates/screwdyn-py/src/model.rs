@@ -352,6 +352,14 @@ impl PyModel {
         convert::frozen(convert::vector(py, &v)?)
     }
 
+    /// Armatures: the rotor inertias reflected to the joints (kg·m² or kg), added to the
+    /// mass matrix's diagonal.
+    #[getter]
+    fn armature<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let v: Vec<f64> = self.model.joints().iter().map(|j| j.armature).collect();
+        convert::frozen(convert::vector(py, &v)?)
+    }
+
     /// Coulomb friction torques (N·m).
     #[getter]
     fn friction<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
@@ -440,6 +448,12 @@ impl PyModel {
     /// The model as URDF text (the library's exporter; gravity is not part of URDF).
     fn to_urdf(&self) -> PyResult<String> {
         screwdyn::io::urdf::to_urdf_string(&self.model).map_err(call_err)
+    }
+
+    /// The model as MJCF text, MuJoCo's format (the library's exporter: armature, limits,
+    /// damping, friction, effort limits as motors, frames as sites, gravity).
+    fn to_mjcf(&self) -> PyResult<String> {
+        screwdyn::io::mjcf_export::to_mjcf_string(&self.model).map_err(call_err)
     }
 
     fn __repr__(&self) -> String {

@@ -79,6 +79,8 @@ class Model:
     effort_limits: FloatArray
     damping: FloatArray
     friction: FloatArray
+    armature: FloatArray
+    """Rotor inertias reflected to the joints (kg·m² or kg), added to the mass matrix's diagonal."""
     screw_axes: FloatArray
     """``S_i^{i,λ(i)}``, (nq, 6)."""
     spatial_inertias: FloatArray
@@ -96,6 +98,8 @@ class Model:
     def with_joint_friction(self, damping: ArrayLike, friction: ArrayLike) -> Model:
         """Each one value per joint or one number for every joint."""
     def to_urdf(self) -> str: ...
+    def to_mjcf(self) -> str:
+        """MJCF (MuJoCo) text: armature, limits, damping, friction, motors, frames as sites."""
     def keyframe(self, name: str) -> FloatArray: ...
 
     # frames and joints by name or index (every method taking a frame takes either)
