@@ -159,7 +159,10 @@ fn bad_motion_input_is_one_sentence() {
         &UR5_WAYPOINTS.replace("q.elbow_joint", "q.elbow"),
     );
     run(&["--waypoints", &bad_col], "unknown column 'q.elbow'");
-    let nan = write("ur5_nan.csv", &UR5_WAYPOINTS.replace("-1.4,-1.6,0.5", "-1.4,NaN,0.5"));
+    let nan = write(
+        "ur5_nan.csv",
+        &UR5_WAYPOINTS.replace("-1.4,-1.6,0.5", "-1.4,NaN,0.5"),
+    );
     run(&["--waypoints", &nan], "is not a finite number");
     fails(
         &[

@@ -180,10 +180,17 @@ fn trajectory(a: &TorqueProfileArgs, m: &Model) -> Result<Motion, CliError> {
             let timed = time_optimal(m, path, &limits, &options)?;
             let report = timed.report().clone();
             let &(grid, _) = report.durations.last().expect("one grid at least");
+            let check = if report.max_excess <= 0.0 {
+                "every checked sample within the limits".to_string()
+            } else {
+                format!(
+                    "a checked sample over a limit by {:.2e} of it",
+                    report.max_excess
+                )
+            };
             let what = format!(
-                "time-optimal through {} waypoints: grid of {grid} intervals, limits exceeded by at most {:.2e} of a limit",
-                points.len(),
-                report.max_excess.max(0.0)
+                "time-optimal through {} waypoints: grid of {grid} intervals, {check}",
+                points.len()
             );
             Motion {
                 trajectory: Box::new(timed),
