@@ -55,6 +55,9 @@ pub enum Value {
     Text(String),
     /// A list of names (the joint names); omitted from CSV, whose columns carry them.
     Names(Labels),
+    /// A list of values of any length (a run's events); omitted from CSV, whose columns are
+    /// fixed.
+    List(Vec<Value>),
 }
 
 impl Value {
@@ -74,6 +77,10 @@ impl Value {
             }),
             Value::Map(items) => items
                 .iter()
+                .find_map(|(k, v)| v.non_finite().map(|at| format!(".{k}{at}"))),
+            Value::List(items) => items
+                .iter()
+                .enumerate()
                 .find_map(|(k, v)| v.non_finite().map(|at| format!(".{k}{at}"))),
             Value::Count(_) | Value::Flag(_) | Value::Text(_) | Value::Names(_) => None,
         }
@@ -129,6 +136,7 @@ impl Value {
             ),
             Value::Text(s) => Json::String(s.clone()),
             Value::Names(n) => Json::Array(n.iter().map(|s| Json::String(s.clone())).collect()),
+            Value::List(items) => Json::Array(items.iter().map(Value::to_json).collect()),
         }
     }
 
@@ -149,7 +157,7 @@ impl Value {
                     v.columns(&format!("{key}.{k}"), out);
                 }
             }
-            Value::Names(_) => {}
+            Value::Names(_) | Value::List(_) => {}
         }
     }
 
@@ -177,7 +185,7 @@ impl Value {
                 .iter()
                 .try_for_each(|(_, v)| v.write_csv(w, num, cells)),
             Value::Text(s) => csv_cell(w, cells, &csv_field(s)),
-            Value::Names(_) => Ok(()),
+            Value::Names(_) | Value::List(_) => Ok(()),
         }
     }
 
@@ -223,6 +231,16 @@ impl Value {
                 }
                 w.write_all(b"]")
             }
+            Value::List(items) => {
+                w.write_all(b"[")?;
+                for (k, v) in items.iter().enumerate() {
+                    if k > 0 {
+                        w.write_all(b",")?;
+                    }
+                    v.write_json(w, num)?;
+                }
+                w.write_all(b"]")
+            }
         }
     }
 
@@ -248,6 +266,11 @@ impl Value {
             }
             Value::Map(items) => {
                 for (k, v) in items {
+                    v.table(&format!("{key} {k}"), out);
+                }
+            }
+            Value::List(items) => {
+                for (k, v) in items.iter().enumerate() {
                     v.table(&format!("{key} {k}"), out);
                 }
             }

@@ -358,3 +358,37 @@ fn bad_input_is_one_sentence() {
         "no column 'z'",
     );
 }
+
+#[test]
+fn all_closed_form_solutions_of_the_ur5_reach_the_target() {
+    let (model, frame) = ("builtin:ur5", "tool0");
+    let lims = limits(model);
+    let target = pose(model, frame, &[0.3, -1.2, 1.5, -0.4, 1.1, 0.7]);
+    let v = json(&[
+        "ik",
+        model,
+        "--frame",
+        frame,
+        "--target",
+        &pose_text(&target),
+        "--all",
+    ]);
+    assert_eq!(
+        v["closed_form"],
+        Value::String("three parallel axes".into())
+    );
+    let solutions = mat(&v["solutions"]);
+    // A generic UR5 pose: 8 branches (2 shoulders × 2 elbows × 2 wrists).
+    assert_eq!(solutions.len(), 8);
+    for (k, q) in solutions.iter().enumerate() {
+        assert!(within(q, &lims));
+        let (dp, dr) = pose_errors(&pose(model, frame, q), &target);
+        assert!(dp <= 1e-6 && dr <= 1e-6, "solution {k}: {dp} {dr}");
+        for other in &solutions[..k] {
+            assert!(
+                q.iter().zip(other).any(|(a, b)| (a - b).abs() > 1e-3),
+                "duplicate"
+            );
+        }
+    }
+}

@@ -89,7 +89,7 @@ pub fn ik(a: &IkArgs) -> Result<(), CliError> {
                 "--all (every closed-form solution) needs a full pose: give --target, not --position",
             ));
         }
-        return all_solutions(a, &m, frame, &target);
+        return all_solutions(&m, frame, &target, &q0, options, a.model.format);
     }
     let solver = IkSolver::new(&m, &[task], options)?;
     let mut ws = IkWorkspace::new(&solver);
@@ -116,12 +116,35 @@ fn add_result(r: &mut Report, joints: &Labels, q: &[f64], result: &IkResult) {
         );
 }
 
-/// `--all`: every closed-form solution within the joint limits.
-fn all_solutions(_a: &IkArgs, m: &Model, frame: usize, _target: &Se3) -> Result<(), CliError> {
-    let name = &m.frames()[frame].name;
-    Err(CliError::input(format!(
-        "--all is not available yet for frame '{name}'"
-    )))
+/// `--all`: every closed-form solution within the joint limits (the one numerical answer for
+/// an arm without a closed form), nearest `q0` first.
+fn all_solutions(
+    m: &Model,
+    frame: usize,
+    target: &Se3,
+    q0: &[f64],
+    options: IkOptions,
+    format: Option<Format>,
+) -> Result<(), CliError> {
+    let solver = IkSolver::new(m, &[IkTask::pose(frame)], options)?;
+    let mut ws = IkWorkspace::new(&solver);
+    let all = solver.solve_all(&mut ws, target, q0)?;
+    let joints = names(m);
+    let family = solver.closed_form().map_or("none", |cf| cf.family().name());
+    let rows: Labels = (1..=all.len()).map(|k| k.to_string()).collect();
+    let q = DMatrix::from_fn(all.len(), joints.len(), |r, c| all[r].q[c]);
+    let worst = |f: fn(&IkResult) -> f64| all.iter().map(|s| f(&s.result)).fold(0.0, f64::max);
+    let mut r = Report::new();
+    r.add("joints", Value::Names(joints.clone()))
+        .add("closed_form", Value::Text(family.into()))
+        .add("count", Value::Count(all.len()))
+        .add("solutions", Value::Matrix(rows, joints, q))
+        .add("position_error", Value::Scalar(worst(|r| r.position_error)))
+        .add(
+            "orientation_error",
+            Value::Scalar(worst(|r| r.orientation_error)),
+        );
+    output::print(&[r], output::resolve(format), false)
 }
 
 /// One row of `--input`: its line, the target and the start (or why the row is bad).
@@ -499,12 +522,4 @@ fn solve_chunk(
             });
         }
     });
-}
-
-/// The solutions of `--all` as a matrix: one row per solution, one column per joint.
-#[allow(dead_code)]
-fn solutions_matrix(joints: &Labels, solutions: &[Vec<f64>]) -> Value {
-    let rows: Labels = (1..=solutions.len()).map(|k| k.to_string()).collect();
-    let m = DMatrix::from_fn(solutions.len(), joints.len(), |r, c| solutions[r][c]);
-    Value::Matrix(rows, joints.clone(), m)
 }

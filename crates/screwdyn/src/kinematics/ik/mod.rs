@@ -6,6 +6,8 @@
 //! that have a closed form (a spherical wrist, or three consecutive parallel axes), from the
 //! Paden–Kahan subproblems, and is the numerical solver's first guess on those arms.
 
+mod all_solutions;
+mod batch;
 mod closed_form;
 mod lm;
 mod numerical;
@@ -18,6 +20,8 @@ mod subproblems;
 mod target;
 mod workspace;
 
+pub use all_solutions::IkSolution;
+pub use batch::{IkJump, IkPath};
 pub use closed_form::{ClosedForm, ClosedFormFamily};
 pub use numerical::IkSolver;
 pub use options::{IkOptions, IkTask};
