@@ -113,3 +113,18 @@ def test_bad_input():
         row = good.copy()
         row[3, 0] = 1.0
         m.inverse_kinematics("tool0", row)
+
+
+def test_dask_batches_match_one_call():
+    da = pytest.importorskip("dask.array")
+    import screwdyn.dask as sdask
+
+    m = screwdyn.load("builtin:ur5")
+    targets = m.frame_pose(_random_q(m, 10, seed=9), "tool0")
+    q, success, dp, dr = sdask.map_inverse_kinematics(
+        m, "tool0", da.from_array(targets, chunks=(3, 4, 4)), threads=1)
+    q, success, dp = q.compute(scheduler="sync"), success.compute(scheduler="sync"), dp.compute()
+    assert q.shape == (10, 6) and success.all() and (dp <= 1e-6).all()
+    for k in range(10):
+        dp_k, dr_k = _pose_errors(m.frame_pose(q[k], "tool0"), targets[k])
+        assert dp_k <= 1e-6 and dr_k <= 1e-6

@@ -152,3 +152,35 @@ def map_dataframe(model: Model, name: str, df, **kwargs):
         meta = pd.DataFrame({c: pd.Series(dtype=float) for c in cols})
         return df.map_partitions(_frame_block, model, name, kwargs, meta=meta)
     return _frame_block(df, model, name, kwargs)
+
+
+def _ik_block(model: Model, frame: Any, kwargs: Dict[str, Any], targets: np.ndarray) -> np.ndarray:
+    """One chunk of (n, 4, 4) targets: ``inverse_kinematics`` on it, packed as (n, nq + 3)
+    columns q, success, position_error, orientation_error (runs on a worker)."""
+    t = np.ascontiguousarray(targets, dtype=float)
+    if t.shape[0] == 0:
+        return np.zeros((0, model.nq + 3))
+    r = model.inverse_kinematics(frame, t, **kwargs)
+    return np.column_stack([r.q, r.success, r.position_error, r.orientation_error])
+
+
+def map_inverse_kinematics(model: Model, frame: Any, targets, **kwargs):
+    """``model.inverse_kinematics(frame, …)`` over a Dask array of targets ``(N, 4, 4)``
+    (chunked along the rows only), chunk by chunk on the workers; ``kwargs`` as that method's
+    (``q0`` one ``(nq,)`` start for all, ``seed``, ``threads``, ``position_only``, tolerances).
+    Returns lazy arrays ``(q, success, position_error, orientation_error)``: ``(N, nq)``,
+    ``(N,)`` bool, ``(N,)``, ``(N,)``. Each answer is the one of its target alone, so the
+    chunking does not change it. A bad target raises when computed, naming it within its chunk.
+    """
+    import dask.array as da
+
+    if targets.ndim != 3 or tuple(targets.shape[1:]) != (4, 4):
+        raise ValueError(f"targets must be an (N, 4, 4) Dask array, got shape {targets.shape}")
+    targets = targets.rechunk({1: 4, 2: 4})
+    n = model.nq
+    packed = da.map_blocks(
+        _ik_block, model, frame, kwargs, targets,
+        dtype=float, drop_axis=2, chunks=(targets.chunks[0], (n + 3,)),
+        meta=np.empty((0, 0), dtype=float),
+    )
+    return (packed[:, :n], packed[:, n].astype(bool), packed[:, n + 1], packed[:, n + 2])
