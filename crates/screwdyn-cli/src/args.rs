@@ -13,7 +13,14 @@ use std::path::PathBuf;
 /// tau.<joint>; a missing column is zero). Output: `--format table|json|csv` (table on a
 /// terminal, JSON otherwise). Bad input exits with status 2 and one sentence on stderr.
 #[derive(Parser, Debug)]
-#[command(name = "screwdyn", version, about, long_about)]
+// `about` is the first paragraph (with its full stop, which clap would drop) and `long_about`
+// the whole comment, so that `screwdyn` alone (the short help, on stderr) starts with the same
+// line as `--help`.
+#[command(
+    name = "screwdyn",
+    version,
+    about = "Kinematics and dynamics of robot manipulators, in the screw-theory notation."
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
@@ -444,6 +451,24 @@ pub enum TrajectoryArg {
     Trapezoid,
     /// Rest-to-rest quintic polynomial over --duration.
     Quintic,
+    /// The fastest timing of the cubic spline through --waypoints within the velocity
+    /// (--vmax, default the model's), acceleration (--amax, default none) and effort limits.
+    TimeOptimal,
+    /// The fastest jerk-limited motion from --q0 to --qf within --vmax, --amax and --jmax, all
+    /// joints finishing together.
+    JerkLimited,
+}
+
+impl TrajectoryArg {
+    /// The value as written on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            TrajectoryArg::Trapezoid => "trapezoid",
+            TrajectoryArg::Quintic => "quintic",
+            TrajectoryArg::TimeOptimal => "time-optimal",
+            TrajectoryArg::JerkLimited => "jerk-limited",
+        }
+    }
 }
 
 #[derive(Args, Debug)]
@@ -459,15 +484,28 @@ pub struct TorqueProfileArgs {
     /// Start position (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q0: Option<String>,
-    /// End position.
+    /// End position (trapezoid, quintic, jerk-limited).
     #[arg(long, allow_hyphen_values = true)]
-    pub qf: String,
-    /// Trapezoid cruise-speed limit (rad/s): one value for all joints or one per joint.
-    #[arg(long, allow_hyphen_values = true, default_value = "1")]
-    pub vmax: String,
-    /// Trapezoid acceleration (rad/s²): one value for all joints or one per joint.
-    #[arg(long, allow_hyphen_values = true, default_value = "2")]
-    pub amax: String,
+    pub qf: Option<String>,
+    /// Speed limit (rad/s): one value for all joints or one per joint. Default: 1 for the
+    /// trapezoid, the model's velocity limits for time-optimal and jerk-limited.
+    #[arg(long, allow_hyphen_values = true)]
+    pub vmax: Option<String>,
+    /// Acceleration limit (rad/s²): one value for all joints or one per joint. Default: 2 for
+    /// the trapezoid, none for time-optimal; required for jerk-limited.
+    #[arg(long, allow_hyphen_values = true)]
+    pub amax: Option<String>,
+    /// Jerk limit (rad/s³) of jerk-limited: one value for all joints or one per joint.
+    #[arg(long, allow_hyphen_values = true)]
+    pub jmax: Option<String>,
+    /// Time-optimal: the waypoints, a CSV file with columns q.<joint> for every joint and an
+    /// optional s (the path parameter, increasing; default: the chord length).
+    #[arg(long, value_name = "PATH.CSV")]
+    pub waypoints: Option<PathBuf>,
+    /// Time-optimal: a fixed grid of this many intervals in s (default: refined until the
+    /// duration converges).
+    #[arg(long)]
+    pub grid: Option<usize>,
     /// Let each trapezoid joint finish on its own (default: all joints end together).
     #[arg(long)]
     pub unsynchronised: bool,
@@ -491,14 +529,16 @@ pub struct TorqueProfileArgs {
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ExportFormat {
     Urdf,
+    /// MuJoCo's XML format.
+    Mjcf,
 }
 
 #[derive(Args, Debug)]
 pub struct ExportArgs {
     /// A .urdf or .toml file, or builtin:<name>.
     pub model: String,
-    /// The format to write.
-    #[arg(long, value_enum)]
+    /// The format to write: urdf or mjcf (MuJoCo).
+    #[arg(long, value_enum, alias = "format")]
     pub to: ExportFormat,
     /// Write to this file instead of stdout.
     #[arg(long)]

@@ -362,6 +362,96 @@ fn export_round_trips_through_urdf() {
     close(&vec(&a["tau"]), &vec(&b["tau"]), 1e-12);
 }
 
+/// A two-joint DH arm with armatures, damping, friction, limits and an effort limit.
+const ARMATURE_DH: &str = r#"
+format = "dh"
+gravity = [0, 0, -9.81]
+[[row]]
+type = "R"
+a = 0.4
+alpha = 1.5707963267948966
+d = 0.3
+limits = { lower = -2.5, upper = 2.5, effort = 40 }
+damping = 0.5
+friction = 0.2
+armature = 0.25
+mass = 2.0
+com = [-0.2, 0, 0]
+inertia = [0.02, 0, 0, 0.03, 0, 0.04]
+[[row]]
+type = "P"
+theta = 0.3
+armature = 0.125
+limits = { lower = 0, upper = 0.5 }
+mass = 1.0
+inertia = [0.01, 0, 0, 0.01, 0, 0.01]
+"#;
+
+#[test]
+fn export_to_mjcf_keeps_armature_limits_and_effort() {
+    let model = tmp("armature_dh.toml");
+    std::fs::write(&model, ARMATURE_DH).unwrap();
+    let m = s_(&model);
+    // info shows the armature the TOML gave.
+    let v = json(&["info", m]);
+    assert_eq!(v["joints"][0]["armature"], 0.25);
+    assert_eq!(v["joints"][1]["armature"], 0.125);
+    assert!(ok(&["info", m, "--format", "table"]).contains("armature"));
+    // --format is the same flag as --to.
+    let out = tmp("armature_dh.xml");
+    ok(&["export", m, "--format", "mjcf", "--output", s_(&out)]);
+    let xml = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(xml, ok(&["export", m, "--to", "mjcf"]));
+    assert!(xml.contains("<compiler angle=\"radian\" autolimits=\"true\"/>"));
+    assert!(xml.contains("<option gravity=\"0 0 -9.81\"/>"));
+    for attr in [
+        "type=\"hinge\"",
+        "type=\"slide\"",
+        "range=\"-2.5 2.5\"",
+        "range=\"0 0.5\"",
+        "damping=\"0.5\"",
+        "frictionloss=\"0.2\"",
+        "armature=\"0.25\"",
+        "armature=\"0.125\"",
+        "mass=\"2\"",
+        "forcerange=\"-40 40\"",
+    ] {
+        assert!(xml.contains(attr), "{attr} missing from\n{xml}");
+    }
+    // One motor (only joint 1 has an effort limit); the second body is nested in the first.
+    assert_eq!(xml.matches("<motor ").count(), 1);
+    let (first, second) = (
+        xml.find("<body name=\"link1\"").unwrap(),
+        xml.find("<body name=\"link2\"").unwrap(),
+    );
+    assert!(first < second && xml[second..].matches("</body>").count() == 2);
+    // URDF cannot hold the armature: a warning on stderr names each joint that loses it.
+    let o = bin().args(["export", m, "--to", "urdf"]).output().unwrap();
+    assert!(o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("warning: joint 'joint1' has an armature of 0.25, which URDF cannot hold")
+            && err.contains("joint 'joint2'"),
+        "{err}"
+    );
+    // A helical joint has no MJCF counterpart: exit status 2, one sentence naming it.
+    let helical = tmp("helical.toml");
+    std::fs::write(
+        &helical,
+        "format = \"screwdyn\"\n[[body]]\nname = \"nut\"\nparent = \"base\"\njoint = \"screw\"\ntype = \"helical\"\npitch = 0.01\nscrew_in_parent = [0, 0, 1, 0, 0, 0.01]\nmass = 1.0\n",
+    )
+    .unwrap();
+    let e = fails(
+        &["export", s_(&helical), "--to", "mjcf"],
+        "joint 'screw' is helical",
+    );
+    assert!(e.contains("MJCF cannot describe"), "{e}");
+}
+
+fn s_(p: &std::path::Path) -> &str {
+    p.to_str().unwrap()
+}
+
 #[test]
 fn check_and_info() {
     let v = json(&["check", "builtin:ur5"]);

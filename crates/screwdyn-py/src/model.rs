@@ -3,7 +3,7 @@
 //! each with its own `#[pymethods]` block.
 
 use crate::batch::Scratch;
-use crate::convert::{self, fixed_states, joint_states, ArrayIn};
+use crate::convert::{self, fixed_states, ArrayIn};
 use crate::errors::{call_err, guard, load_err, ModelError};
 use nalgebra::Vector3;
 use pyo3::exceptions::{PyTypeError, PyValueError};
@@ -264,6 +264,26 @@ impl PyModel {
         self.model.frames().iter().map(|f| f.name.clone()).collect()
     }
 
+    /// The index of a frame (its position in :attr:`frame_names`) from its name, or from its
+    /// index (checked); Pinocchio's ``model.getFrameId(name)``. Every method taking a frame takes
+    /// either.
+    fn frame_id(&self, frame: &Bound<'_, PyAny>) -> PyResult<usize> {
+        self.frame(frame)
+    }
+
+    /// The name of a frame from its index (or its name, checked); ``frame_names[i]``.
+    fn frame_name(&self, frame: &Bound<'_, PyAny>) -> PyResult<String> {
+        let f = self.frame(frame)?;
+        Ok(self.model.frames()[f].name.clone())
+    }
+
+    /// The index of a joint (its position in :attr:`joint_names`, the coordinate it moves in
+    /// ``q``) from its name, or from its index (checked); Pinocchio's ``getJointId`` minus one
+    /// (Pinocchio's joint 0 is the universe).
+    fn joint_id(&self, joint: &Bound<'_, PyAny>) -> PyResult<usize> {
+        self.joint(joint)
+    }
+
     /// Names of the model's keyframes (named configurations, an MJCF file's `<key>`s).
     #[getter]
     fn keyframe_names(&self) -> Vec<String> {
@@ -281,7 +301,7 @@ impl PyModel {
         convert::vector(py, q)
     }
 
-    /// The parent link of each link (`None` for a link attached to the base): the seeds' `λ(i)`.
+    /// The parent link of each link (`None` for a link attached to the base): `λ(i)` of docs/notation.md.
     #[getter]
     fn parents(&self) -> Vec<Option<usize>> {
         self.model.parents().to_vec()
@@ -329,6 +349,14 @@ impl PyModel {
     #[getter]
     fn damping<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let v: Vec<f64> = self.model.joints().iter().map(|j| j.damping).collect();
+        convert::frozen(convert::vector(py, &v)?)
+    }
+
+    /// Armatures: the rotor inertias reflected to the joints (kg·m² or kg), added to the
+    /// mass matrix's diagonal.
+    #[getter]
+    fn armature<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let v: Vec<f64> = self.model.joints().iter().map(|j| j.armature).collect();
         convert::frozen(convert::vector(py, &v)?)
     }
 
@@ -405,24 +433,27 @@ impl PyModel {
         self.model.total_mass()
     }
 
-    /// A copy of the model with the given viscous damping and Coulomb friction per joint.
+    /// A copy of the model with the given viscous damping and Coulomb friction per joint (each
+    /// one value per joint or one number for all of them).
     fn with_joint_friction(
         &self,
         damping: ArrayIn<'_>,
         friction: ArrayIn<'_>,
     ) -> PyResult<PyModel> {
-        let d = joint_states(&self.model, &damping, "damping")?;
-        let f = joint_states(&self.model, &friction, "friction")?;
-        let (d, f) = (
-            d.single("with_joint_friction")?.to_vec(),
-            f.single("with_joint_friction")?.to_vec(),
-        );
+        let d = convert::model_per_joint(&self.model, &damping, "damping")?;
+        let f = convert::model_per_joint(&self.model, &friction, "friction")?;
         PyModel::rebuild(self.source.clone(), self.strict, self.gravity, Some((d, f)))
     }
 
     /// The model as URDF text (the library's exporter; gravity is not part of URDF).
     fn to_urdf(&self) -> PyResult<String> {
         screwdyn::io::urdf::to_urdf_string(&self.model).map_err(call_err)
+    }
+
+    /// The model as MJCF text, MuJoCo's format (the library's exporter: armature, limits,
+    /// damping, friction, effort limits as motors, frames as sites, gravity).
+    fn to_mjcf(&self) -> PyResult<String> {
+        screwdyn::io::mjcf_export::to_mjcf_string(&self.model).map_err(call_err)
     }
 
     fn __repr__(&self) -> String {

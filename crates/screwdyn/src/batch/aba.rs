@@ -19,7 +19,7 @@ use crate::model::Model;
 ///
 /// 1. forward: `V_i = V_λ + s_i q̇_i`, `c_i = ad_{V_λ}(s_i q̇_i)`, `𝔍ᴬ_i = 𝔍_i^0`,
 ///    `pᴬ_i = −ad_{V_i}ᵀ 𝔍_i^0 V_i`;
-/// 2. backward: `U_i = 𝔍ᴬ_i s_i`, `D_i = s_iᵀ U_i`, `u_i = τ_i − s_iᵀ pᴬ_i`; the parent
+/// 2. backward: `U_i = 𝔍ᴬ_i s_i`, `D_i = s_iᵀ U_i + I_a,i` (armature), `u_i = τ_i − s_iᵀ pᴬ_i`; the parent
 ///    receives `𝔍ᴬ_i − U_i U_iᵀ / D_i` and `pᴬ_i + 𝔍ᴬ_i c_i + (U_i / D_i)(u_i − U_iᵀ c_i)`;
 /// 3. forward: `V̇'_i = V̇_λ + c_i`, `q̈_i = u_i / D_i − (U_i / D_i)ᵀ V̇'_i`,
 ///    `V̇_i = V̇'_i + s_i q̈_i`, with `V̇_base = (0, −g)` (seed 000).
@@ -71,7 +71,8 @@ pub(super) fn aba<const L: usize>(
         let (before, from_i) = inertias.split_at_mut(i);
         let ia = &from_i[0];
         let u = mul6(ia, &s);
-        let d = dot6(&s, &u);
+        // D_i = s_iᵀ 𝔍ᴬ_i s_i + I_a,i (armature)
+        let d = dot6(&s, &u) + model.joints()[i].armature;
         // Not greater than `tiny`, or NaN, in some lane.
         let smallest = d.min_or_nan();
         if smallest.partial_cmp(&tiny) != Some(std::cmp::Ordering::Greater) {

@@ -17,7 +17,8 @@ use crate::model::Model;
 /// and body inertias `Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i}`. Backward, from the leaves: the composite
 /// `𝔍ᶜ_i` (its body's inertia plus its children's composites) is whole when body `i` is
 /// reached, so `M_ki = s_kᵀ 𝔍ᶜ_i s_i` for every `k` supporting `i` (seed 000's
-/// `M = Sᵀ Lᵀ 𝔍 L S`), then `𝔍ᶜ_i` is added to its parent's.
+/// `M = Sᵀ Lᵀ 𝔍 L S`), plus the armature `I_a,i` on the diagonal, then `𝔍ᶜ_i` is added to
+/// its parent's.
 #[inline(always)]
 pub(super) fn crba<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut Buffers<L>) {
     let n = model.nbodies();
@@ -48,9 +49,11 @@ pub(super) fn crba<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut 
         m.fill(Lanes::zero());
     }
     // From the leaves: 𝔍ᶜ_i is whole once its children (higher indices) have been added to it.
+    let armature = |i: usize| model.joints()[i].armature;
     for i in (0..n).rev() {
         let f = ci[i].apply(&s[i]);
-        m[i * n + i] = dot6(&s[i], &f);
+        // M_ii = s_iᵀ 𝔍ᶜ_i s_i + I_a,i
+        m[i * n + i] = dot6(&s[i], &f) + armature(i);
         let mut k = i;
         while let Some(p) = parents[k] {
             k = p;

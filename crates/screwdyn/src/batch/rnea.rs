@@ -14,7 +14,7 @@ use crate::model::Model;
 /// Forward pass (seed 002): `V_i = Ad_{H_λ^i} V_λ + S_i q̇_i`,
 /// `V̇_i = Ad_{H_λ^i} V̇_λ − ad_{S_i q̇_i}(Ad_{H_λ^i} V_λ) + S_i q̈_i`, and
 /// `W_i = 𝔍_i V̇_i − ad_{V_i}ᵀ 𝔍_i V_i`, with gravity as the base acceleration `(0, −g)` (seed 000).
-/// Backward pass (seed 000): `W_λ += Ad_{H_λ^i}ᵀ W_i`, `τ_i = S_iᵀ W_i`.
+/// Backward pass (seed 000): `W_λ += Ad_{H_λ^i}ᵀ W_i`, `τ_i = S_iᵀ W_i + I_a,i q̈_i` (armature).
 #[inline(always)]
 pub(super) fn rnea<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut Buffers<L>) {
     let n = model.nbodies();
@@ -50,8 +50,10 @@ pub(super) fn rnea<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut 
         accel[i] = vdi;
     }
     let out = &mut b.out[..n];
+    let model_joints = &model.joints()[..n];
     for i in (0..n).rev() {
-        out[i] = joints[i].dot(&wrench[i]);
+        // τ_i = S_iᵀ W_i + I_a,i q̈_i
+        out[i] = a[i].mul_add(model_joints[i].armature, joints[i].dot(&wrench[i]));
         if let Some(p) = parents[i] {
             let back = pip[i].inv_act_transpose_wrench(&wrench[i]);
             wrench[p] = add6(&wrench[p], &back);

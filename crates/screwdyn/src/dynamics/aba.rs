@@ -18,7 +18,8 @@ use nalgebra::DVector;
 ///
 /// 1. forward: `V_i = V_λ + s_i q̇_i`, `c_i = ad_{V_λ}(s_i q̇_i)` (the `ṡ_i q̇_i` of
 ///    `V̇_i = V̇_λ + s_i q̈_i + ṡ_i q̇_i`), `𝔍ᴬ_i = 𝔍_i^0`, `pᴬ_i = −ad_{V_i}ᵀ 𝔍_i^0 V_i − W_ext,i`;
-/// 2. backward: `U_i = 𝔍ᴬ_i s_i`, `D_i = s_iᵀ U_i`, `u_i = τ_i − s_iᵀ pᴬ_i`; the parent
+/// 2. backward: `U_i = 𝔍ᴬ_i s_i`, `D_i = s_iᵀ U_i + I_a,i` (with the joint's armature
+///    [`Joint::armature`](crate::model::Joint::armature)), `u_i = τ_i − s_iᵀ pᴬ_i`; the parent
 ///    receives `𝔍ᴬ_i − U_i U_iᵀ / D_i` and `pᴬ_i + 𝔍ᵃ_i c_i + U_i u_i / D_i`;
 /// 3. forward: `V̇'_i = V̇_λ + c_i`, `q̈_i = u_i / D_i − (U_i / D_i)ᵀ V̇'_i`,
 ///    `V̇_i = V̇'_i + s_i q̈_i`, with `V̇_base = (0, −g)` (seed 000).
@@ -136,13 +137,15 @@ pub(crate) fn articulated_body<'w, T: Real>(
     }
     // Pass 2: articulated inertias, from the leaves to the root.
     let tiny = singular_threshold(model.inertia_scale());
+    let joints = &model.joints()[..n];
     for i in (0..n).rev() {
         let s = screws[i];
         // 𝔍ᴬ_i read in place, next to its parent's (whose index is below i) being written.
         let (before, from_i) = inertias.split_at_mut(i);
         let ia = &from_i[0];
         let u = ia * s;
-        let d = s.dot(&u);
+        // D_i = s_iᵀ 𝔍ᴬ_i s_i + I_a,i: the armature is inertia only joint i's coordinate sees.
+        let d = s.dot(&u) + joints[i].armature;
         // Written to also catch NaN.
         if d.partial_cmp(&tiny) != Some(std::cmp::Ordering::Greater) {
             return Err(singular(model, i, d));

@@ -36,7 +36,8 @@ pub struct ClassicLink {
     pub f: Vector3<f64>,
     /// `n_i`: moment exerted on link `i` by its parent, about the frame origin.
     pub n: Vector3<f64>,
-    /// `τ_i`: the joint torque (or force), `n_i · ŝ_i + f_i · v_{s,i}`.
+    /// `τ_i`: the joint torque (or force), `n_i · ŝ_i + f_i · v_{s,i} + I_a,i θ̈_i` (the last
+    /// term the joint's armature, zero unless the model has one).
     pub tau: f64,
 }
 
@@ -50,7 +51,8 @@ pub struct ClassicLink {
 ///   from `v̇_0 = −g`; `v̇_C = v̇_i + ω̇_i × c + ω_i × (ω_i × c)`; `F = m v̇_C`,
 ///   `N = ᶜI ω̇ + ω × ᶜI ω`;
 /// - inward: `f_i = F_i + Σ_c R_c f_c`, `n_i = N_i + c × F_i + Σ_c (R_c n_c + p_c × R_c f_c)`,
-///   `τ_i = n_i · ŝ + f_i · v_s`.
+///   `τ_i = n_i · ŝ + f_i · v_s + I_a,i θ̈_i` (`I_a,i` the joint's armature, the rotor inertia
+///   reflected to it).
 ///
 /// Allocates (a teaching function).
 ///
@@ -118,7 +120,8 @@ pub fn classic_newton_euler(
     }
     for i in (0..n).rev() {
         let (r, p, s, vs) = poses[i];
-        out[i].tau = out[i].n.dot(&s) + out[i].f.dot(&vs);
+        // τ_i = n_i · ŝ + f_i · v_s + I_a,i θ̈_i
+        out[i].tau = out[i].n.dot(&s) + out[i].f.dot(&vs) + model.joints()[i].armature * a[i];
         if let Some(k) = model.parents()[i] {
             let f = r * out[i].f;
             let moment = r * out[i].n + p.cross(&f);

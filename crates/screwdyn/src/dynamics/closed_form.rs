@@ -38,7 +38,10 @@ pub struct ClosedForm<T: Real = f64> {
     /// `V̇_base`: block `i` is `Ad_{H_0^i} V̇_g` for the bodies attached to the base, with
     /// `V̇_g = (0, −g⁰)` (seed 000, gravity by the equivalence principle).
     pub vdot_base: DVector<T>,
-    /// `M = Jᵀ 𝔍 J = Sᵀ Lᵀ 𝔍 L S`.
+    /// `I_a = diag(I_a,1, …, I_a,n)`: the joints' armatures (rotor inertias reflected to the
+    /// joints, [`Joint::armature`](crate::model::Joint::armature)).
+    pub armature: DMatrix<T>,
+    /// `M = Jᵀ 𝔍 J + I_a = Sᵀ Lᵀ 𝔍 L S + I_a`.
     pub m: DMatrix<T>,
     /// The seeds' `C = Sᵀ Lᵀ [−𝔍 L ad_{Sθ̇} A − ad_{L S θ̇}ᵀ 𝔍] L S`, literally.
     pub c: DMatrix<T>,
@@ -148,7 +151,15 @@ pub fn closed_form<T: Real>(model: &Model<T>, q: &[T], v: &[T]) -> Result<Closed
         block(&mut bar, i, i, &bar_matrix(&h));
     }
     let jt = j.transpose();
-    let m = &jt * &inertia * &j;
+    // M = Jᵀ 𝔍 J + I_a
+    let armature = DMatrix::from_fn(n, n, |r, c| {
+        if r == c {
+            model.joints()[r].armature
+        } else {
+            T::zero()
+        }
+    });
+    let m = &jt * &inertia * &j + &armature;
     let inner = -(&inertia * &l * &ad_s_qdot * &a) - ad_v.transpose() * &inertia;
     let c = &jt * inner * &j;
     let j_dot = -(&l * &ad_s_qdot * &a * &j);
@@ -168,6 +179,7 @@ pub fn closed_form<T: Real>(model: &Model<T>, q: &[T], v: &[T]) -> Result<Closed
         j,
         j_dot,
         vdot_base,
+        armature,
         m,
         c,
         c_christoffel,
@@ -198,7 +210,7 @@ impl<T: Real> ClosedForm<T> {
         Ok(w)
     }
 
-    /// `τ = M θ̈ + C θ̇ + g − Jᵀ W_ext` (seed 000), with the velocity `θ̇` the form was built at.
+    /// `τ = M θ̈ + C θ̇ + g − Jᵀ W_ext` (seed 000; `M` includes the armatures), with the velocity `θ̇` the form was built at.
     ///
     /// # Errors
     /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `qdd` does not have one value per joint or `fext` was made for another model; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞ in `qdd`.
@@ -234,7 +246,8 @@ impl<T: Real> ClosedForm<T> {
 
     /// The stacked recursion of seed 000 at acceleration `θ̈`:
     /// `V̇ = L S θ̈ − L ad_{Sθ̇} A V + L V̇_base` (gravity through `V̇_base`),
-    /// `W = Lᵀ 𝔍 V̇ − Lᵀ ad_Vᵀ 𝔍 V` and `τ = Sᵀ W`. Returns `(V̇, W, τ)`.
+    /// `W = Lᵀ 𝔍 V̇ − Lᵀ ad_Vᵀ 𝔍 V` and `τ = Sᵀ W + I_a θ̈` (the armatures'
+    /// torque, which no body's wrench carries). Returns `(V̇, W, τ)`.
     ///
     /// ```
     /// use screwdyn::{builtin, dynamics::{closed_form, rnea}, Workspace};
@@ -261,10 +274,11 @@ impl<T: Real> ClosedForm<T> {
             });
         }
         let a = DVector::from_column_slice(qdd);
-        let vdot = &self.j * a + &self.j_dot * &self.qdot + &self.l * &self.vdot_base;
+        let vdot = &self.j * &a + &self.j_dot * &self.qdot + &self.l * &self.vdot_base;
         let w = self.l.transpose()
             * (&self.inertia * &vdot - self.ad_v.transpose() * (&self.inertia * &self.v));
-        let tau = self.s.transpose() * &w;
+        // τ = Sᵀ W + I_a θ̈
+        let tau = self.s.transpose() * &w + &self.armature * a;
         Ok((vdot, w, tau))
     }
 }

@@ -17,7 +17,9 @@ use nalgebra::DMatrix;
 /// Everything is written in the base frame {0}: `𝔍ᶜ_i` is summed from the bodies' inertias
 /// `Ad_{H_0^i}ᵀ 𝔍^{i,i} Ad_{H_0^i}`, and `S_i` is the space-Jacobian column
 /// `Ad_{H_i^0} S_i^{i,λ(i)}`, so each off-diagonal entry is a single 6-vector dot product (no
-/// per-ancestor change of frame). Also fills `ws.screw_in_world`.
+/// per-ancestor change of frame). Each joint's armature `I_a,i` (the rotor inertia reflected
+/// to it, [`Joint::armature`](crate::model::Joint::armature)) is added to its diagonal entry:
+/// `M_ii = S_iᵀ 𝔍ᶜ_i S_i + I_a,i`. Also fills `ws.screw_in_world`.
 /// Returns `ws.mass_matrix` (both triangles filled).
 ///
 /// # Errors
@@ -83,9 +85,11 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
     }
     // Column i of the upper triangle through one slice (column-major storage: entry (k, i) is
     // data[i n + k], with every ancestor k < i), then the lower triangle mirrored.
+    // M_ii = S_iᵀ 𝔍ᶜ_i S_i + I_a,i, M_ki = S_kᵀ 𝔍ᶜ_i S_i for k supporting i.
+    let joints = model.joints();
     for (i, column) in data.chunks_exact_mut(n).enumerate() {
         let f = ci[i].apply(&s[i]);
-        column[i] = s[i].dot(&f);
+        column[i] = s[i].dot(&f) + joints[i].armature;
         let mut k = i;
         while let Some(p) = parents[k] {
             k = p;

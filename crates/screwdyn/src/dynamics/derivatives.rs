@@ -236,7 +236,10 @@ fn derivative_passes<T: Real>(
         );
         let fc = ws.subtree_wrench_in_world[j];
         let ec = ws.subtree_fixed_external_wrench[j];
-        ws.tau[j] = s.dot(&(fc - ec));
+        // τ_j = s_jᵀ W_j + I_a,j q̈_j; the armature adds I_a,j to M_jj = ∂τ_j/∂q̈_j and nothing
+        // to ∂τ/∂q or ∂τ/∂q̇ (it is constant).
+        let armature = model.joints()[j].armature;
+        ws.tau[j] = s.dot(&(fc - ec)) + armature * a(j);
         let ic_sdot = ic.apply(&sdot);
         let phi = ic.apply(&alpha) + coupling_apply(&d11, &lm, &sdot) - ad_transpose(&s, &fc);
         let psi = ic_sdot * two + coupling_apply(&d11, &lm, &s);
@@ -246,7 +249,7 @@ fn derivative_passes<T: Real>(
         let e = ad_transpose(&s, &ec);
         ws.dtau_dq[(j, j)] = g.dot(&alpha) + hh.dot(&sdot);
         ws.dtau_dv[(j, j)] = g2.dot(&sdot) + hh.dot(&s);
-        ws.mass_matrix[(j, j)] = g.dot(&s);
+        ws.mass_matrix[(j, j)] = g.dot(&s) + armature;
         let mut k = j;
         while let Some(p) = parents[k] {
             k = p;

@@ -8,7 +8,9 @@ use crate::scalar::{real, Real};
 use crate::workspace::Workspace;
 use nalgebra::Vector3;
 
-/// Kinetic energy as the sum over links, `E_kin = ½ Σ_i V_iᵀ 𝔍^{i,i} V_i` (seed 001).
+/// Kinetic energy as the sum over links, `E_kin = ½ Σ_i V_iᵀ 𝔍^{i,i} V_i` (seed 001), plus the
+/// rotors' `½ Σ_i I_a,i q̇_i²` (each joint's armature, [`Joint::armature`](crate::model::Joint::armature)),
+/// so that it equals `½ q̇ᵀ M(q) q̇`.
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
@@ -27,17 +29,25 @@ pub fn kinetic_energy<T: Real>(
     v: &[T],
 ) -> Result<T> {
     forward_velocity(model, ws, q, v)?;
-    Ok(kinetic_energy_given_twists(model, ws))
+    Ok(kinetic_energy_given_twists(model, ws, v))
 }
 
-/// `Σ_i ½ V_iᵀ 𝔍_i V_i` from the body twists `ws.twist` of the last
-/// [`forward_velocity`](crate::kinematics::forward_velocity) (or RNEA) call.
-pub(crate) fn kinetic_energy_given_twists<T: Real>(model: &Model<T>, ws: &Workspace<T>) -> T {
+/// `Σ_i ½ V_iᵀ 𝔍_i V_i + ½ I_a,i q̇_i²` from the body twists `ws.twist` of the last
+/// [`forward_velocity`](crate::kinematics::forward_velocity) (or RNEA) call at velocity `v`.
+pub(crate) fn kinetic_energy_given_twists<T: Real>(
+    model: &Model<T>,
+    ws: &Workspace<T>,
+    v: &[T],
+) -> T {
+    let half: T = real(0.5);
     model
         .bodies()
         .iter()
         .zip(&ws.twist)
-        .fold(T::zero(), |e, (b, vi)| e + b.inertia.kinetic_energy(vi))
+        .zip(model.joints().iter().zip(v))
+        .fold(T::zero(), |e, ((b, vi), (j, qd))| {
+            e + b.inertia.kinetic_energy(vi) + half * j.armature * *qd * *qd
+        })
 }
 
 /// Kinetic energy from the mass matrix, `½ q̇ᵀ M(q) q̇` (seed 001, seed 003).

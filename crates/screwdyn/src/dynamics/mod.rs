@@ -54,9 +54,9 @@ pub use lagrange::{
 };
 pub(crate) use regressor::pack_parameters;
 pub use regressor::{
-    body_parameters, inertia_from_parameters, model_parameters, regressor, PARAMETERS_PER_BODY,
-    PARAMETER_NAMES,
+    armature_torque, body_parameters, inertia_from_parameters, model_parameters, regressor,
+    PARAMETERS_PER_BODY, PARAMETER_NAMES,
 };
 pub use rnea::{base_acceleration, gravity_torque, inverse_dynamics, nonlinear_effects, rnea};
 pub use trace::{rnea_trace, BackwardStep, ForwardStep, RneaTrace};
-pub use wrenches::ExternalWrenches;
+pub use wrenches::{link_wrench_on_body, ExternalWrenches};

@@ -98,6 +98,42 @@ pub fn model_parameters<T: Real>(model: &Model<T>) -> nalgebra::DVector<T> {
     pi
 }
 
+/// The armatures' torque `I_a q̈` (`I_a,i q̈_i` per joint), the part of inverse dynamics the
+/// regressor leaves out: `τ = Y π + I_a q̈`. Written into `out`.
+///
+/// # Errors
+/// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for an `a` or `out` of the wrong length or an `a` with NaN/∞.
+///
+/// ```
+/// use screwdyn::{builtin, dynamics::{armature_torque, model_parameters, regressor, rnea}, Workspace};
+/// let m = builtin::planar2().with_armature(&[0.3, 0.1]).unwrap();
+/// let mut ws = Workspace::new(&m);
+/// let (q, v, a) = ([0.3, -0.5], [1.0, 0.2], [0.4, -0.1]);
+/// let tau = rnea(&m, &mut ws, &q, &v, &a).unwrap().clone();
+/// let mut known = [0.0; 2];
+/// armature_torque(&m, &a, &mut known).unwrap();
+/// assert_eq!(known, [0.3 * 0.4, 0.1 * -0.1]);
+/// let y = regressor(&m, &mut ws, &q, &v, &a).unwrap();
+/// let t = y * model_parameters(&m) + nalgebra::DVector::from_column_slice(&known);
+/// assert!((t - tau).amax() < 1e-12);
+/// ```
+pub fn armature_torque<T: Real>(model: &Model<T>, a: &[T], out: &mut [T]) -> Result<()> {
+    model.check_vector(a, "a")?;
+    if out.len() != a.len() {
+        return Err(crate::Error::DimensionMismatch {
+            what: "the armature torque's output".into(),
+            got: out.len(),
+            expected: a.len(),
+            names: format!("{} joints", a.len()),
+        });
+    }
+    // (I_a q̈)_i = I_a,i q̈_i
+    for ((o, j), &ai) in out.iter_mut().zip(model.joints()).zip(a) {
+        *o = j.armature * ai;
+    }
+    Ok(())
+}
+
 /// `L(w)`: the 3×6 matrix with `I w = L(w) (I_xx, I_xy, I_yy, I_xz, I_yz, I_zz)`.
 #[inline]
 fn inertia_action<T: Real>(w: &Vector3<T>) -> nalgebra::Matrix3x6<T> {
@@ -111,7 +147,7 @@ fn inertia_action<T: Real>(w: &Vector3<T>) -> nalgebra::Matrix3x6<T> {
 
 /// Writes the joint-torque regressor `Y(q, q̇, q̈)` (n × 10n) into `ws.regressor`, so that
 /// `τ = Y π` for the stacked standard parameters `π` of [`model_parameters`] (inverse dynamics
-/// with gravity, without external wrenches or joint friction). Column `10 k + c` belongs to
+/// with gravity, without external wrenches, joint friction or armature). Column `10 k + c` belongs to
 /// parameter `c` of body `k` (order [`PARAMETER_NAMES`], body frame, inertia about the body
 /// frame origin); entries of bodies that joint `i` does not support are zero.
 ///
@@ -119,6 +155,11 @@ fn inertia_action<T: Real>(w: &Vector3<T>) -> nalgebra::Matrix3x6<T> {
 /// seed 002's forward pass, gravity as the base acceleration of seed 000), and
 /// `τ_i = Σ_{k ⪰ i} (Ad_{H_k^0}⁻¹ s_i)ᵀ W_k` (seed 000's backward pass), so
 /// `Y_{i, k} = (Ad_{H_k^0}⁻¹ s_i)ᵀ Φ(V_k, V̇_k)` with `s_i = Ad_{H_i^0} S_i`.
+///
+/// The joints' armatures are a known term, not parameters: inverse dynamics is
+/// `τ = Y π + I_a q̈` with `I_a = diag(I_a,i)` taken from the model
+/// ([`Joint::armature`](crate::model::Joint::armature)); identification subtracts `I_a q̈` from
+/// the measured torques before fitting `π` (see [`armature_torque`]).
 ///
 /// # Errors
 /// As [`rnea`](super::rnea): a workspace made for another model, or `q`, `v`, `a` of the wrong

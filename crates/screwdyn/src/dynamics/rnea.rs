@@ -58,9 +58,11 @@ pub(crate) fn rnea_passes<T: Real>(
         ws.twist_dot[i] = vdi;
         ws.wrench[i] = w;
     }
-    // Backward pass (seed 000): W_λ += Ad_{H_λ^i}ᵀ W_i, τ_i = S_iᵀ W_i.
+    // Backward pass (seed 000): W_λ += Ad_{H_λ^i}ᵀ W_i, τ_i = S_iᵀ W_i + I_a,i q̈_i (the
+    // armature, the rotor inertia reflected to joint i, accelerates with the joint alone).
+    let joints = model.joints();
     for i in (0..n).rev() {
-        ws.tau[i] = motions[i].dot(&ws.wrench[i]);
+        ws.tau[i] = motions[i].dot(&ws.wrench[i]) + joints[i].armature * qdd(i);
         if let Some(p) = parents[i] {
             let back = ws.pose_in_parent[i].inv_act_transpose_wrench(&ws.wrench[i]);
             ws.wrench[p] += back;
@@ -74,7 +76,8 @@ pub(crate) fn rnea_passes<T: Real>(
 ///
 /// Forward pass: `V_i = Ad_{H_{λ(i)}^i} V_{λ(i)} + S_i q̇_i`,
 /// `V̇_i = Ad V̇_{λ(i)} − ad_{S_i q̇_i}(Ad V_{λ(i)}) + S_i q̈_i`.
-/// Backward pass: `W_i = 𝔍_i V̇_i − ad_{V_i}ᵀ 𝔍_i V_i + Σ_children Ad_{H_i^c}ᵀ W_c`, `τ_i = S_iᵀ W_i`.
+/// Backward pass: `W_i = 𝔍_i V̇_i − ad_{V_i}ᵀ 𝔍_i V_i + Σ_children Ad_{H_i^c}ᵀ W_c`,
+/// `τ_i = S_iᵀ W_i + I_a,i q̈_i` (the joint's armature `I_a,i`, [`Joint::armature`](crate::model::Joint::armature)).
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.

@@ -41,7 +41,7 @@ pub struct BackwardStep {
     pub from_children: Vec<(usize, Wrench)>,
     /// `W_{λ(i)}^{i,i} = 𝔍 V̇ − ad_Vᵀ 𝔍 V − W_ext + Σ_c Ad_{H_i^c}ᵀ W_c`.
     pub wrench: Wrench,
-    /// `τ_i = (S_i^{i,λ(i)})ᵀ W_{λ(i)}^{i,i}`.
+    /// `τ_i = (S_i^{i,λ(i)})ᵀ W_{λ(i)}^{i,i} + I_a,i θ̈_i` (the last term the joint's armature).
     pub tau: f64,
 }
 
@@ -66,7 +66,8 @@ pub struct RneaTrace {
 ///   `V̇_i = Ad_{H_{λ(i)}^i} V̇_{λ(i)} − ad_{S_i θ̇_i}(Ad_{H_{λ(i)}^i} V_{λ(i)}) + S_i θ̈_i`,
 ///   with `V_0 = 0`, `V̇_0 = (0, −g)`;
 /// - backward, `i = n … 1`: `W_{λ(i)}^{i,i} = 𝔍^{i,i} V̇_i − ad_{V_i}ᵀ(𝔍^{i,i} V_i) − W_ext^{i,i}
-///   + Σ_c Ad_{H_i^c}ᵀ W_i^{c,c}`, `τ_i = (S_i^{i,λ(i)})ᵀ W_{λ(i)}^{i,i}`.
+///   + Σ_c Ad_{H_i^c}ᵀ W_i^{c,c}`, `τ_i = (S_i^{i,λ(i)})ᵀ W_{λ(i)}^{i,i} + I_a,i θ̈_i` (the
+///   joint's armature `I_a,i`, zero unless the model has one).
 ///
 /// Teaching code: it allocates the trace.
 ///

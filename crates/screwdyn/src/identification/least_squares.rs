@@ -69,7 +69,8 @@ impl LeastSquares {
         self.samples
     }
 
-    /// Adds one sample `(q, q̇, q̈, τ)`.
+    /// Adds one sample `(q, q̇, q̈, τ)`. The joints' armatures are taken as known (the
+    /// model's): the row fitted is `Y π = τ − I_a q̈`.
     ///
     /// # Errors
     /// Wrong lengths or non-finite values (named `q`, `v`, `a`, `tau`).
@@ -93,12 +94,14 @@ impl LeastSquares {
         )?;
         let n = model.nv();
         let r = self.base.rank();
+        let joints = model.joints();
         for (i, t) in tau.iter().enumerate() {
             let row = self.pending_rows + i;
             for (c, &k) in self.base.independent.iter().enumerate() {
                 self.pending[(row, c)] = self.full[(i, k)];
             }
-            self.pending[(row, r)] = *t;
+            // The armature is known (the model's): fit Y π = τ − I_a q̈.
+            self.pending[(row, r)] = *t - joints[i].armature * a[i];
         }
         self.pending_rows += n;
         self.samples += 1;

@@ -7,7 +7,12 @@
 //! (see [`body_parameters`](crate::dynamics::body_parameters): `m, mx, my, mz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz`, first moment and
 //! rotational inertia about the body frame origin, body-frame axes), optionally followed by two
 //! friction parameters per joint, `fv` (viscous, N·m·s/rad or N·s/m) and `fc` (Coulomb), with
-//! the joint torque `τ = Y(q, q̇, q̈) π_inertial + fv q̇ + fc sign(q̇)`.
+//! the joint torque `τ = Y(q, q̇, q̈) π_inertial + fv q̇ + fc sign(q̇) + I_a q̈`.
+//!
+//! **Armature.** The joints' armatures `I_a,i` (rotor inertias reflected to the joints) are not
+//! estimated: they are a known term taken from the model, like a motor's data-sheet value.
+//! [`LeastSquares`] fits `Y π = τ − I_a q̈` and [`Residuals`] predicts `Y π̂ + I_a q̈` (an armature
+//! about a fixed vertical axis could not be told apart from the first link's `Izz` anyway).
 //!
 //! **Base parameters.** Some columns of the stacked regressor are zero or linear combinations
 //! of others for every state. [`BaseParameters::new`] stacks the regressor at random states,

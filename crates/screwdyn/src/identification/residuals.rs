@@ -28,7 +28,8 @@ impl Residuals {
         }
     }
 
-    /// The predicted torque `W_i π̂_b` at one state, written into `out`.
+    /// The predicted torque `W_i π̂_b + I_a q̈` at one state (the joints' armatures known, the
+    /// model's), written into `out`.
     ///
     /// # Errors
     /// Wrong lengths or non-finite values.
@@ -44,13 +45,15 @@ impl Residuals {
         out: &mut [f64],
     ) -> Result<()> {
         full_regressor(model, &mut self.ws, q, v, a, base.friction, &mut self.full)?;
-        for (i, o) in out.iter_mut().enumerate() {
+        // τ̂_i = (W π̂_b)_i + I_a,i q̈_i (the armature a known term, the model's).
+        for (i, (o, j)) in out.iter_mut().zip(model.joints()).enumerate() {
             *o = base
                 .independent
                 .iter()
                 .enumerate()
                 .map(|(c, &k)| self.full[(i, k)] * values[c])
-                .sum();
+                .sum::<f64>()
+                + j.armature * a[i];
         }
         Ok(())
     }

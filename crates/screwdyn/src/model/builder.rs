@@ -680,7 +680,7 @@ fn is_finite_pose<T: Real>(h: &Se3<T>) -> bool {
 }
 
 impl<T: Real> JointSpec<T> {
-    /// Limits, damping, friction and pitch are numbers in range.
+    /// Limits, damping, friction, armature and pitch are numbers in range.
     fn check_values(&self) -> Result<()> {
         let bad = |what: String| {
             Err(Error::InvalidModel(format!(
@@ -704,12 +704,17 @@ impl<T: Real> JointSpec<T> {
             ("effort limit", l.effort),
             ("damping", self.damping),
             ("friction", self.friction),
+            ("armature", self.armature),
         ] {
             if nan(x) || x < T::zero() {
                 return bad(format!("the {what} must be non-negative, got {x:?}"));
             }
         }
-        for (what, x) in [("damping", self.damping), ("friction", self.friction)] {
+        for (what, x) in [
+            ("damping", self.damping),
+            ("friction", self.friction),
+            ("armature", self.armature),
+        ] {
             if !x.is_finite() {
                 return bad(format!("the {what} must be finite, got {x:?}"));
             }

@@ -376,6 +376,35 @@ impl<T: Real> Model<T> {
         }
         Ok(m)
     }
+    /// A copy with every joint's armature `I_a,i` (the rotor inertia reflected to the joint,
+    /// kg·m² or kg) set from `armature`, one value per joint; it is added to `M(q)`'s diagonal
+    /// and so enters every dynamics algorithm.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch)/[`Error::NonFinite`](crate::Error::NonFinite) for a vector of the wrong length or with NaN/∞; [`Error::InvalidArgument`](crate::Error::InvalidArgument) for a negative value.
+    ///
+    /// ```
+    /// use screwdyn::{builtin, dynamics::crba, Workspace};
+    /// let m = builtin::pendulum().with_armature(&[0.25]).unwrap();
+    /// let mut ws = Workspace::new(&m);
+    /// // M = m l² + I_a for the 1 kg, 1 m point-mass pendulum.
+    /// assert!((crba(&m, &mut ws, &[0.3]).unwrap()[(0, 0)] - 1.25).abs() < 1e-12);
+    /// assert!(builtin::pendulum().with_armature(&[-1.0]).is_err());
+    /// ```
+    pub fn with_armature(&self, armature: &[T]) -> Result<Self> {
+        self.check_vector(armature, "armature")?;
+        let mut m = self.clone();
+        for (j, &a) in m.joints.iter_mut().zip(armature) {
+            if a < T::zero() {
+                return Err(Error::InvalidArgument(format!(
+                    "joint '{}': the armature must be non-negative (got {a:?})",
+                    j.name
+                )));
+            }
+            j.armature = a;
+        }
+        Ok(m)
+    }
     /// Joint names in coordinate order.
     pub fn joint_names(&self) -> Vec<&str> {
         self.joints.iter().map(|j| j.name.as_str()).collect()
@@ -456,6 +485,35 @@ impl<T: Real> Model<T> {
                 name: name.into(),
                 known: list(self.frames.iter().map(|f| f.name.clone())),
             })
+    }
+    /// The index of the frame of the link called `name`: a moving body or a link attached by a
+    /// fixed joint (merged into the body it hangs from), the base included; extra frames (a
+    /// tool point, a sensor) are not links.
+    ///
+    /// # Errors
+    /// [`Error::UnknownName`](crate::Error::UnknownName) listing the links.
+    ///
+    /// ```
+    /// let m = screwdyn::builtin::planar2();
+    /// assert_eq!(m.link_frame_id("link2").unwrap(), m.frame_id("link2").unwrap());
+    /// let e = m.link_frame_id("hand").unwrap_err().to_string();
+    /// assert!(e.contains("no link named 'hand'"));
+    /// ```
+    pub fn link_frame_id(&self, name: &str) -> Result<usize> {
+        let is_link = |f: &Frame<T>| f.kind != FrameKind::Extra;
+        match self.frame_index.get(name) {
+            Some(&k) if is_link(&self.frames[k]) => Ok(k),
+            _ => Err(Error::UnknownName {
+                kind: "link",
+                name: name.into(),
+                known: list(
+                    self.frames
+                        .iter()
+                        .filter(|f| is_link(f))
+                        .map(|f| f.name.clone()),
+                ),
+            }),
+        }
     }
     /// The index of the moving body (link) called `name`.
     ///
