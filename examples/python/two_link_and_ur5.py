@@ -1,8 +1,8 @@
 """A notebook-style walk through screwdyn from Python (run it as a script or paste the cells
 into Jupyter):
 
-1. the seeds' two-link arm: closed form M(θ), C(θ, θ̇), g(θ) against the hand-derived formulas
-   of seeds 003/004, the step-by-step RNEA trace, a simulation with a plot and its 3-D
+1. the classic two-link planar arm: the stacked closed form M(θ), C(θ, θ̇), g(θ) (notation of
+   docs/notation.md) against the textbook formulas, the step-by-step RNEA trace, a simulation with a plot and its 3-D
    animation, the same M(θ) symbolically (SymPy) and the derivatives of the dynamics;
 2. a UR5 log: inverse dynamics and mass matrices of a batch of recorded states in one call.
 
@@ -21,7 +21,7 @@ import screwdyn
 
 out_dir = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else pathlib.Path(".")
 
-# %% 1. The two-link arm of seeds 003/004: m1 = m2 = 1 kg at the link ends, L1 = L2 = 1 m,
+# %% 1. The two-link planar arm: m1 = m2 = 1 kg at the link ends, L1 = L2 = 1 m,
 # gravity along −y.
 arm = screwdyn.load("builtin:planar2")
 print(arm)
@@ -30,19 +30,19 @@ q = np.array([0.3, 0.5])
 qd = np.array([1.0, -1.0])
 qdd = np.array([0.5, 0.2])
 
-# %% The closed form of the seeds: M = Sᵀ Lᵀ 𝔍 L S, C, g as arrays.
+# %% The stacked closed form: M = Sᵀ Lᵀ 𝔍 L S, C, g as arrays.
 cf = arm.closed_form(q, qd)
 m1 = m2 = L1 = L2 = 1.0
 c2, s2 = math.cos(q[1]), math.sin(q[1])
 M_hand = np.array([[m1 * L1**2 + m2 * (L1**2 + 2 * L1 * L2 * c2 + L2**2), m2 * (L1 * L2 * c2 + L2**2)],
                    [m2 * (L1 * L2 * c2 + L2**2), m2 * L2**2]])
 print("M(θ) from the closed form:\n", cf.M)
-print("M(θ) by hand (seed 003):\n", M_hand)
+print("M(θ) by hand (textbook):\n", M_hand)
 assert np.allclose(cf.M, M_hand, atol=1e-12)
 h = m2 * L1 * L2 * s2
 print("C(θ, θ̇) θ̇ =", cf.C @ qd, " by hand:", [-h * qd[1] ** 2 - 2 * h * qd[0] * qd[1], h * qd[0] ** 2])
 
-# %% Seed 004's Lagrangian coefficients and effective inertias.
+# %% The Lagrangian coefficients and effective inertias.
 lc = arm.lagrange_coefficients(q)
 print("D_ijk[0] =\n", lc.D_ijk[0])
 print("effective inertia of joint 1, joint 2 locked:", arm.effective_inertia(q, "joint1"),
@@ -88,9 +88,9 @@ try:
     M_sym = sym.mass_matrix(arm, symbols="all")
     m1, m2, L1, L2 = sympy.symbols("m1 m2 L1 L2")
     c2 = sympy.cos(sympy.Symbol("theta2"))
-    seed = m1 * L1**2 + m2 * (L1**2 + 2 * L1 * L2 * c2 + L2**2)
-    print("M11 =", M_sym[0, 0], " (seed 003:", seed, ")")
-    assert sympy.expand(M_sym[0, 0] - seed) == 0
+    by_hand = m1 * L1**2 + m2 * (L1**2 + 2 * L1 * L2 * c2 + L2**2)
+    print("M11 =", M_sym[0, 0], " (by hand:", by_hand, ")")
+    assert sympy.expand(M_sym[0, 0] - by_hand) == 0
     print("g(θ) =", list(sym.gravity_torque(arm, symbols="all")))
 except ImportError:
     print("(install SymPy for the symbolic equations: pip install screwdyn[sympy])")

@@ -5,14 +5,22 @@ use std::path::PathBuf;
 
 /// Kinematics and dynamics of robot manipulators, in the screw-theory notation.
 ///
-/// MODEL is a .urdf or .toml file, or builtin:<name> (builtin:planar2, builtin:pendulum,
-/// builtin:ur5, builtin:panda, builtin:branched). Joint-space vectors are comma-separated numbers
-/// in model joint order (`--q 0.1,0.2`); an absent vector is all zeros. Numeric commands take one
+/// MODEL is a .urdf, .xml (MuJoCo's MJCF) or .toml file, or builtin:<name> (builtin:planar2,
+/// builtin:pendulum, builtin:ur5, builtin:panda, builtin:branched). Joint-space vectors are
+/// comma-separated numbers in model joint order (`--q 0.1,0.2`), or for `--q` a model's named
+/// configuration (`--q key:home`, an MJCF <key>); an absent vector is all zeros. Numeric commands take one
 /// state from flags or many from `--input states.csv` (columns q.<joint>, v.<joint>, a.<joint>,
 /// tau.<joint>; a missing column is zero). Output: `--format table|json|csv` (table on a
 /// terminal, JSON otherwise). Bad input exits with status 2 and one sentence on stderr.
 #[derive(Parser, Debug)]
-#[command(name = "screwdyn", version, about, long_about)]
+// `about` is the first paragraph (with its full stop, which clap would drop) and `long_about`
+// the whole comment, so that `screwdyn` alone (the short help, on stderr) starts with the same
+// line as `--help`.
+#[command(
+    name = "screwdyn",
+    version,
+    about = "Kinematics and dynamics of robot manipulators, in the screw-theory notation."
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
@@ -82,7 +90,7 @@ pub enum Command {
 pub struct DerivativesArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Joint velocities q̇ (default: all zero).
@@ -99,7 +107,7 @@ pub struct DerivativesArgs {
 pub struct RegressorArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Joint velocities q̇ (default: all zero).
@@ -186,7 +194,7 @@ pub struct ModelArgs {
 
 #[derive(Args, Debug)]
 pub struct CheckArgs {
-    /// A .urdf or .toml file, or builtin:<name>.
+    /// A .urdf, .xml (MJCF) or .toml file, or builtin:<name>.
     pub model: String,
     /// Output format (default: table on a terminal, JSON otherwise).
     #[arg(long, value_enum)]
@@ -211,7 +219,7 @@ pub struct Common {
 pub struct QArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
 }
@@ -220,7 +228,7 @@ pub struct QArgs {
 pub struct QvArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Joint velocities q̇, comma-separated (default: all zero).
@@ -232,7 +240,7 @@ pub struct QvArgs {
 pub struct FkArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Only this frame.
@@ -244,7 +252,7 @@ pub struct FkArgs {
 pub struct JacobianArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// The frame whose Jacobian to compute (default: the last frame of the model).
@@ -272,7 +280,7 @@ pub struct WrenchArgs {
 pub struct InverseDynamicsArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Joint velocities q̇ (default: all zero).
@@ -289,7 +297,7 @@ pub struct InverseDynamicsArgs {
 pub struct ForwardDynamicsArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Joint velocities q̇ (default: all zero).
@@ -443,6 +451,24 @@ pub enum TrajectoryArg {
     Trapezoid,
     /// Rest-to-rest quintic polynomial over --duration.
     Quintic,
+    /// The fastest timing of the cubic spline through --waypoints within the velocity
+    /// (--vmax, default the model's), acceleration (--amax, default none) and effort limits.
+    TimeOptimal,
+    /// The fastest jerk-limited motion from --q0 to --qf within --vmax, --amax and --jmax, all
+    /// joints finishing together.
+    JerkLimited,
+}
+
+impl TrajectoryArg {
+    /// The value as written on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            TrajectoryArg::Trapezoid => "trapezoid",
+            TrajectoryArg::Quintic => "quintic",
+            TrajectoryArg::TimeOptimal => "time-optimal",
+            TrajectoryArg::JerkLimited => "jerk-limited",
+        }
+    }
 }
 
 #[derive(Args, Debug)]
@@ -458,15 +484,28 @@ pub struct TorqueProfileArgs {
     /// Start position (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q0: Option<String>,
-    /// End position.
+    /// End position (trapezoid, quintic, jerk-limited).
     #[arg(long, allow_hyphen_values = true)]
-    pub qf: String,
-    /// Trapezoid cruise-speed limit (rad/s): one value for all joints or one per joint.
-    #[arg(long, allow_hyphen_values = true, default_value = "1")]
-    pub vmax: String,
-    /// Trapezoid acceleration (rad/s²): one value for all joints or one per joint.
-    #[arg(long, allow_hyphen_values = true, default_value = "2")]
-    pub amax: String,
+    pub qf: Option<String>,
+    /// Speed limit (rad/s): one value for all joints or one per joint. Default: 1 for the
+    /// trapezoid, the model's velocity limits for time-optimal and jerk-limited.
+    #[arg(long, allow_hyphen_values = true)]
+    pub vmax: Option<String>,
+    /// Acceleration limit (rad/s²): one value for all joints or one per joint. Default: 2 for
+    /// the trapezoid, none for time-optimal; required for jerk-limited.
+    #[arg(long, allow_hyphen_values = true)]
+    pub amax: Option<String>,
+    /// Jerk limit (rad/s³) of jerk-limited: one value for all joints or one per joint.
+    #[arg(long, allow_hyphen_values = true)]
+    pub jmax: Option<String>,
+    /// Time-optimal: the waypoints, a CSV file with columns q.<joint> for every joint and an
+    /// optional s (the path parameter, increasing; default: the chord length).
+    #[arg(long, value_name = "PATH.CSV")]
+    pub waypoints: Option<PathBuf>,
+    /// Time-optimal: a fixed grid of this many intervals in s (default: refined until the
+    /// duration converges).
+    #[arg(long)]
+    pub grid: Option<usize>,
     /// Let each trapezoid joint finish on its own (default: all joints end together).
     #[arg(long)]
     pub unsynchronised: bool,

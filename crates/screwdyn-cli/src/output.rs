@@ -53,6 +53,9 @@ pub enum Value {
     Text(String),
     /// A list of names (the joint names); omitted from CSV, whose columns carry them.
     Names(Labels),
+    /// A list of values of any length (a run's events); omitted from CSV, whose columns are
+    /// fixed.
+    List(Vec<Value>),
 }
 
 impl Value {
@@ -72,6 +75,10 @@ impl Value {
             }),
             Value::Map(items) => items
                 .iter()
+                .find_map(|(k, v)| v.non_finite().map(|at| format!(".{k}{at}"))),
+            Value::List(items) => items
+                .iter()
+                .enumerate()
                 .find_map(|(k, v)| v.non_finite().map(|at| format!(".{k}{at}"))),
             Value::Count(_) | Value::Text(_) | Value::Names(_) => None,
         }
@@ -126,6 +133,7 @@ impl Value {
             ),
             Value::Text(s) => Json::String(s.clone()),
             Value::Names(n) => Json::Array(n.iter().map(|s| Json::String(s.clone())).collect()),
+            Value::List(items) => Json::Array(items.iter().map(Value::to_json).collect()),
         }
     }
 
@@ -144,7 +152,7 @@ impl Value {
                     v.columns(&format!("{key}.{k}"), out);
                 }
             }
-            Value::Names(_) => {}
+            Value::Names(_) | Value::List(_) => {}
         }
     }
 
@@ -171,7 +179,7 @@ impl Value {
                 .iter()
                 .try_for_each(|(_, v)| v.write_csv(w, num, cells)),
             Value::Text(s) => csv_cell(w, cells, &csv_field(s)),
-            Value::Names(_) => Ok(()),
+            Value::Names(_) | Value::List(_) => Ok(()),
         }
     }
 
@@ -216,6 +224,16 @@ impl Value {
                 }
                 w.write_all(b"]")
             }
+            Value::List(items) => {
+                w.write_all(b"[")?;
+                for (k, v) in items.iter().enumerate() {
+                    if k > 0 {
+                        w.write_all(b",")?;
+                    }
+                    v.write_json(w, num)?;
+                }
+                w.write_all(b"]")
+            }
         }
     }
 
@@ -240,6 +258,11 @@ impl Value {
             }
             Value::Map(items) => {
                 for (k, v) in items {
+                    v.table(&format!("{key} {k}"), out);
+                }
+            }
+            Value::List(items) => {
+                for (k, v) in items.iter().enumerate() {
                     v.table(&format!("{key} {k}"), out);
                 }
             }

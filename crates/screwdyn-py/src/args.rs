@@ -30,6 +30,16 @@ impl PyModel {
         })
     }
 
+    /// The frame of a link that may carry a wrench: by name any link, moving or attached by a
+    /// fixed joint (`Model::link_frame_id`); by index a moving link, as [`Self::link`].
+    pub(crate) fn link_frame(&self, b: &Bound<'_, PyAny>) -> PyResult<usize> {
+        if let Ok(name) = b.extract::<String>() {
+            return self.model.link_frame_id(&name).map_err(call_err);
+        }
+        let body = self.link(b)?;
+        self.model.body_frame(body).map_err(call_err)
+    }
+
     /// A joint given by name or index.
     pub(crate) fn joint(&self, j: &Bound<'_, PyAny>) -> PyResult<usize> {
         let n = self.model.nq();
@@ -37,7 +47,7 @@ impl PyModel {
     }
 
     /// External wrenches from the keyword arguments `fext` (link → wrench on the link, in the
-    /// link frame), `fext_world` (link → wrench on the link, in the base frame) and
+    /// link frame; a link attached by a fixed joint included), `fext_world` (link → wrench on the link, in the base frame) and
     /// `tip_wrenches` (frame → wrench the frame applies to the environment, in that frame).
     pub(crate) fn wrenches(
         &self,
@@ -54,15 +64,15 @@ impl PyModel {
         };
         if let Some(d) = fext {
             for (k, w) in d.iter() {
-                let b = self.link(&k)?;
-                ext.add_local(b, wrench(&w, "a wrench of fext")?)
+                let f = self.link_frame(&k)?;
+                ext.add_on_link(&self.model, f, wrench(&w, "a wrench of fext")?, false)
                     .map_err(call_err)?;
             }
         }
         if let Some(d) = fext_world {
             for (k, w) in d.iter() {
-                let b = self.link(&k)?;
-                ext.add_world(b, wrench(&w, "a wrench of fext_world")?)
+                let f = self.link_frame(&k)?;
+                ext.add_on_link(&self.model, f, wrench(&w, "a wrench of fext_world")?, true)
                     .map_err(call_err)?;
             }
         }

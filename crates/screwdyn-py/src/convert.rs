@@ -255,6 +255,36 @@ pub fn fixed_states<'a>(
     }
 }
 
+/// **The one broadcast rule for per-joint parameters** (limits, gains, damping, friction, a
+/// trajectory's end points and boundary velocities, a constant torque): one value per joint, or
+/// a single number (a Python or NumPy scalar, a 0-d array) that stands for the same value at all
+/// `n` joints, as the CLI's `--vmax 1.5`. A vector is returned as given (its length is checked by
+/// the caller or the library).
+pub fn per_joint(a: &ArrayIn<'_>, name: &'static str, n: usize) -> PyResult<Vec<f64>> {
+    if a.ndim() == 0 {
+        return Ok(vec![contiguous(a)[0]; n]);
+    }
+    values_1d(a, name)
+}
+
+/// [`per_joint`] for `model`: a scalar gives `nq` copies; a vector must have `nq` finite values
+/// (the library's sentence otherwise).
+pub fn model_per_joint(model: &Model, a: &ArrayIn<'_>, name: &'static str) -> PyResult<Vec<f64>> {
+    let v = per_joint(a, name, model.nq())?;
+    model
+        .check_vector(&v, name)
+        .map_err(crate::errors::call_err)?;
+    Ok(v)
+}
+
+/// The number of joints per-joint arguments without a model describe: the length of the first
+/// vector among `args` (their end points), 1 when all are scalars.
+pub fn joint_count(args: &[&ArrayIn<'_>]) -> usize {
+    args.iter()
+        .find(|a| a.ndim() >= 1)
+        .map_or(1, |a| a.shape()[0])
+}
+
 /// A 1-D array argument (one value per joint: trajectory end points, limits, times) as a vector.
 pub fn values_1d(a: &ArrayIn<'_>, name: &'static str) -> PyResult<Vec<f64>> {
     if a.ndim() != 1 {

@@ -1,6 +1,6 @@
 //! `Model`'s dynamics (the library's `dynamics`): inverse dynamics, the mass matrix and its
 //! inverse, Coriolis and gravity terms, forward dynamics, single or batched; and the one-state
-//! quantities of seed 004 (`∂M/∂q`, effective inertia).
+//! Lagrangian quantities (`∂M/∂q`, effective inertia).
 
 use crate::args::{method, WrenchDicts};
 use crate::batch::Batch;
@@ -18,12 +18,15 @@ macro_rules! rnea_doc {
     () => {
         concat!(
             "Inverse dynamics `τ = M(q) a + C(q, v) v + g(q) − Σ J_iᵀ W_ext,i (+ J_eᵀ W_tip)` by the\n",
-            "recursive Newton–Euler algorithm (seeds 000–002). `v` and `a` default to zero.\n",
+            "recursive Newton–Euler algorithm (docs/notation.md). `v` and `a` default to zero.\n",
             "\n",
             "External wrenches (applied to every state): `fext={link: (6,)}` — the wrench of the\n",
             "environment on the link, in the link frame; `fext_world={link: (6,)}` — the same in the\n",
             "base frame (moment about the base origin); `tip_wrenches={frame: (6,)}` — the wrench the\n",
-            "frame applies to the environment, in that frame. Wrenches are `(m, f)`, moment first."
+            "frame applies to the environment, in that frame. Wrenches are `(m, f)`, moment first.\n",
+            "A link is named (any link, one attached by a fixed joint included: its wrench is moved\n",
+            "to the body it is merged into, `W^b = Ad_{H_b^f}ᵀ W^f`) or given by its index in\n",
+            "`link_names`."
         )
     };
 }
@@ -275,7 +278,8 @@ impl PyModel {
     }
 
     /// Forward dynamics `a = M⁻¹ (τ − C v − g + Σ J_iᵀ W_ext,i)`: `method="aba"` (Featherstone's
-    /// articulated-body algorithm), `"crba"` (CRBA + Cholesky) or `"walker-orin"` (seed 004 §6.4).
+    /// articulated-body algorithm), `"crba"` (CRBA + Cholesky) or `"walker-orin"` (Walker and Orin's
+    /// method: `M` column by column from RNEA).
     /// External wrenches as in `rnea`. A singular mass matrix raises ValueError naming the joint.
     #[pyo3(signature = (q, v, tau, *, method = "aba", fext = None, fext_world = None, tip_wrenches = None, threads = None, out = None))]
     #[allow(clippy::too_many_arguments)]
@@ -337,7 +341,7 @@ impl PyModel {
         })
     }
 
-    /// Effective inertia of `joint` at `q` (seed 004): with every other joint locked
+    /// Effective inertia of `joint` at `q` (from the Lagrangian form): with every other joint locked
     /// (`free=None`, the diagonal `M_ii`), every other joint free (`free="all"`: the inertia felt
     /// through the free joints, `M_ii − M_if M_ff⁻¹ M_fi`), or the joints named in a list free.
     #[pyo3(signature = (q, joint, free = None))]

@@ -106,7 +106,7 @@ impl PyModel {
         })
     }
 
-    /// Seed 001's body Jacobian `J_i^{i,0}(q)` of a link (name or index), `(6, nq)`: block row `i`
+    /// The body Jacobian `J_i^{i,0}(q)` of a link (name or index), `(6, nq)`: block row `i`
     /// of the closed form's `J = L S`.
     #[pyo3(signature = (q, link, *, threads = None, out = None))]
     fn link_jacobian<'py>(

@@ -6,7 +6,7 @@
 //! # Where things are
 //!
 //! The files mirror the library's topics. `model` holds the class `Model` (`PyModel`): loading,
-//! properties, pickling. Its methods are in `kinematics`, `dynamics`, `energy`, `worked` (the
+//! properties, pickling. Its methods are in `configuration`, `kinematics`, `dynamics`, `energy`, `worked` (the
 //! closed form, Lagrangian coefficients and RNEA trace), `derivatives`, `identification`,
 //! `simulation` and `view`; `trajectory` holds the class `Trajectory`, `symbolic` the entry of
 //! `screwdyn.symbolic`. The infrastructure: `convert` (NumPy in and out), `batch` (one state
@@ -28,6 +28,7 @@
 mod args;
 mod batch;
 mod compute;
+mod configuration;
 mod convert;
 mod derivatives;
 mod dynamics;
@@ -36,6 +37,7 @@ mod errors;
 mod identification;
 mod kinematics;
 mod model;
+mod se3;
 mod simulation;
 mod symbolic;
 mod trajectory;
@@ -77,6 +79,7 @@ fn _screwdyn(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<trajectory::PyTrajectory>()?;
     symbolic::register(m)?;
     view::register(m)?;
+    se3::register(m)?;
     m.add_function(wrap_pyfunction!(_panic_for_tests, m)?)?;
     m.add_function(wrap_pyfunction!(_panic_in_batch_for_tests, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

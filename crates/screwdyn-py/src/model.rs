@@ -3,7 +3,7 @@
 //! each with its own `#[pymethods]` block.
 
 use crate::batch::Scratch;
-use crate::convert::{self, fixed_states, joint_states, ArrayIn};
+use crate::convert::{self, fixed_states, ArrayIn};
 use crate::errors::{call_err, guard, load_err, ModelError};
 use nalgebra::Vector3;
 use pyo3::exceptions::{PyTypeError, PyValueError};
@@ -95,7 +95,12 @@ impl PyModel {
     pub(crate) fn urdf_source(&self) -> Option<(PathBuf, String)> {
         match &self.source {
             Source::Text { file, text } => {
-                let urdf = screwdyn::io::Format::of_file(file) == Some(screwdyn::io::Format::Urdf);
+                use screwdyn::io::Format;
+                let urdf = match Format::of_file(file) {
+                    Some(Format::Urdf) => true,
+                    Some(Format::Mjcf) => Format::of_text(text) == Format::Urdf,
+                    _ => false,
+                };
                 let p = PathBuf::from(file);
                 (urdf && p.is_file()).then(|| (p, text.clone()))
             }
@@ -104,8 +109,9 @@ impl PyModel {
     }
 }
 
-/// Loads a model from a `.urdf` file, a `.toml` file (DH, modified DH, product of exponentials or
-/// the native format, chosen by its `format` key) or `builtin:<name>`.
+/// Loads a model from a `.urdf` file, a `.xml` file (MuJoCo's MJCF), a `.toml` file (DH, modified
+/// DH, product of exponentials or the native format, chosen by its `format` key) or
+/// `builtin:<name>`.
 ///
 /// Raises FileNotFoundError for a missing file and screwdyn.ModelError (a ValueError) for a
 /// description that cannot be loaded; the message names the file and line. Physically
@@ -147,9 +153,9 @@ fn load(path_or_builtin: &Bound<'_, PyAny>, strict: bool) -> PyResult<PyModel> {
     })
 }
 
-/// Loads a model from the text of a description. `format` is `"urdf"` or `"toml"` (a TOML
-/// description says which of dh, modified-dh, poe or screwdyn it is with its `format` key);
-/// `None` guesses from the text (URDF starts with `<`). `name` names the text in messages.
+/// Loads a model from the text of a description. `format` is `"urdf"`, `"mjcf"` or `"toml"` (a
+/// TOML description says which of dh, modified-dh, poe or screwdyn it is with its `format`
+/// key); `None` guesses from the text (MJCF's root element is `<mujoco>`, URDF's `<robot>`). `name` names the text in messages.
 #[pyfunction]
 #[pyo3(signature = (text, format = None, *, name = "<string>", strict = false))]
 fn load_string(text: &str, format: Option<&str>, name: &str, strict: bool) -> PyResult<PyModel> {
@@ -258,7 +264,44 @@ impl PyModel {
         self.model.frames().iter().map(|f| f.name.clone()).collect()
     }
 
-    /// The parent link of each link (`None` for a link attached to the base): the seeds' `λ(i)`.
+    /// The index of a frame (its position in :attr:`frame_names`) from its name, or from its
+    /// index (checked); Pinocchio's ``model.getFrameId(name)``. Every method taking a frame takes
+    /// either.
+    fn frame_id(&self, frame: &Bound<'_, PyAny>) -> PyResult<usize> {
+        self.frame(frame)
+    }
+
+    /// The name of a frame from its index (or its name, checked); ``frame_names[i]``.
+    fn frame_name(&self, frame: &Bound<'_, PyAny>) -> PyResult<String> {
+        let f = self.frame(frame)?;
+        Ok(self.model.frames()[f].name.clone())
+    }
+
+    /// The index of a joint (its position in :attr:`joint_names`, the coordinate it moves in
+    /// ``q``) from its name, or from its index (checked); Pinocchio's ``getJointId`` minus one
+    /// (Pinocchio's joint 0 is the universe).
+    fn joint_id(&self, joint: &Bound<'_, PyAny>) -> PyResult<usize> {
+        self.joint(joint)
+    }
+
+    /// Names of the model's keyframes (named configurations, an MJCF file's `<key>`s).
+    #[getter]
+    fn keyframe_names(&self) -> Vec<String> {
+        self.model
+            .keyframe_names()
+            .into_iter()
+            .map(String::from)
+            .collect()
+    }
+
+    /// The named configuration `name` (an MJCF `<key>`): `q`, `(nq,)`. Raises
+    /// screwdyn.ModelError for a name the model does not have.
+    fn keyframe<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        let q = self.model.keyframe(name).map_err(call_err)?;
+        convert::vector(py, q)
+    }
+
+    /// The parent link of each link (`None` for a link attached to the base): `λ(i)` of docs/notation.md.
     #[getter]
     fn parents(&self) -> Vec<Option<usize>> {
         self.model.parents().to_vec()
@@ -390,18 +433,15 @@ impl PyModel {
         self.model.total_mass()
     }
 
-    /// A copy of the model with the given viscous damping and Coulomb friction per joint.
+    /// A copy of the model with the given viscous damping and Coulomb friction per joint (each
+    /// one value per joint or one number for all of them).
     fn with_joint_friction(
         &self,
         damping: ArrayIn<'_>,
         friction: ArrayIn<'_>,
     ) -> PyResult<PyModel> {
-        let d = joint_states(&self.model, &damping, "damping")?;
-        let f = joint_states(&self.model, &friction, "friction")?;
-        let (d, f) = (
-            d.single("with_joint_friction")?.to_vec(),
-            f.single("with_joint_friction")?.to_vec(),
-        );
+        let d = convert::model_per_joint(&self.model, &damping, "damping")?;
+        let f = convert::model_per_joint(&self.model, &friction, "friction")?;
         PyModel::rebuild(self.source.clone(), self.strict, self.gravity, Some((d, f)))
     }
 

@@ -6,7 +6,7 @@
 
 use crate::args::method;
 use crate::compute::{arg, optional};
-use crate::convert::{self, fixed_states, joint_states, python_class, rows_array, values_1d};
+use crate::convert::{self, fixed_states, python_class, rows_array, values_1d};
 use crate::convert::{as_float, as_int, empty_tuple, vector, ArrayIn, StateIn};
 use crate::errors::call_err;
 use crate::model::PyModel;
@@ -16,6 +16,7 @@ use numpy::PyUntypedArrayMethods;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
+use screwdyn::dynamics::link_wrench_on_body;
 use screwdyn::sim::{
     self, Controller, ControllerSpec, Disturbance, Integrator, JointEffects, Recording, SimOptions,
 };
@@ -27,7 +28,8 @@ const CONTROLLERS: &str = "controller is None, an array of constant torques, scr
 
 #[pymethods]
 impl PyModel {
-    /// Simulates the robot from ``(q0, v0)`` for ``duration`` seconds (seed 004 §6.4).
+    /// Simulates the robot from ``(q0, v0)`` for ``duration`` seconds: forward dynamics
+    /// integrated in time.
     ///
     /// controller: ``None`` (zero torque), an array (constant torque), :class:`PD`,
     ///     :class:`ComputedTorque`, :class:`TorqueSeries`, or a callable ``f(t, q, v) -> tau``
@@ -93,8 +95,8 @@ impl PyModel {
         python_class(py, "screwdyn._results", "SimResult")?.call1((rec,))
     }
 
-    /// Inverse dynamics along ``trajectory`` every ``dt`` seconds (end included) — seed 003's
-    /// "how much torque to accelerate from rest to a constant velocity and stop again" — with
+    /// Inverse dynamics along ``trajectory`` every ``dt`` seconds (end included) — how much
+    /// torque it takes to accelerate from rest to a constant velocity and stop again — with
     /// peak and RMS torque per joint against the effort limits (a :class:`TorqueProfile`).
     #[pyo3(signature = (trajectory, dt = 0.01))]
     fn torque_profile<'py>(
@@ -207,12 +209,17 @@ impl PyModel {
             })?;
             let w: ArrayIn<'_> = t.get_item(1)?.extract()?;
             let w = fixed_states(&w, "a disturbance wrench", 6, false)?;
+            let in_world: bool = t.get_item(4)?.extract()?;
+            let link = self.link_frame(&t.get_item(0)?)?;
+            let w = Vector6::from_column_slice(w.row(0));
+            let (body, wrench) =
+                link_wrench_on_body(&self.model, link, w, in_world).map_err(call_err)?;
             out.push(Disturbance {
-                body: self.link(&t.get_item(0)?)?,
-                wrench: Vector6::from_column_slice(w.row(0)),
+                body,
+                wrench,
                 start: t.get_item(2)?.extract()?,
                 end: t.get_item(3)?.extract()?,
-                in_world: t.get_item(4)?.extract()?,
+                in_world,
             });
         }
         Ok(out)
@@ -334,10 +341,9 @@ impl<'a, 'py> ControllerArg<'a, 'py> {
     }
 }
 
-/// A joint vector of a controller (one state only).
+/// A joint vector of a controller: one value per joint or one number for all of them.
 fn joint_vector(m: &Model, a: &ArrayIn<'_>, name: &'static str) -> PyResult<Vec<f64>> {
-    let s = joint_states(m, a, name)?;
-    Ok(s.single("the controller")?.to_vec())
+    convert::model_per_joint(m, a, name)
 }
 
 /// The controller of a run: one the library builds (and runs with the GIL released), or a
@@ -443,6 +449,20 @@ fn recording<'py>(py: Python<'py>, r: &Recording) -> PyResult<Bound<'py, PyDict>
         poses.set_item(name, convert::array(py, out, &[r.poses.len(), 4, 4])?)?;
     }
     d.set_item("poses", poses)?;
+    // What happened at the position limits (a start outside them, each limit-stop contact).
+    let events = PyList::empty(py);
+    for e in &r.events {
+        let x = PyDict::new(py);
+        x.set_item("kind", e.kind.name())?;
+        x.set_item("t", e.t)?;
+        x.set_item("joint", &e.joint_name)?;
+        x.set_item("side", e.side.name())?;
+        x.set_item("bound", e.bound)?;
+        x.set_item("position", e.position)?;
+        x.set_item("velocity", e.velocity)?;
+        events.append(x)?;
+    }
+    d.set_item("events", events)?;
     Ok(d)
 }
 

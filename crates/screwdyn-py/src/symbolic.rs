@@ -67,7 +67,7 @@ fn _symbolic_derive<'py>(
     model: &PyModel,
     quantity: &str,
     symbols: &str,
-    frame: Option<String>,
+    frame: Option<&Bound<'py, PyAny>>,
     reference_frame: &str,
     coriolis: &str,
     max_terms: usize,
@@ -78,6 +78,10 @@ fn _symbolic_derive<'py>(
         if max_terms == 0 {
             return Err(PyValueError::new_err("max_terms must be at least 1"));
         }
+        let frame = match frame.filter(|f| !f.is_none()) {
+            None => None,
+            Some(f) => Some(model.model.frames()[model.frame(f)?].name.clone()),
+        };
         let options = Options {
             symbols: symbols.to_string(),
             frame,

@@ -16,7 +16,7 @@ use screwdyn::Model;
 
 #[pymethods]
 impl PyModel {
-    /// The seeds' closed form at one state ``(q, v)``: ``A(θ)``, ``L = (I − A)⁻¹``, ``S``, ``𝔍``,
+    /// The stacked closed form of docs/notation.md at one state ``(q, v)``: ``A(θ)``, ``L = (I − A)⁻¹``, ``S``, ``𝔍``,
     /// ``J = L S``, ``M = Sᵀ Lᵀ 𝔍 L S``, ``C``, ``g`` as arrays (a :class:`ClosedForm`).
     #[pyo3(signature = (q, v = None))]
     fn closed_form<'py>(
@@ -33,7 +33,7 @@ impl PyModel {
         python_class(py, "screwdyn._results", "ClosedForm")?.call1((slf, data))
     }
 
-    /// Seed 004's Lagrangian coefficients at one state: ``D_ij`` (inertias), ``D_ijk``
+    /// The Lagrangian coefficients at one state: ``D_ij`` (inertias), ``D_ijk``
     /// (Coriolis/centrifugal) and ``D_i`` (gravity), as a :class:`LagrangeCoefficients`.
     fn lagrange_coefficients<'py>(
         slf: &Bound<'py, Self>,
@@ -48,9 +48,10 @@ impl PyModel {
         python_class(py, "screwdyn._results", "LagrangeCoefficients")?.call1((slf, data))
     }
 
-    /// The recursive Newton–Euler algorithm of seeds 000/002 step by step at one state: the
+    /// The recursive Newton–Euler algorithm step by step at one state, in the notation of
+    /// docs/notation.md: the
     /// forward iterations (poses, twists, accelerations) and the backward ones (wrenches,
-    /// torques), as an :class:`RneaTrace` that displays like the lecture in a notebook.
+    /// torques), as an :class:`RneaTrace` that displays typeset in a notebook.
     #[pyo3(signature = (q, v = None, a = None, *, fext = None, fext_world = None, tip_wrenches = None))]
     #[allow(clippy::too_many_arguments)]
     fn rnea_trace<'py>(
@@ -74,7 +75,7 @@ impl PyModel {
     }
 }
 
-/// The library's `dynamics::closed_form` (seeds 000/001) as a dict of arrays `A`, `L`, `S`,
+/// The library's `dynamics::closed_form` as a dict of arrays `A`, `L`, `S`,
 /// `inertia` (𝔍), `ad_S_qdot`, `V`, `ad_V`, `J`, `J_dot`, `Vdot_base`, `M`, `C`,
 /// `C_christoffel`, `g`.
 fn closed_form<'py>(
@@ -104,7 +105,7 @@ fn closed_form<'py>(
     Ok(d)
 }
 
-/// The library's `dynamics::lagrange_coefficients` (seed 004): `D_ij`, `D_ijk`, `D_i` as a dict
+/// The library's `dynamics::lagrange_coefficients`: `D_ij`, `D_ijk`, `D_i` as a dict
 /// of arrays.
 fn lagrange<'py>(py: Python<'py>, model: &Model, q: &[f64]) -> PyResult<Bound<'py, PyDict>> {
     let c = dynamics::lagrange_coefficients(model, q).map_err(call_err)?;
@@ -121,8 +122,8 @@ fn lagrange<'py>(py: Python<'py>, model: &Model, q: &[f64]) -> PyResult<Bound<'p
     Ok(d)
 }
 
-/// The library's `dynamics::rnea_trace` (seeds 000/002, forward and backward iterations) as a
-/// dict of arrays, plus the model quantities the lecture writes next to them (`S_i`,
+/// The library's `dynamics::rnea_trace` (forward and backward iterations) as a
+/// dict of arrays, plus the model quantities written next to them (`S_i`,
 /// `H_i^{λ(i)}(0)`, `𝔍^{i,i}`).
 fn rnea_trace<'py>(
     py: Python<'py>,

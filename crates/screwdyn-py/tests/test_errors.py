@@ -34,7 +34,7 @@ def test_bad_shapes_and_values(arm):
         arm.frame_pose([0, 0], "tip")
     with pytest.raises(ValueError, match="frame index 7 is out of range"):
         arm.frame_pose([0, 0], 7)
-    with pytest.raises(ValueError, match="the model has no moving body named 'link9'"):
+    with pytest.raises(ValueError, match="the model has no link named 'link9'"):
         arm.rnea([0, 0], fext={"link9": np.zeros(6)})
     with pytest.raises(ValueError, match=r"a wrench of fext has shape \(5,\), expected \(6,\)"):
         arm.rnea([0, 0], fext={"link2": np.zeros(5)})

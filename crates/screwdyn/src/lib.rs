@@ -26,6 +26,7 @@ pub mod inertia;
 pub mod io;
 pub mod kinematics;
 pub mod model;
+pub mod motion;
 pub mod scalar;
 pub mod sim;
 pub mod spatial;

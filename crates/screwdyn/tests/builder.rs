@@ -111,6 +111,105 @@ fn fixed_joints_merge_mass_and_keep_the_frame() {
     assert!((tip - Vector3::new(0.0, 1.8, 1.0)).norm() < 1e-14, "{tip}");
 }
 
+/// An arm (revolute about z, then about y) with a rotated, offset tool on a fixed joint.
+fn arm_with_fixed_tool() -> screwdyn::Model {
+    let mut b = ModelBuilder::new("tool");
+    b.gravity(Vector3::zeros())
+        .link(
+            "upper",
+            "base",
+            JointSpec::revolute("j1").screw_in_child(rz()),
+            t(0.0, 0.0, 0.3),
+            mass(2.0),
+        )
+        .link(
+            "fore",
+            "upper",
+            JointSpec::revolute("j2").screw_in_child(Vector6::new(0.0, 1.0, 0.0, 0.0, 0.0, 0.0)),
+            t(0.4, 0.0, 0.0),
+            mass(1.0),
+        )
+        .link(
+            "tool",
+            "fore",
+            JointSpec::fixed("flange"),
+            Se3::from_rpy(0.3, -0.7, 1.1).with_translation(Vector3::new(0.25, 0.05, -0.1)),
+            mass(0.5),
+        )
+        .frame("tcp", "tool", t(0.0, 0.0, 0.1));
+    b.build().unwrap()
+}
+
+#[test]
+fn a_wrench_on_a_fixed_joint_link_is_the_same_wrench_moved_to_its_body() {
+    use screwdyn::dynamics::{inverse_dynamics, ExternalWrenches};
+    use screwdyn::kinematics::{compute_joint_jacobians, frame_jacobian, Reference};
+    let m = arm_with_fixed_tool();
+    let tool = m.link_frame_id("tool").unwrap();
+    assert_eq!(m.frames()[tool].kind, FrameKind::FixedLink);
+    let fore = m.body_id("fore").unwrap();
+    let w_tool = Vector6::new(0.2, -0.4, 0.7, 3.0, -1.0, 2.0);
+    let (q, zero) = ([0.4, -0.9], [0.0, 0.0]);
+    let mut ws = Workspace::new(&m);
+    let mut on_tool = ExternalWrenches::new(&m);
+    on_tool.add_on_link(&m, tool, w_tool, false).unwrap();
+    let tau_tool = inverse_dynamics(&m, &mut ws, &q, &zero, &zero, Some(&on_tool)).unwrap();
+    let tau_tool = tau_tool.clone();
+    // Moved by hand: W^{b} = Ad_{H_b^f}ᵀ W^{f}, with H_b^f = (H_f^b)⁻¹ the 6×6 matrix of Ad.
+    let placement = m.frames()[tool].placement;
+    let w_fore = placement.inverse().adjoint_matrix().transpose() * w_tool;
+    let mut on_fore = ExternalWrenches::new(&m);
+    on_fore.add_local(fore, w_fore).unwrap();
+    let tau_fore = inverse_dynamics(&m, &mut ws, &q, &zero, &zero, Some(&on_fore)).unwrap();
+    let tau_fore = tau_fore.clone();
+    assert!((tau_tool.clone() - tau_fore).norm() < 1e-13);
+    // Statics without gravity: τ = −J_fᵀ W^{f} with the tool's body Jacobian J_f^{f,0}.
+    compute_joint_jacobians(&m, &mut ws, &q).unwrap();
+    let mut j = nalgebra::Matrix6xX::zeros(2);
+    frame_jacobian(&m, &ws, tool, Reference::Local, &mut j).unwrap();
+    let expected = -(j.transpose() * w_tool);
+    assert!(
+        (tau_tool.clone() - expected.clone()).norm() < 1e-13,
+        "{tau_tool} {expected}"
+    );
+    // The same wrench written in the base frame: τ = −J^{0,0ᵀ} W^{0}, whichever link carries it.
+    frame_jacobian(&m, &ws, tool, Reference::World, &mut j).unwrap();
+    let mut in_world = ExternalWrenches::new(&m);
+    in_world.add_on_link(&m, tool, w_tool, true).unwrap();
+    let tau_world = inverse_dynamics(&m, &mut ws, &q, &zero, &zero, Some(&in_world)).unwrap();
+    let tau_world = tau_world.clone();
+    assert!((tau_world - (-(j.transpose() * w_tool))).norm() < 1e-13);
+}
+
+#[test]
+fn a_wrench_needs_a_link_that_moves() {
+    use screwdyn::dynamics::ExternalWrenches;
+    let m = arm_with_fixed_tool();
+    let mut ext = ExternalWrenches::new(&m);
+    let w = Vector6::repeat(1.0);
+    let e = m.link_frame_id("tcp").unwrap_err().to_string();
+    assert!(
+        e.contains("no link named 'tcp'") && e.contains("tool"),
+        "{e}"
+    );
+    let tcp = m.frame_id("tcp").unwrap();
+    let e = ext.add_on_link(&m, tcp, w, false).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "an external wrench on 'tcp', which is a frame, not a link: name a link"
+    );
+    let base = m.link_frame_id("base").unwrap();
+    let e = ext.add_on_link(&m, base, w, true).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "an external wrench on link 'base', which is fixed to the base and cannot act on the robot"
+    );
+    let mut nan = w;
+    nan[3] = f64::NAN;
+    let tool = m.link_frame_id("tool").unwrap();
+    assert!(ext.add_on_link(&m, tool, nan, false).is_err());
+}
+
 fn err(b: &ModelBuilder) -> String {
     b.build().unwrap_err().to_string()
 }

@@ -19,6 +19,7 @@ mod states;
 mod symbolic;
 mod torque_profile;
 mod view;
+mod waypoints;
 
 use crate::args::{Cli, Command};
 use crate::CliError;

@@ -152,9 +152,16 @@ pub fn info(a: &ModelArgs) -> Result<(), CliError> {
 }
 
 /// `screwdyn check MODEL`: lists the model's physical-consistency problems and whether forward
-/// dynamics works at `q = 0`; exit status 2 when there is any problem.
+/// dynamics works at `q = 0`; exit status 2 when there is any problem. For an MJCF file, also
+/// every element and attribute the loader ignored (information, not a problem).
 pub fn check(a: &CheckArgs) -> Result<(), CliError> {
     let loose = screwdyn::io::load_model_with(&a.model, &LoadOptions { strict: false })?;
+    let ignored: Vec<String> =
+        screwdyn::io::mjcf::report_of_file(&a.model, &LoadOptions { strict: false })?
+            .unwrap_or_default()
+            .iter()
+            .map(|i| i.to_string())
+            .collect();
     let mut problems: Vec<String> = loose
         .physical_problems()
         .iter()
@@ -184,10 +191,21 @@ pub fn check(a: &CheckArgs) -> Result<(), CliError> {
             for p in &problems {
                 out.push_str(&format!("problem: {p}\n"));
             }
+            if !ignored.is_empty() {
+                out.push_str(&format!(
+                    "the loader ignored {} element{} or attribute list{} (MJCF conformance):\n",
+                    ignored.len(),
+                    if ignored.len() == 1 { "" } else { "s" },
+                    if ignored.len() == 1 { "" } else { "s" }
+                ));
+            }
+            for i in &ignored {
+                out.push_str(&format!("ignored: {i}\n"));
+            }
             write_stdout(&out)?;
         }
         _ => {
-            let v = serde_json::json!({"model": a.model, "ok": ok, "problems": problems});
+            let v = serde_json::json!({"model": a.model, "ok": ok, "problems": problems, "ignored": ignored});
             write_stdout(&format!(
                 "{}\n",
                 serde_json::to_string_pretty(&v).expect("JSON of strings")
@@ -230,10 +248,14 @@ pub fn export(a: &ExportArgs) -> Result<(), CliError> {
         }
     };
     match &a.output {
-        Some(p) => crate::write::atomic(p, |w| {
-            std::io::Write::write_all(w, text.as_bytes())
-                .map_err(|e| CliError::input(format!("cannot write {} ({e})", p.display())))
-        }),
+        Some(p) => {
+            crate::write::atomic(p, |w| {
+                std::io::Write::write_all(w, text.as_bytes())
+                    .map_err(|e| CliError::input(format!("cannot write {} ({e})", p.display())))
+            })?;
+            crate::write::announce(p);
+            Ok(())
+        }
         None => write_stdout(&text),
     }
 }

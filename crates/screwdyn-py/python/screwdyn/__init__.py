@@ -1,10 +1,10 @@
-"""screwdyn: robot kinematics, dynamics and simulation in the screw-theory notation of the
-lecture notes (twists and wrenches angular first, ``V = (ω, v)``, ``W = (m, f)``), for NumPy,
-Jupyter and clusters.
+"""screwdyn: robot kinematics, dynamics and simulation in screw-theory notation (docs/notation.md:
+twists and wrenches angular first, ``V = (ω, v)``, ``W = (m, f)``, as in Lynch & Park's *Modern
+Robotics*), for NumPy, Jupyter and clusters.
 
 >>> import screwdyn
 >>> arm = screwdyn.load("builtin:planar2")
->>> arm.rnea([0.0, 0.0], [0.0, 0.0], [0.0, 0.0])   # seed 003: g(0) = [3 g, g]
+>>> arm.rnea([0.0, 0.0], [0.0, 0.0], [0.0, 0.0])   # two-link arm: g(0) = [3 g, g]
 array([29.43,  9.81])
 
 Every per-state function takes one state (``q`` of shape ``(nq,)``) or ``N`` stacked states
@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from . import _screwdyn
+from . import _screwdyn, se3
 from ._screwdyn import Model, ModelError, Trajectory, builtin_names, load, load_string
 from ._view import View
 from ._results import (
@@ -58,6 +58,7 @@ __all__ = [
     "load",
     "load_string",
     "builtin_names",
+    "se3",
 ]
 
 
@@ -65,7 +66,8 @@ __all__ = [
 
 def Trapezoid(q0, qf, vmax, amax, synchronised: bool = True) -> Trajectory:
     """Trapezoidal velocity profiles from ``q0`` to ``qf`` under per-joint limits ``vmax``
-    (rad/s) and ``amax`` (rad/s²); see :meth:`Trajectory.trapezoid`."""
+    (rad/s) and ``amax`` (rad/s²), each one value per joint or one number for every joint (as
+    ``Trapezoid(q0, qf, vmax=1.0, amax=2.0)``); see :meth:`Trajectory.trapezoid`."""
     return Trajectory.trapezoid(q0, qf, vmax, amax, synchronised)
 
 
@@ -107,8 +109,8 @@ def _list(x):
 
 
 class PD:
-    """PD control with gravity compensation, ``τ = Kp (q* − q) − Kd q̇ + g(q)``. Gains left
-    ``None`` take the library's defaults, ``Kp = ω² M_ii(q*)``, ``Kd = 2ω M_ii(q*)`` (ω = 10
+    """PD control with gravity compensation, ``τ = Kp (q* − q) − Kd q̇ + g(q)``; the target and
+    the gains are one value per joint or one number for every joint. Gains left ``None`` take the library's defaults, ``Kp = ω² M_ii(q*)``, ``Kd = 2ω M_ii(q*)`` (ω = 10
     rad/s: each joint critically damped)."""
 
     def __init__(self, target, kp=None, kd=None):
@@ -158,7 +160,8 @@ class TorqueSeries:
 
 class Disturbance:
     """An external wrench ``(m, f)`` on ``link`` during ``[start, end)`` seconds, written in the
-    link frame (``frame="local"``) or in the base frame (``frame="world"``)."""
+    link frame (``frame="local"``) or in the base frame (``frame="world"``). ``link`` is a link
+    name (one attached by a fixed joint included) or an index in ``Model.link_names``."""
 
     def __init__(self, link, wrench, start: float = 0.0, end: float = math.inf, frame: str = "local"):
         if frame not in ("local", "world"):

@@ -49,11 +49,11 @@ def _pyplot():
 
 
 class ClosedForm:
-    """The seeds' closed form at one state (seeds 000/001). Attributes are NumPy arrays:
+    """The stacked closed form of docs/notation.md at one state. Attributes are NumPy arrays:
 
     ``A`` (6n×6n, block ``(i, λ(i)) = Ad_{H_{λ(i)}^i}``), ``L = (I − A)⁻¹``, ``S`` (6n×n),
     ``inertia`` (𝔍, 6n×6n), ``ad_S_qdot``, ``V = L S θ̇``, ``ad_V``, ``J = L S``, ``J_dot``,
-    ``Vdot_base``, ``M = Sᵀ Lᵀ 𝔍 L S``, ``C`` (the seeds' literal factorisation),
+    ``Vdot_base``, ``M = Sᵀ Lᵀ 𝔍 L S``, ``C`` (the closed form's own factorisation),
     ``C_christoffel`` (the one with ``Ṁ − 2C`` skew-symmetric, as ``coriolis_matrix``), ``g``.
     """
 
@@ -107,7 +107,7 @@ class ClosedForm:
 
 
 class LagrangeCoefficients:
-    """Seed 004's Lagrangian coefficients at one state: ``D_ij`` (n×n), ``D_ijk`` (n×n×n,
+    """The Lagrangian coefficients at one state: ``D_ij`` (n×n), ``D_ijk`` (n×n×n,
     ``D_ijk[i, j, k]``, 0-based) and ``D_i`` (n), so that
     ``τ_i = Σ_j D_ij q̈_j + Σ_jk D_ijk q̇_j q̇_k + D_i``."""
 
@@ -132,9 +132,9 @@ class LagrangeCoefficients:
 
 
 class RneaTrace:
-    """The recursive Newton–Euler iterations of seeds 000/002 at one state.
+    """The recursive Newton–Euler iterations at one state (docs/notation.md).
 
-    Per link ``i`` (0-based arrays, 1-based in the display as in the lecture): ``home``
+    Per link ``i`` (0-based arrays, 1-based in the display, as in docs/notation.md): ``home``
     (``H_i^{λ(i)}(0)``), ``screw`` (``S_i^{i,λ(i)}``), ``pose_in_parent``
     (``H_i^{λ(i)}(θ_i) = H_i^{λ(i)}(0) e^{S̃_i θ_i}``), ``parent_twist`` /
     ``parent_twist_dot`` (``Ad_{H_{λ(i)}^i} V_{λ(i)}``, ``Ad V̇_{λ(i)}``), ``twist``
@@ -191,7 +191,7 @@ class RneaTrace:
 
     def _repr_markdown_(self) -> str:
         n = len(self.joint_names)
-        out = ["**Recursive Newton–Euler**, step by step (seeds 000/002), at "
+        out = ["**Recursive Newton–Euler**, step by step, at "
                f"$\\theta$ = {self.q.tolist()}, $\\dot\\theta$ = {self.v.tolist()}, "
                f"$\\ddot\\theta$ = {self.a.tolist()}", "",
                "*Forward iterations*, $i = 1 \\dots n$, with $V_0 = 0$ and "
@@ -224,8 +224,12 @@ class RneaTrace:
 
 class SimResult:
     """A recorded simulation: ``t`` (T,), ``q``, ``v``, ``a``, ``tau`` (T, nq),
-    ``kinetic_energy``, ``potential_energy``, ``total_energy`` (T,) and ``poses`` (frame →
-    (T, 4, 4)). ``to_dataframe()`` gives the CLI's CSV columns; ``plot()`` draws them."""
+    ``kinetic_energy``, ``potential_energy``, ``total_energy`` (T,), ``poses`` (frame →
+    (T, 4, 4)) and ``events``: what happened at the joints' position limits, one dict each
+    (``kind`` ``"start_outside"`` or ``"contact"``, ``t``, ``joint``, ``side`` ``"lower"`` or
+    ``"upper"``, ``bound``, ``position``, ``velocity``) — a joint that starts outside its limits
+    is not moved inside, its limit stop pushes it back; each contact with a limit stop is listed
+    once. ``to_dataframe()`` gives the CLI's CSV columns; ``plot()`` draws them."""
 
     def __init__(self, data: Dict[str, Any]):
         self.joint_names: List[str] = list(data["joints"])
@@ -238,6 +242,7 @@ class SimResult:
         self.potential_energy: np.ndarray = data["potential_energy"]
         self.total_energy: np.ndarray = data["total_energy"]
         self.poses: Dict[str, np.ndarray] = dict(data["poses"])
+        self.events: List[Dict[str, Any]] = list(data.get("events", []))
 
     def __len__(self) -> int:
         return len(self.t)

@@ -1,6 +1,7 @@
 """Type stubs of the native module screwdyn._screwdyn (re-exported by ``screwdyn``).
 
-Conventions: float64 NumPy arrays in model joint order; one state ``(nq,)`` or ``N`` stacked
+Conventions: float64 NumPy arrays in model joint order; a per-joint parameter (limits, gains,
+damping, friction, a trajectory's end points) is one value per joint or one number for all; one state ``(nq,)`` or ``N`` stacked
 states ``(N, nq)`` (a single argument is broadcast against stacked ones); twists and wrenches
 angular first ``(ω, v)`` / ``(m, f)``; SI units and radians. ``threads=None`` uses all cores,
 ``threads=1`` the calling thread only. ``out=`` (NumPy's convention) takes a float64,
@@ -44,10 +45,20 @@ SYMBOLIC_DEFAULT_MAX_TERMS: int
 
 # Private entry points of the Python layer (screwdyn.symbolic, SimResult.save, View.save); use
 # those instead.
-def _symbolic_derive(model: Model, quantity: str, symbols: str, frame: Optional[str],
+def _symbolic_derive(model: Model, quantity: str, symbols: str, frame: Optional[FrameRef],
                      reference_frame: str, coriolis: str, max_terms: int) -> Dict[str, Any]: ...
 def _save_recording(path: str, result: Union[SimResult, TorqueProfile]) -> None: ...
 def _write_text_atomically(path: str, text: str) -> None: ...
+# The native half of screwdyn.se3 (use that module).
+def _se3_exp(twist: ArrayLike) -> FloatArray: ...
+def _se3_log(H: ArrayLike) -> FloatArray: ...
+def _se3_adjoint(H: ArrayLike) -> FloatArray: ...
+def _se3_ad(twist: ArrayLike) -> FloatArray: ...
+def _se3_inverse(H: ArrayLike) -> FloatArray: ...
+def _se3_from_quaternion(q: ArrayLike, translation: Optional[ArrayLike] = None) -> FloatArray: ...
+def _se3_to_quaternion(H: ArrayLike) -> FloatArray: ...
+def _se3_from_rpy(rpy: ArrayLike, translation: Optional[ArrayLike] = None) -> FloatArray: ...
+def _se3_to_rpy(H: ArrayLike) -> FloatArray: ...
 
 class Model:
     """A robot model (immutable except for ``gravity``); pickles."""
@@ -60,6 +71,7 @@ class Model:
     joint_types: List[str]
     link_names: List[str]
     frame_names: List[str]
+    keyframe_names: List[str]
     parents: List[Optional[int]]
     lower_limits: FloatArray
     upper_limits: FloatArray
@@ -79,10 +91,32 @@ class Model:
     physical_problems: List[str]
     """Physical-consistency findings of the description (empty for a consistent model)."""
 
-    def with_joint_friction(self, damping: ArrayLike, friction: ArrayLike) -> Model: ...
+    configuration_ranges: FloatArray
+    """(nq, 2) rows ``[lo, hi]`` random configurations are drawn from: the limits, an infinite
+    bound replaced by ∓π (revolute, continuous, helical) or ∓1 m (prismatic)."""
+
+    def with_joint_friction(self, damping: ArrayLike, friction: ArrayLike) -> Model:
+        """Each one value per joint or one number for every joint."""
     def to_urdf(self) -> str: ...
     def to_mjcf(self) -> str:
         """MJCF (MuJoCo) text: armature, limits, damping, friction, motors, frames as sites."""
+    def keyframe(self, name: str) -> FloatArray: ...
+
+    # frames and joints by name or index (every method taking a frame takes either)
+    def frame_id(self, frame: FrameRef) -> int:
+        """The index of a frame in ``frame_names`` (Pinocchio's ``getFrameId``)."""
+    def frame_name(self, frame: FrameRef) -> str:
+        """``frame_names[i]``."""
+    def joint_id(self, joint: FrameRef) -> int:
+        """The index of a joint in ``joint_names`` (its coordinate in ``q``)."""
+
+    # configurations to start from
+    def neutral(self) -> FloatArray:
+        """(nq,): zero, or the point of the joint's range nearest zero when zero is outside it."""
+    def random_configuration(self, rng: Union[np.random.Generator, int, None] = None,
+                             n: Optional[int] = None) -> FloatArray:
+        """(nq,) or (n, nq), uniform over ``configuration_ranges``; ``rng`` a NumPy Generator,
+        an int seed (screwdyn's SplitMix64: the same on every machine) or None (fresh)."""
 
     # kinematics
     def frame_pose(self, q: ArrayLike, frame: FrameRef, *, threads: Optional[int] = None,
@@ -144,7 +178,7 @@ class Model:
     def center_of_mass(self, q: ArrayLike, *, threads: Optional[int] = None,
                        out: Optional[FloatArray] = None) -> FloatArray: ...
 
-    # the seeds' quantities (one state)
+    # the closed form, Lagrangian coefficients and RNEA trace (one state)
     def closed_form(self, q: ArrayLike, v: Optional[ArrayLike] = None) -> ClosedForm: ...
     def lagrange_coefficients(self, q: ArrayLike) -> LagrangeCoefficients: ...
     def mass_matrix_derivatives(self, q: ArrayLike) -> FloatArray:
@@ -199,7 +233,8 @@ class Model:
     def __reduce__(self) -> Tuple[Any, ...]: ...
 
 class Trajectory:
-    """A joint-space trajectory."""
+    """A joint-space trajectory. Per-joint arguments (end points, limits, boundary velocities
+    and accelerations) are one value per joint or one number for every joint."""
 
     duration: float
     nq: int
@@ -213,5 +248,14 @@ class Trajectory:
                 af: Optional[ArrayLike] = None) -> Trajectory: ...
     @staticmethod
     def waypoints(times: ArrayLike, points: ArrayLike) -> Trajectory: ...
+    @staticmethod
+    def time_optimal(model: Model, waypoints: ArrayLike, s: Optional[ArrayLike] = None,
+                     vmax: Optional[ArrayLike] = None, amax: Optional[ArrayLike] = None,
+                     effort: Optional[ArrayLike] = None,
+                     grid: Optional[int] = None) -> Trajectory: ...
+    @staticmethod
+    def jerk_limited(q0: ArrayLike, qf: ArrayLike, vmax: ArrayLike, amax: ArrayLike,
+                     jmax: ArrayLike) -> Trajectory: ...
+    def phase_plane(self) -> Tuple[FloatArray, FloatArray, FloatArray]: ...
     def sample(self, t: ArrayLike) -> Tuple[FloatArray, FloatArray, FloatArray]: ...
     def cruise_speeds(self) -> FloatArray: ...

@@ -3,7 +3,7 @@
 
 >>> import screwdyn, screwdyn.symbolic as sym
 >>> arm = screwdyn.load("builtin:planar2")
->>> M = sym.mass_matrix(arm, symbols="all")          # seed 003
+>>> M = sym.mass_matrix(arm, symbols="all")          # the two-link arm
 >>> M[1, 1]
 L2**2*m2
 
@@ -16,9 +16,9 @@ term by term (coefficient and exponents of each variable), and this module build
 objects from that structure; nothing is parsed from printed text.
 
 **Symbols.** Joint variables are ``theta1 … thetan`` (``θ``), ``thetadot1 …`` (``θ̇``) and
-``thetaddot1 …`` (``θ̈``), 1-based like the lecture notes, plain :class:`sympy.Symbol` objects
+``thetaddot1 …`` (``θ̈``), 1-based as in docs/notation.md, plain :class:`sympy.Symbol` objects
 so ``sympy.diff`` works (SymPy prints them as ``θ₁``, ``θ̇₁``, ``θ̈₁`` in LaTeX). Parameters
-kept symbolic carry the engine's names: the seeds' ``m1, m2, L1, L2, g`` for
+kept symbolic carry the engine's names: ``m1, m2, L1, L2, g`` for
 ``builtin:planar2``; ``m_<link>``, ``Ixx_<link>``, ``cx_<link>``, ``g``, ``a_<i>``, ``d_<i>``
 (standard-DH joints) or ``px_<i>`` … for other models. :func:`joint_symbols` and
 :attr:`Derivation.symbols` return the symbol objects.
@@ -40,7 +40,7 @@ past ``max_terms``) raises ``ValueError`` with the library's sentence.
 from __future__ import annotations
 
 import fractions
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 from . import _screwdyn
 
@@ -192,8 +192,8 @@ def _latex_name(name: str) -> str:
     return {"Cθ̇": "C\\dot{\\theta}", "τ": "\\tau"}.get(name, name)
 
 
-def derive(model, quantity: str, *, symbols: str = "", frame: Optional[str] = None,
-           reference: str = "local", coriolis: str = "seed",
+def derive(model, quantity: str, *, symbols: str = "", frame: Union[str, int, None] = None,
+           reference: str = "local", coriolis: str = "closed-form",
            max_terms: int = DEFAULT_MAX_TERMS) -> Derivation:
     """Derives ``quantity`` of ``model`` symbolically (the library's symbolic engine, as
     ``screwdyn symbolic MODEL --quantity …``).
@@ -203,9 +203,10 @@ def derive(model, quantity: str, *, symbols: str = "", frame: Optional[str] = No
         ``"jacobian"`` (6 × n, angular rows first), ``"energy"`` (``K`` and ``P``) or
         ``"regressor"`` (``Y``, ``τ = Y π``); underscores are accepted for hyphens.
     symbols: the parameters kept as symbols (see the module documentation).
-    frame: the frame of ``fk`` and ``jacobian`` (default: the last body's frame).
+    frame: the frame of ``fk`` and ``jacobian``, by name or index (default: the last body's
+        frame).
     reference: the Jacobian's reference, ``"local"``, ``"world"`` or ``"world-aligned"``.
-    coriolis: ``"seed"`` (seed 000's literal ``C``) or ``"christoffel"`` (``Ṁ − 2C``
+    coriolis: ``"closed-form"`` (the stacked closed form's own ``C``) or ``"christoffel"`` (``Ṁ − 2C``
         skew-symmetric).
     max_terms: the largest number of terms of one expanded expression; a larger one raises
         ValueError naming the limit.
@@ -217,12 +218,12 @@ def derive(model, quantity: str, *, symbols: str = "", frame: Optional[str] = No
 
 
 def mass_matrix(model, symbols: str = "", **options):
-    """``M(θ)`` as an n × n :class:`sympy.Matrix` (seed 003/004)."""
+    """``M(θ)`` as an n × n :class:`sympy.Matrix` (the two-link arm's is the textbook one)."""
     return derive(model, "mass-matrix", symbols=symbols, **options)["M"]
 
 
-def coriolis_matrix(model, symbols: str = "", form: str = "seed", **options):
-    """``C(θ, θ̇)``, n × n: ``form="seed"`` (seed 000's literal closed form) or
+def coriolis_matrix(model, symbols: str = "", form: str = "closed-form", **options):
+    """``C(θ, θ̇)``, n × n: ``form="closed-form"`` (the stacked closed form's own ``C``) or
     ``"christoffel"`` (Christoffel symbols, ``Ṁ − 2C`` skew-symmetric)."""
     return derive(model, "coriolis", symbols=symbols, coriolis=form, **options)["C"]
 
@@ -245,12 +246,12 @@ def inverse_dynamics(model, symbols: str = "", **options):
 torque = inverse_dynamics
 
 
-def forward_kinematics(model, frame: Optional[str] = None, symbols: str = "", **options):
+def forward_kinematics(model, frame: Union[str, int, None] = None, symbols: str = "", **options):
     """``H_f^0(θ)`` of ``frame`` (default: the last body's frame), 4 × 4."""
     return derive(model, "fk", symbols=symbols, frame=frame, **options)["H"]
 
 
-def jacobian(model, frame: Optional[str] = None, reference: str = "local", symbols: str = "",
+def jacobian(model, frame: Union[str, int, None] = None, reference: str = "local", symbols: str = "",
              **options):
     """The 6 × n Jacobian of ``frame`` (angular rows first) in ``reference``."""
     return derive(model, "jacobian", symbols=symbols, frame=frame, reference=reference,

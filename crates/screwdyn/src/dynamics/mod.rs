@@ -59,4 +59,4 @@ pub use regressor::{
 };
 pub use rnea::{base_acceleration, gravity_torque, inverse_dynamics, nonlinear_effects, rnea};
 pub use trace::{rnea_trace, BackwardStep, ForwardStep, RneaTrace};
-pub use wrenches::ExternalWrenches;
+pub use wrenches::{link_wrench_on_body, ExternalWrenches};

@@ -2,7 +2,7 @@
 //! Wrenches" and "Adding End-effector wrench").
 
 use crate::error::{Error, Result};
-use crate::model::Model;
+use crate::model::{FrameKind, Model};
 use crate::scalar::Real;
 use crate::spatial::{Se3, Wrench};
 use crate::workspace::Workspace;
@@ -48,6 +48,54 @@ fn check_wrench<T: Real>(w: &Wrench<T>, what: &str) -> Result<()> {
         });
     }
     Ok(())
+}
+
+/// The moving body a wrench on the link whose frame is `frame` acts on, and the wrench as that
+/// body takes it: unchanged when written in the base frame (`in_world`: the same wrench on the
+/// same rigid body), else moved from the link frame `f` to the body frame `b`,
+/// `W^{b} = Ad_{H_b^f}ᵀ W^{f}`. The link may be a moving body or a link attached by a fixed joint
+/// (merged into the body it hangs from). The one rule behind [`ExternalWrenches::add_on_link`]
+/// and the front-ends' simulation disturbances.
+///
+/// # Errors
+/// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when the model has no frame
+/// `frame`, the frame is not a link (an extra frame) or the link is fixed to the base;
+/// [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞ in `w`.
+///
+/// ```
+/// use nalgebra::Vector6;
+/// use screwdyn::{builtin, dynamics::link_wrench_on_body};
+/// let m = builtin::planar2();
+/// let w = Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0);
+/// let (body, on_body) = link_wrench_on_body(&m, m.link_frame_id("link2").unwrap(), w, false).unwrap();
+/// assert_eq!((body, on_body), (1, w));
+/// ```
+pub fn link_wrench_on_body<T: Real>(
+    model: &Model<T>,
+    frame: usize,
+    w: Wrench<T>,
+    in_world: bool,
+) -> Result<(usize, Wrench<T>)> {
+    let f = model.frame(frame)?;
+    if f.kind == FrameKind::Extra {
+        return Err(Error::InvalidArgument(format!(
+            "an external wrench on '{}', which is a frame, not a link: name a link",
+            f.name
+        )));
+    }
+    let Some(body) = f.body else {
+        return Err(Error::InvalidArgument(format!(
+            "an external wrench on link '{}', which is fixed to the base and cannot act on the robot",
+            f.name
+        )));
+    };
+    check_wrench(&w, "the external wrench")?;
+    if in_world {
+        Ok((body, w))
+    } else {
+        // W^{b} = Ad_{H_b^f}ᵀ W^{f} = Ad_{(H_f^b)⁻¹}ᵀ W^{f}.
+        Ok((body, f.placement.inv_act_transpose_wrench(&w)))
+    }
 }
 
 impl<T: Real> ExternalWrenches<T> {
@@ -110,6 +158,43 @@ impl<T: Real> ExternalWrenches<T> {
         self.world[body] += w;
         self.any_world = true;
         Ok(())
+    }
+
+    /// Adds a wrench of the environment on the link whose frame is `frame`: a moving body's
+    /// frame or a link attached by a fixed joint (merged into the body it hangs from), given in
+    /// that link's frame, or in the base frame {0} when `in_world`. A fixed-joint link's wrench
+    /// is moved to its body, `W^{b} = Ad_{H_f^b}^{-ᵀ} W^{f}` (a wrench in the base frame needs no
+    /// move: it is the same wrench on the same rigid body).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when the model has no frame
+    /// `frame`, the frame is not a link (an extra frame), the link is fixed to the base, or the
+    /// set was made for another model; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞
+    /// in `w`.
+    ///
+    /// ```
+    /// use nalgebra::Vector6;
+    /// use screwdyn::{builtin, dynamics::ExternalWrenches};
+    /// let m = builtin::planar2();
+    /// let mut ext = ExternalWrenches::new(&m);
+    /// let link2 = m.link_frame_id("link2").unwrap();
+    /// ext.add_on_link(&m, link2, Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0), false).unwrap();
+    /// assert_eq!(ext.len(), 2);
+    /// ```
+    pub fn add_on_link(
+        &mut self,
+        model: &Model<T>,
+        frame: usize,
+        w: Wrench<T>,
+        in_world: bool,
+    ) -> Result<()> {
+        self.check(model)?;
+        let (body, w) = link_wrench_on_body(model, frame, w, in_world)?;
+        if in_world {
+            self.add_world(body, w)
+        } else {
+            self.add_local(body, w)
+        }
     }
 
     /// Adds a tip wrench `W_tip^{e,e}`: the wrench that frame `frame` applies to the environment,

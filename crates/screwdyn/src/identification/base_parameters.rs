@@ -126,7 +126,7 @@ impl BaseParameters {
         let mut ws = Workspace::new(model);
         let mut w = DMatrix::zeros(states * n, p);
         let mut block = DMatrix::zeros(n, p);
-        let mut rng = SplitMix(seed ^ 0x005E_ED0F_BA5E);
+        let mut rng = SplitMix::new(seed ^ 0x005E_ED0F_BA5E);
         let (mut q, mut v, mut a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         for s in 0..states {
             for i in 0..n {

@@ -50,7 +50,7 @@ impl FourierTrajectory {
                 "the base frequency must be positive and finite, not {base_frequency}"
             )));
         }
-        let mut rng = SplitMix(seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 0xF0_0F);
+        let mut rng = SplitMix::new(seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 0xF0_0F);
         let n = model.nv();
         let mut f = FourierTrajectory {
             base_frequency,
@@ -177,7 +177,7 @@ pub fn excitation_log<E: From<Error>>(
         .into());
     }
     let mut ws = Workspace::new(model);
-    let mut rng = SplitMix(seed ^ 0xA5A5_5A5A_1234_5678);
+    let mut rng = SplitMix::new(seed ^ 0xA5A5_5A5A_1234_5678);
     let mut tau = vec![0.0; model.nv()];
     let samples = (duration * rate).floor() as usize;
     for k in 0..=samples {

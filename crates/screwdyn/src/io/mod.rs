@@ -2,6 +2,8 @@
 //! docs/formats.md):
 //!
 //! - **URDF** (`.urdf`): [`urdf::parse_urdf`], and the export [`urdf::to_urdf_string`];
+//! - **MJCF**, MuJoCo's format (`.xml`): [`mjcf::parse_mjcf`], and the list of what it leaves
+//!   out, [`mjcf::parse_mjcf_report`];
 //! - **DH tables** (`.toml` with `format = "dh"` or `format = "modified-dh"`): [`dh`];
 //! - **product of exponentials**, Modern Robotics style (`format = "poe"`): [`poe`], also as
 //!   the API [`poe::from_poe`];
@@ -41,6 +43,7 @@
 
 pub mod builtin;
 pub mod dh;
+pub mod mjcf;
 pub mod mjcf_export;
 pub mod native;
 pub mod output;

@@ -2,6 +2,7 @@
 //! once; [`load_source`] also returns the text and the path.
 
 use super::builtin;
+use super::mjcf;
 use super::options::LoadOptions;
 use super::toml_format::load_toml_str;
 use super::urdf;
@@ -82,7 +83,7 @@ pub fn load_source(path_or_builtin: &str, options: &LoadOptions) -> Result<Loade
         return Err(Error::parse(
             path_or_builtin,
             format!(
-                "unknown model format, expected a .urdf or .toml file or builtin:<name> ({})",
+                "unknown model format, expected a .urdf, .xml (MJCF) or .toml file or builtin:<name> ({})",
                 builtin::NAMES.join(", ")
             ),
         ));
@@ -95,7 +96,7 @@ pub fn load_source(path_or_builtin: &str, options: &LoadOptions) -> Result<Loade
             Some(PathBuf::from(path_or_builtin)),
             ErrorKind::InvalidInput,
             format!(
-                "{path_or_builtin}: is not a regular file (a model must be a .urdf or .toml file)"
+                "{path_or_builtin}: is not a regular file (a model must be a .urdf, .xml or .toml file)"
             ),
         ));
     }
@@ -119,6 +120,11 @@ pub fn load_source(path_or_builtin: &str, options: &LoadOptions) -> Result<Loade
 pub fn load_str(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     match Format::of_file(file) {
         Some(Format::Urdf) => urdf::parse_urdf(text, file, options),
+        // A `.xml` file whose root element is <robot> is URDF.
+        Some(Format::Mjcf) if Format::of_text(text) == Format::Urdf => {
+            urdf::parse_urdf(text, file, options)
+        }
+        Some(Format::Mjcf) => mjcf::parse_mjcf(text, file, options),
         _ => load_toml_str(text, file, options),
     }
 }
@@ -126,8 +132,10 @@ pub fn load_str(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
 /// The kind of description a file holds, told by its extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
-    /// URDF (`.urdf`, `.xml`).
+    /// URDF (`.urdf`; a `.xml` file whose root element is `<robot>`).
     Urdf,
+    /// MJCF, MuJoCo's format (`.xml`).
+    Mjcf,
     /// TOML: DH, modified DH, product of exponentials or screwdyn's own (`.toml`).
     Toml,
 }
@@ -140,12 +148,15 @@ impl Format {
     /// use screwdyn::io::Format;
     /// assert_eq!(Format::of_file("robots/UR5.URDF"), Some(Format::Urdf));
     /// assert_eq!(Format::of_file("arm.toml"), Some(Format::Toml));
+    /// assert_eq!(Format::of_file("ur5e.xml"), Some(Format::Mjcf));
     /// assert_eq!(Format::of_file("arm.json"), None);
     /// ```
     pub fn of_file(file: &str) -> Option<Format> {
         let lower = file.to_ascii_lowercase();
-        if lower.ends_with(".urdf") || lower.ends_with(".xml") {
+        if lower.ends_with(".urdf") {
             Some(Format::Urdf)
+        } else if lower.ends_with(".xml") {
+            Some(Format::Mjcf)
         } else if lower.ends_with(".toml") {
             Some(Format::Toml)
         } else {
@@ -155,24 +166,38 @@ impl Format {
 }
 
 impl Format {
-    /// The format of a description given as text alone: URDF when it starts with `<`, else
-    /// TOML.
+    /// The format of a description given as text alone: MJCF when its root element is
+    /// `<mujoco>`, URDF for any other XML, else TOML.
     ///
     /// ```
     /// use screwdyn::io::Format;
     /// assert_eq!(Format::of_text("  <robot name='r'/>"), Format::Urdf);
+    /// assert_eq!(Format::of_text("<?xml version='1.0'?>\n<!-- arm -->\n<mujoco model='a'/>"), Format::Mjcf);
     /// assert_eq!(Format::of_text("format = \"dh\""), Format::Toml);
     /// ```
     pub fn of_text(text: &str) -> Format {
-        if text.trim_start().starts_with('<') {
-            Format::Urdf
-        } else {
-            Format::Toml
+        let t = text.trim_start();
+        if !t.starts_with('<') {
+            return Format::Toml;
         }
+        // The first element's tag, past the XML declaration, comments and doctype.
+        let mut rest = t;
+        while let Some(i) = rest.find('<') {
+            rest = &rest[i + 1..];
+            if rest.starts_with('?') || rest.starts_with('!') {
+                continue;
+            }
+            return if rest.starts_with("mujoco") {
+                Format::Mjcf
+            } else {
+                Format::Urdf
+            };
+        }
+        Format::Urdf
     }
 
     /// A file name for a text in this format called `name`: `name` itself when it already ends
-    /// in one of the format's extensions, else `name` with `.urdf` or `.toml` appended (the
+    /// in one of the format's extensions, else `name` with `.urdf`, `.xml` or `.toml` appended (the
     /// loaders choose the format by the extension).
     ///
     /// ```
@@ -181,29 +206,33 @@ impl Format {
     /// assert_eq!(Format::Urdf.file_name("arm.xml"), "arm.xml");
     /// ```
     pub fn file_name(self, name: &str) -> String {
-        if Format::of_file(name) == Some(self) {
+        // A `.xml` name suits URDF too: a `.xml` text whose root is <robot> loads as URDF.
+        let xml_urdf = self == Format::Urdf && Format::of_file(name) == Some(Format::Mjcf);
+        if Format::of_file(name) == Some(self) || xml_urdf {
             name.to_string()
         } else {
             match self {
                 Format::Urdf => format!("{name}.urdf"),
+                Format::Mjcf => format!("{name}.xml"),
                 Format::Toml => format!("{name}.toml"),
             }
         }
     }
 }
 
-/// A format by name: `urdf` (or `xml`), `toml`, or a TOML description's kind (`dh`,
+/// A format by name: `urdf`, `mjcf` (or `xml`), `toml`, or a TOML description's kind (`dh`,
 /// `modified-dh`, `poe`, `screwdyn`), any case.
 impl std::str::FromStr for Format {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
         match crate::error::choice_key(s).as_str() {
-            "urdf" | "xml" => Ok(Format::Urdf),
+            "urdf" => Ok(Format::Urdf),
+            "mjcf" | "xml" => Ok(Format::Mjcf),
             "toml" | "dh" | "modified-dh" | "poe" | "screwdyn" => Ok(Format::Toml),
             _ => Err(Error::UnknownChoice {
                 what: "format",
                 got: s.into(),
-                expected: "urdf, xml, toml, dh, modified-dh, poe or screwdyn",
+                expected: "urdf, mjcf, xml, toml, dh, modified-dh, poe or screwdyn",
             }),
         }
     }
@@ -211,7 +240,7 @@ impl std::str::FromStr for Format {
 
 impl Loaded {
     /// The URDF file and its text when the model was read from one (its `<visual>` elements
-    /// can then be drawn); `None` for a TOML description or a built-in robot.
+    /// can then be drawn); `None` for a TOML or MJCF description or a built-in robot.
     ///
     /// ```
     /// use screwdyn::io::{load_source, LoadOptions};
@@ -220,7 +249,12 @@ impl Loaded {
     /// ```
     pub fn urdf(&self) -> Option<(&std::path::Path, &str)> {
         let path = self.path.as_deref()?;
-        let urdf = Format::of_file(&path.to_string_lossy()) == Some(Format::Urdf);
-        urdf.then_some((path, self.text.as_deref()?))
+        let text = self.text.as_deref()?;
+        let urdf = match Format::of_file(&path.to_string_lossy()) {
+            Some(Format::Urdf) => true,
+            Some(Format::Mjcf) => Format::of_text(text) == Format::Urdf,
+            _ => false,
+        };
+        urdf.then_some((path, text))
     }
 }

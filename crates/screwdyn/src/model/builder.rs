@@ -179,6 +179,8 @@ pub struct ModelBuilder<T: Real = f64> {
     strict: bool,
     meshes: Vec<(String, String)>,
     locations: HashMap<String, String>,
+    keyframes: Vec<(String, HashMap<String, T>)>,
+    warnings: Vec<PhysicalFinding>,
 }
 
 impl<T: Real> ModelBuilder<T> {
@@ -194,6 +196,8 @@ impl<T: Real> ModelBuilder<T> {
             strict: false,
             meshes: Vec::new(),
             locations: HashMap::new(),
+            keyframes: Vec::new(),
+            warnings: Vec::new(),
         }
     }
     /// Renames the root link (default `base`).
@@ -250,6 +254,22 @@ impl<T: Real> ModelBuilder<T> {
         });
         self
     }
+    /// Declares the named configuration `name`: each joint's value by joint name (every moving
+    /// joint must be given; see [`Model::keyframe`]).
+    pub fn keyframe(&mut self, name: &str, q: HashMap<String, T>) -> &mut Self {
+        self.keyframes.push((name.into(), q));
+        self
+    }
+    /// Records a loader's warning about the description of `what` (a link or joint) declared at
+    /// `location`: it joins the model's findings (an error when strict).
+    pub fn warn(&mut self, what: &str, location: Option<String>, message: String) -> &mut Self {
+        self.warnings.push(PhysicalFinding {
+            link: what.into(),
+            location,
+            problem: Problem::Warning(message),
+        });
+        self
+    }
     /// Records a mesh path of `link` for viewers.
     pub fn mesh(&mut self, link: &str, path: &str) -> &mut Self {
         self.meshes.push((link.into(), path.into()));
@@ -278,6 +298,8 @@ impl<T: Real> ModelBuilder<T> {
             }
         }
         model.findings = self.findings(&model);
+        model.findings.extend(self.warnings.iter().cloned());
+        model.keyframes = self.resolve_keyframes(&model)?;
         if self.strict && !model.findings.is_empty() {
             let all: Vec<String> = model.findings.iter().map(|f| f.to_string()).collect();
             return Err(Error::InvalidModel(format!(
@@ -412,6 +434,7 @@ impl<T: Real> ModelBuilder<T> {
             body_frames: Vec::new(),
             findings: Vec::new(),
             frame_index: HashMap::new(),
+            keyframes: Vec::new(),
         };
         // Where each link lives: (moving body or base, placement of the link frame in it).
         let mut attach: HashMap<&str, (Option<usize>, Se3<T>)> = HashMap::new();
@@ -537,6 +560,47 @@ impl<T: Real> ModelBuilder<T> {
             }
         }
         out
+    }
+
+    /// Each keyframe's `q` in joint order: every joint given, no other name, values finite.
+    fn resolve_keyframes(&self, m: &Model<T>) -> Result<Vec<(String, Vec<T>)>> {
+        let mut out: Vec<(String, Vec<T>)> = Vec::with_capacity(self.keyframes.len());
+        for (name, values) in &self.keyframes {
+            check_name("keyframe", name)?;
+            if out.iter().any(|(n, _)| n == name) {
+                return Err(Error::InvalidModel(format!(
+                    "two keyframes are named '{name}'"
+                )));
+            }
+            let mut q = Vec::with_capacity(m.joints.len());
+            for j in &m.joints {
+                match values.get(&j.name) {
+                    Some(x) if x.is_finite() => q.push(*x),
+                    Some(x) => {
+                        return Err(Error::InvalidModel(format!(
+                            "keyframe '{name}' gives joint '{}' the non-finite value {x:?}",
+                            j.name
+                        )))
+                    }
+                    None => {
+                        return Err(Error::InvalidModel(format!(
+                            "keyframe '{name}' gives no value for joint '{}'",
+                            j.name
+                        )))
+                    }
+                }
+            }
+            if let Some(extra) = values
+                .keys()
+                .find(|k| !m.joints.iter().any(|j| &j.name == *k))
+            {
+                return Err(Error::InvalidModel(format!(
+                    "keyframe '{name}' names joint '{extra}', which the model does not have"
+                )));
+            }
+            out.push((name.clone(), q));
+        }
+        Ok(out)
     }
 
     fn child_screw(&self, l: &LinkDecl<T>, kind: JointKind<T>) -> Result<Twist<T>> {

@@ -22,6 +22,9 @@ pub enum Problem {
         /// The joint it names.
         target: String,
     },
+    /// A loader's warning about the description itself (e.g. MJCF joint ranges that look like
+    /// degrees in a file whose angles are radians).
+    Warning(String),
 }
 
 /// One problem of one link.
@@ -60,6 +63,7 @@ impl std::fmt::Display for PhysicalFinding {
                 "joint '{}' mimics joint '{target}', which does not exist",
                 self.link
             ),
+            Problem::Warning(message) => write!(f, "{message}"),
             Problem::MasslessLeaf { joint } => write!(
                 f,
                 "link '{}' is a moving leaf body with no mass: joint '{joint}' moves nothing",

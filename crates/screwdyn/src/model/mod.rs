@@ -12,6 +12,7 @@
 //! ```
 
 mod builder;
+mod configuration;
 mod findings;
 mod joint;
 #[allow(clippy::module_inception)]
@@ -20,6 +21,7 @@ pub(crate) use model::{check_finite, first_non_finite};
 mod motion;
 
 pub use builder::{JointSpec, ModelBuilder};
+pub use configuration::SplitMix64;
 pub use findings::{PhysicalFinding, Problem};
 pub use joint::{Joint, JointKind, JointLimits, Mimic};
 pub use model::{check_result, Body, Frame, FrameKind, Model};

@@ -74,6 +74,8 @@ pub struct Model<T: Real = f64> {
     pub(crate) frame_index: HashMap<String, usize>,
     /// Physical-consistency problems found when the model was built.
     pub(crate) findings: Vec<PhysicalFinding>,
+    /// Named configurations (MJCF `<keyframe>`s), each `q` in joint order.
+    pub(crate) keyframes: Vec<(String, Vec<T>)>,
 }
 
 /// `Err(NonFinite)` naming `what` and the position of the first NaN or infinite value.
@@ -143,6 +145,38 @@ fn list(names: impl Iterator<Item = String>) -> String {
 }
 
 impl<T: Real> Model<T> {
+    /// The names of the model's keyframes (named configurations), in file order.
+    pub fn keyframe_names(&self) -> Vec<&str> {
+        self.keyframes.iter().map(|(n, _)| n.as_str()).collect()
+    }
+
+    /// The named configuration `name` (an MJCF `<key>`), `q` in joint order.
+    ///
+    /// # Errors
+    /// [`Error::UnknownName`] when the model has no keyframe of that name.
+    ///
+    /// ```
+    /// use screwdyn::io::{load_str, LoadOptions};
+    /// let text = r#"<mujoco><worldbody><body name="a"><joint name="j" axis="0 0 1"/>
+    ///   <geom size="0.1"/></body></worldbody>
+    ///   <keyframe><key name="up" qpos="0.5"/></keyframe></mujoco>"#;
+    /// let m = load_str(text, "one.xml", &LoadOptions::default()).unwrap();
+    /// assert_eq!(m.keyframe("up").unwrap(), &[0.5]);
+    /// assert_eq!(m.keyframe_names(), vec!["up"]);
+    /// assert!(m.keyframe("down").is_err());
+    /// ```
+    pub fn keyframe(&self, name: &str) -> Result<&[T]> {
+        self.keyframes
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, q)| q.as_slice())
+            .ok_or_else(|| Error::UnknownName {
+                kind: "keyframe",
+                name: name.into(),
+                known: self.keyframe_names().join(", "),
+            })
+    }
+
     /// The physical-consistency problems found when the model was built (an empty list for a
     /// consistent model): each names the link, where it was declared and what is wrong. They
     /// do not stop any algorithm; forward dynamics refuses only a mass matrix that is really
@@ -452,6 +486,35 @@ impl<T: Real> Model<T> {
                 known: list(self.frames.iter().map(|f| f.name.clone())),
             })
     }
+    /// The index of the frame of the link called `name`: a moving body or a link attached by a
+    /// fixed joint (merged into the body it hangs from), the base included; extra frames (a
+    /// tool point, a sensor) are not links.
+    ///
+    /// # Errors
+    /// [`Error::UnknownName`](crate::Error::UnknownName) listing the links.
+    ///
+    /// ```
+    /// let m = screwdyn::builtin::planar2();
+    /// assert_eq!(m.link_frame_id("link2").unwrap(), m.frame_id("link2").unwrap());
+    /// let e = m.link_frame_id("hand").unwrap_err().to_string();
+    /// assert!(e.contains("no link named 'hand'"));
+    /// ```
+    pub fn link_frame_id(&self, name: &str) -> Result<usize> {
+        let is_link = |f: &Frame<T>| f.kind != FrameKind::Extra;
+        match self.frame_index.get(name) {
+            Some(&k) if is_link(&self.frames[k]) => Ok(k),
+            _ => Err(Error::UnknownName {
+                kind: "link",
+                name: name.into(),
+                known: list(
+                    self.frames
+                        .iter()
+                        .filter(|f| is_link(f))
+                        .map(|f| f.name.clone()),
+                ),
+            }),
+        }
+    }
     /// The index of the moving body (link) called `name`.
     ///
     /// # Errors
@@ -594,6 +657,11 @@ impl Model<f64> {
             body_frames: Vec::new(),
             frame_index: self.frame_index.clone(),
             findings: self.findings.clone(),
+            keyframes: self
+                .keyframes
+                .iter()
+                .map(|(n, q)| (n.clone(), q.iter().map(c).collect()))
+                .collect(),
         }
         .with_motions()
     }

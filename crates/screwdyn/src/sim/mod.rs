@@ -16,6 +16,7 @@ mod controller;
 mod controller_spec;
 mod effects;
 mod integrate;
+mod limit_events;
 mod options;
 mod profile;
 mod record;
@@ -30,6 +31,7 @@ pub use controller::{
 pub use controller_spec::ControllerSpec;
 pub use effects::{EffectGains, JointEffects};
 pub use integrate::{AccelFn, Integrator, Stepper};
+pub use limit_events::{LimitEvent, LimitEventKind, LimitSide, LimitWatch};
 pub use options::SimOptions;
 pub use profile::{
     torque_profile, torque_profile_limited, TorqueProfile, Violation, ViolationSummary,

@@ -13,12 +13,14 @@
 
 mod composite_inertia;
 mod inertia;
+mod pose;
 mod se3;
 mod so3;
 mod twist;
 
 pub use composite_inertia::CompositeInertia;
 pub use inertia::{parallel_axis_term, InertiaProblem, SpatialInertia};
+pub use pose::{check_rotation, ROTATION_TOLERANCE};
 pub use se3::Se3;
 pub use so3::{exp_so3, hat, log_so3, vee};
 pub use twist::{

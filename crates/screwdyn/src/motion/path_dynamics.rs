@@ -1,0 +1,143 @@
+//! The equations of motion along a path: with `q = q(s)`, `q̇ = q' ṡ` and
+//! `q̈ = q' s̈ + q'' ṡ²`, the joint torque `τ = M(q) q̈ + C(q, q̇) q̇ + g(q)` becomes
+//! `τ = a(s) s̈ + b(s) ṡ² + c(s)`, linear in `(s̈, ṡ²)`.
+
+use super::spline::Path;
+use crate::dynamics::{gravity_torque, rnea};
+use crate::error::{Error, Result};
+use crate::model::Model;
+use crate::workspace::Workspace;
+
+/// The path and its dynamics at one `s`: `q`, `q'`, `q''` and the coefficients `a`, `b`, `c`
+/// of `τ = a s̈ + b ṡ² + c` (one entry per joint).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PathPoint {
+    /// `q(s)`.
+    pub q: Vec<f64>,
+    /// `q'(s) = dq/ds`.
+    pub dq: Vec<f64>,
+    /// `q''(s) = d²q/ds²`.
+    pub ddq: Vec<f64>,
+    /// `a(s) = M(q) q'`.
+    pub a: Vec<f64>,
+    /// `b(s) = M(q) q'' + C(q, q') q'`.
+    pub b: Vec<f64>,
+    /// `c(s) = g(q) + f ∘ sign(q')`: gravity plus the model's Coulomb friction (moving
+    /// forward along the path, `ṡ > 0`).
+    pub c: Vec<f64>,
+}
+
+/// Evaluates [`PathPoint`]s of one model along paths, allocating nothing per call: three
+/// inverse-dynamics calls per point,
+///
+/// ```text
+/// c = g(q) + f ∘ sign(q'),   a = RNEA(q, 0, q') − g(q),   b = RNEA(q, q', q'') − g(q),
+/// ```
+///
+/// since `RNEA(q, q̇, q̈) = M q̈ + C(q, q̇) q̇ + g` and `C(q, q') q'` is quadratic in `q'`.
+/// Whatever the model's inverse dynamics includes (joint armature in `M`) is included here.
+/// Viscous damping (`−b_i q̇_i`, linear in `ṡ`, not in `ṡ²`) is not part of this form.
+///
+/// ```
+/// use screwdyn::motion::{CubicSpline, PathDynamics};
+/// let m = screwdyn::builtin::pendulum(); // 1 kg at 1 m: M = 1, g(q) = 9.81 sin q
+/// let path = CubicSpline::new(&[0.0, 1.0], &[vec![0.0], vec![0.5]]).unwrap();
+/// let mut pd = PathDynamics::new(&m, 1).unwrap();
+/// let p = pd.at(&m, &path, 1.0).unwrap();
+/// assert!((p.a[0] - 0.5).abs() < 1e-12 && p.b[0].abs() < 1e-12);
+/// assert!((p.c[0] - 9.81 * 0.5_f64.sin()).abs() < 1e-12);
+/// ```
+#[derive(Clone, Debug)]
+pub struct PathDynamics {
+    ws: Workspace,
+    zero: Vec<f64>,
+    point: PathPoint,
+}
+
+impl PathDynamics {
+    /// A workspace for `model` and paths of `nq` joints.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when `nq` is not the model's number of joints.
+    pub fn new(model: &Model, nq: usize) -> Result<Self> {
+        if nq != model.nq() {
+            return Err(Error::InvalidArgument(format!(
+                "the path has {nq} joints, the model has {}",
+                model.nq()
+            )));
+        }
+        let z = vec![0.0; nq];
+        Ok(PathDynamics {
+            ws: Workspace::new(model),
+            zero: z.clone(),
+            point: PathPoint {
+                q: z.clone(),
+                dq: z.clone(),
+                ddq: z.clone(),
+                a: z.clone(),
+                b: z.clone(),
+                c: z,
+            },
+        })
+    }
+
+    /// The path and its dynamics at `s`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for a model other than the one this was made for;
+    /// [`Error::NonFinite`] when the path gives NaN or ∞ at `s`.
+    pub fn at(&mut self, model: &Model, path: &dyn Path, s: f64) -> Result<&PathPoint> {
+        let p = &mut self.point;
+        path.eval(s, &mut p.q, &mut p.dq, &mut p.ddq);
+        let g = gravity_torque(model, &mut self.ws, &p.q)?;
+        p.c.copy_from_slice(g.as_slice());
+        let ma = rnea(model, &mut self.ws, &p.q, &self.zero, &p.dq)?;
+        for ((a, x), g) in p.a.iter_mut().zip(ma.iter()).zip(&p.c) {
+            *a = x - g;
+        }
+        let mb = rnea(model, &mut self.ws, &p.q, &p.dq, &p.ddq)?;
+        for ((b, x), g) in p.b.iter_mut().zip(mb.iter()).zip(&p.c) {
+            *b = x - g;
+        }
+        for ((c, j), dq) in p.c.iter_mut().zip(model.joints()).zip(&p.dq) {
+            if *dq != 0.0 {
+                *c += j.friction * dq.signum();
+            }
+        }
+        Ok(&self.point)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::{coriolis_matrix, mass_matrix};
+    use crate::motion::CubicSpline;
+
+    #[test]
+    fn coefficients_match_the_mass_and_coriolis_matrices() {
+        // a = M q', b = M q'' + C(q, q') q' from CRBA and the Coriolis matrix.
+        let m = crate::builtin::load("ur5").unwrap();
+        let pts = vec![
+            vec![0.0, -1.0, 1.0, 0.0, 0.5, 0.0],
+            vec![0.5, -0.5, 1.5, 0.3, 0.2, 0.1],
+            vec![1.0, -1.2, 0.8, -0.2, 0.6, 0.4],
+        ];
+        let path = CubicSpline::chord_length(&pts).unwrap();
+        let mut pd = PathDynamics::new(&m, 6).unwrap();
+        let s = 0.7;
+        let p = pd.at(&m, &path, s).unwrap().clone();
+        let mut ws = Workspace::new(&m);
+        let mm = mass_matrix(&m, &mut ws, &p.q).unwrap().clone();
+        let cc = coriolis_matrix(&m, &mut ws, &p.q, &p.dq).unwrap().clone();
+        let dq = nalgebra::DVector::from_column_slice(&p.dq);
+        let ddq = nalgebra::DVector::from_column_slice(&p.ddq);
+        let a = &mm * &dq;
+        let b = &mm * &ddq + &cc * &dq;
+        for j in 0..6 {
+            assert!((p.a[j] - a[j]).abs() < 1e-10, "a[{j}]");
+            assert!((p.b[j] - b[j]).abs() < 1e-10, "b[{j}]");
+        }
+        assert!(PathDynamics::new(&m, 2).is_err());
+    }
+}

@@ -1,0 +1,520 @@
+//! The fastest timing `s(t)` of a path from rest to rest within joint velocity, acceleration
+//! and torque limits: TOPP-RA (reachability analysis, Pham & Pham 2018) on a grid refined until
+//! the duration converges, checked afterwards by inverse dynamics along the result.
+
+use super::path_dynamics::PathDynamics;
+use super::reachability::{interval_times, parameterize, Constraints, LimitKind, Parameterization};
+use super::spline::Path;
+use crate::dynamics::rnea;
+use crate::error::{Error, Result};
+use crate::model::Model;
+use crate::sim::Trajectory;
+use crate::workspace::Workspace;
+
+/// Per-joint limits of a timing; `f64::INFINITY` where a joint has none.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TimingLimits {
+    /// `|q̇_j| ≤ velocity_j` (rad/s or m/s).
+    pub velocity: Vec<f64>,
+    /// `|q̈_j| ≤ acceleration_j` (rad/s² or m/s²).
+    pub acceleration: Vec<f64>,
+    /// `|τ_j| ≤ effort_j` (N·m or N).
+    pub effort: Vec<f64>,
+}
+
+impl TimingLimits {
+    /// The model's velocity and effort limits, no acceleration limit.
+    ///
+    /// ```
+    /// let m = screwdyn::builtin::load("ur5").unwrap();
+    /// let l = screwdyn::motion::TimingLimits::from_model(&m);
+    /// assert_eq!((l.effort[0], l.effort[5], l.velocity[0]), (150.0, 28.0, 3.15));
+    /// assert!(l.acceleration[0].is_infinite());
+    /// ```
+    pub fn from_model(model: &Model) -> Self {
+        let j = model.joints();
+        TimingLimits {
+            velocity: j.iter().map(|j| j.limits.velocity).collect(),
+            acceleration: vec![f64::INFINITY; j.len()],
+            effort: j.iter().map(|j| j.limits.effort).collect(),
+        }
+    }
+
+    /// Checks lengths and values: every limit positive (`+∞` allowed), none NaN.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] for a vector of the wrong length; [`Error::InvalidArgument`]
+    /// for a zero, negative or NaN limit, naming the joint.
+    pub fn check(&self, model: &Model) -> Result<()> {
+        let names = model.joint_names();
+        for (what, v) in [
+            ("the velocity limits", &self.velocity),
+            ("the acceleration limits", &self.acceleration),
+            ("the effort limits", &self.effort),
+        ] {
+            if v.len() != model.nq() {
+                return Err(Error::DimensionMismatch {
+                    what: what.into(),
+                    got: v.len(),
+                    expected: model.nq(),
+                    names: names.join(", "),
+                });
+            }
+            if let Some(j) = v.iter().position(|x| x.is_nan() || *x <= 0.0) {
+                return Err(Error::InvalidArgument(format!(
+                    "{what} must be positive (or infinite for none), but joint {} has {}",
+                    names[j], v[j]
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// How near each kind of limit a state is: `max_j |q̇_j| / vmax_j`, `max_j |q̈_j| / amax_j` and
+/// `max_j |τ_j| / τmax_j` (1 on the limit), in the order velocity, acceleration, torque. Along a
+/// time-optimal motion one of them is 1 at almost every instant: the limiting constraint.
+///
+/// ```
+/// use screwdyn::motion::{limit_fractions, TimingLimits};
+/// let l = TimingLimits { velocity: vec![2.0, 1.0], acceleration: vec![f64::INFINITY; 2], effort: vec![10.0, 5.0] };
+/// let f = limit_fractions(&l, &[1.0, -1.0], &[3.0, 0.0], &[2.0, -4.0]);
+/// assert_eq!(f, [1.0, 0.0, 0.8]);
+/// ```
+pub fn limit_fractions(limits: &TimingLimits, qd: &[f64], qdd: &[f64], tau: &[f64]) -> [f64; 3] {
+    let most = |x: &[f64], l: &[f64]| {
+        x.iter()
+            .zip(l)
+            .map(|(x, l)| x.abs() / l)
+            .fold(0.0, f64::max)
+    };
+    [
+        most(qd, &limits.velocity),
+        most(qdd, &limits.acceleration),
+        most(tau, &limits.effort),
+    ]
+}
+
+/// How [`time_optimal`] chooses its grid and checks its result.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TimeOptimalOptions {
+    /// A fixed number of grid intervals (uniform in `s`): no refinement. `None` (default):
+    /// start at `initial_grid` and double until the duration converges.
+    pub grid: Option<usize>,
+    /// The first grid of the refinement (default 100 intervals).
+    pub initial_grid: usize,
+    /// The finest grid tried (default 2¹⁶ intervals).
+    pub max_grid: usize,
+    /// The duration has converged when doubling the grid changes it by less than this fraction
+    /// (default `10⁻³`). The duration converges to first order in the grid step (it is
+    /// overestimated by about as much as the last doubling changed it).
+    pub duration_tolerance: f64,
+    /// The step (s) at which the result is sampled and checked (default `10⁻³`).
+    pub check_step: f64,
+    /// The safety margin (a fraction of each limit, default `10⁻⁴`): the timing is planned
+    /// within `(1 − margin)` of every velocity, acceleration and torque limit, where it holds at
+    /// the grid points; between them it can exceed that by second order in the grid step, so
+    /// the margin keeps every sample of the check within the limits themselves. A sample over a
+    /// limit refines the grid further.
+    pub limit_margin: f64,
+}
+
+impl Default for TimeOptimalOptions {
+    fn default() -> Self {
+        TimeOptimalOptions {
+            grid: None,
+            initial_grid: 100,
+            max_grid: 1 << 16,
+            duration_tolerance: 1e-3,
+            check_step: 1e-3,
+            limit_margin: 1e-4,
+        }
+    }
+}
+
+/// What the timing found out on the way.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TimingReport {
+    /// `(grid intervals, duration)` of each grid tried, coarsest first.
+    pub durations: Vec<(usize, f64)>,
+    /// Grids added after the duration had converged because the check found a limit exceeded.
+    pub refined_for_limits: usize,
+    /// The largest excess over a limit found by the final check, as a fraction of the limit
+    /// (`max(|value| / limit) − 1`: negative when every sample stays inside, about
+    /// `−limit_margin` when the motion is limited somewhere).
+    pub max_excess: f64,
+    /// The limit nearest to (or furthest over) its bound in the final check: kind, joint and
+    /// time.
+    pub worst: (LimitKind, usize, f64),
+    /// Number of samples checked.
+    pub samples_checked: usize,
+}
+
+/// The timing on one grid: `s_i`, `x_i = ṡ_i²`, `u_i` and the times `t_i`.
+#[derive(Clone, Debug)]
+struct Timing {
+    s: Vec<f64>,
+    x: Vec<f64>,
+    u: Vec<f64>,
+    t: Vec<f64>,
+}
+
+impl Timing {
+    /// `(s, ṡ, s̈)` at time `t`: on interval `k`, `s = s_k + ṡ_k τ + u_k τ²/2` with `τ = t − t_k`.
+    fn state(&self, t: f64) -> (f64, f64, f64) {
+        let n = self.s.len() - 1;
+        if t >= self.t[n] {
+            return (self.s[n], 0.0, 0.0);
+        }
+        let t = t.max(0.0);
+        let k = (self.t.partition_point(|&x| x <= t).max(1) - 1).min(n - 1);
+        let tau = t - self.t[k];
+        let (u, v0) = (self.u[k], self.x[k].sqrt());
+        let s = (self.s[k] + v0 * tau + 0.5 * u * tau * tau).clamp(self.s[k], self.s[k + 1]);
+        (s, (v0 + u * tau).max(0.0), u)
+    }
+
+    /// `q`, `q̇ = q' ṡ`, `q̈ = q' s̈ + q'' ṡ²` at time `t`.
+    fn eval(&self, path: &dyn Path, t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) {
+        let (s, sd, sdd) = self.state(t);
+        path.eval(s, q, qd, qdd);
+        for j in 0..q.len() {
+            let d = qd[j];
+            qd[j] = d * sd;
+            qdd[j] = d * sdd + qdd[j] * sd * sd;
+        }
+    }
+
+    fn duration(&self) -> f64 {
+        self.t[self.t.len() - 1]
+    }
+}
+
+/// A time-optimal timing of a path: `s(t)` with constant `s̈ = u_i` between the grid points
+/// `s_i`, which it passes at `ṡ_i = √x_i` and times `t_i`. A [`Trajectory`], so
+/// [`torque_profile`](crate::sim::torque_profile) and simulation use it like any other.
+#[derive(Clone, Debug)]
+pub struct TimeOptimal<P: Path> {
+    path: P,
+    timing: Timing,
+    report: TimingReport,
+}
+
+impl<P: Path> TimeOptimal<P> {
+    /// The path timed.
+    pub fn path(&self) -> &P {
+        &self.path
+    }
+    /// The grid `s_i`.
+    pub fn grid(&self) -> &[f64] {
+        &self.timing.s
+    }
+    /// `ṡ²` at the grid points: the phase-plane curve.
+    pub fn speed_squared(&self) -> &[f64] {
+        &self.timing.x
+    }
+    /// The times `t_i` at which the grid points are passed.
+    pub fn times(&self) -> &[f64] {
+        &self.timing.t
+    }
+    /// What the refinement and the check found.
+    pub fn report(&self) -> &TimingReport {
+        &self.report
+    }
+    /// `(s, ṡ, s̈)` at time `t` (clamped to `[0, duration]`).
+    pub fn path_state(&self, t: f64) -> (f64, f64, f64) {
+        self.timing.state(t)
+    }
+}
+
+impl<P: Path> Trajectory for TimeOptimal<P> {
+    fn nq(&self) -> usize {
+        self.path.nq()
+    }
+    fn duration(&self) -> f64 {
+        self.timing.duration()
+    }
+    fn eval(&self, t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) {
+        self.timing.eval(&self.path, t, q, qd, qdd);
+    }
+}
+
+/// The fastest timing of `path` from rest to rest within `limits` (TOPP-RA).
+///
+/// With `u = s̈`, `x = ṡ²`, each limit is linear in `(u, x)` at every `s`:
+/// `x ≤ (vmax_j / |q'_j|)²`, `|q'_j u + q''_j x| ≤ amax_j`, `|a_j u + b_j x + c_j| ≤ τmax_j`
+/// (the coefficients of [`PathDynamics`]). On a uniform grid `s_0 … s_N` with
+/// `x_{i+1} = x_i + 2 Δ u_i`, the controllable sets `K_i` are computed backward from
+/// `K_N = {0}` and the greedy forward pass from `x_0 = 0` takes the largest `u_i` keeping
+/// `x_{i+1} ∈ K_{i+1}`. The grid is doubled until the duration changes by less than
+/// `duration_tolerance`. The limits used are `(1 − limit_margin)` of those given; the result is
+/// then sampled every `check_step` seconds and its velocities, accelerations and torques
+/// (inverse dynamics plus Coulomb friction) compared with the limits given; while one exceeds
+/// its limit the grid is doubled again.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for limits that are not positive, a path whose joints do not
+/// match the model, a path point outside the joint position limits or where gravity (and
+/// friction) alone needs more than an effort limit (each naming `s` and the joint), a path that
+/// no timing can follow (naming the first `s` where it fails), bad options;
+/// [`Error::Numerical`] when the check still fails on the finest grid.
+///
+/// ```
+/// use screwdyn::motion::{time_optimal, CubicSpline, TimeOptimalOptions, TimingLimits};
+/// use screwdyn::sim::Trajectory;
+/// // A pendulum swung from −0.5 to 0.5 rad; only its 5 N·m motor limits it.
+/// let m = screwdyn::builtin::pendulum();
+/// let path = CubicSpline::new(&[0.0, 1.0], &[vec![-0.5], vec![0.5]]).unwrap();
+/// let mut limits = TimingLimits::from_model(&m);
+/// limits.effort = vec![5.0];
+/// let timed = time_optimal(&m, path, &limits, &TimeOptimalOptions::default()).unwrap();
+/// assert!(timed.duration() > 0.5 && timed.duration() < 1.5);
+/// assert!(timed.report().max_excess <= 0.0); // every sample within the limits
+/// ```
+pub fn time_optimal<P: Path>(
+    model: &Model,
+    path: P,
+    limits: &TimingLimits,
+    options: &TimeOptimalOptions,
+) -> Result<TimeOptimal<P>> {
+    limits.check(model)?;
+    check_options(options)?;
+    let keep = 1.0 - options.limit_margin;
+    let planned = TimingLimits {
+        velocity: limits.velocity.iter().map(|x| x * keep).collect(),
+        acceleration: limits.acceleration.iter().map(|x| x * keep).collect(),
+        effort: limits.effort.iter().map(|x| x * keep).collect(),
+    };
+    let mut dynamics = PathDynamics::new(model, path.nq())?;
+    let mut ws = Workspace::new(model);
+    let mut constraints = Constraints::default();
+    let mut durations: Vec<(usize, f64)> = Vec::new();
+    let mut grid = options.grid.unwrap_or(options.initial_grid);
+    let mut refined_for_limits = 0;
+    let mut converged = options.grid.is_some();
+    loop {
+        let timing = time_on_grid(
+            model,
+            &path,
+            grid,
+            &planned,
+            &mut dynamics,
+            &mut constraints,
+        )?;
+        let duration = timing.duration();
+        if let Some(&(_, previous)) = durations.last() {
+            converged |= (previous - duration).abs() <= options.duration_tolerance * duration;
+        }
+        durations.push((grid, duration));
+        let finest = options.grid.is_some() || 2 * grid > options.max_grid;
+        if converged || finest {
+            let check = check_limits(model, &mut ws, &path, &timing, limits, options.check_step);
+            if check.0 <= 0.0 || finest {
+                if check.0 > 0.0 && options.grid.is_none() {
+                    let (kind, j, at) = check.1;
+                    return Err(Error::Numerical(format!(
+                        "the timing on the finest grid ({grid} intervals) still exceeds the {} limit of joint {} by {:.3} % at t = {at:.4} s",
+                        kind_word(kind),
+                        model.joint_names()[j],
+                        100.0 * check.0
+                    )));
+                }
+                return Ok(TimeOptimal {
+                    path,
+                    timing,
+                    report: TimingReport {
+                        durations,
+                        refined_for_limits,
+                        max_excess: check.0,
+                        worst: check.1,
+                        samples_checked: check.2,
+                    },
+                });
+            }
+            refined_for_limits += 1;
+        }
+        grid *= 2;
+    }
+}
+
+/// `velocity`, `acceleration` or `torque`.
+pub(crate) fn kind_word(kind: LimitKind) -> &'static str {
+    match kind {
+        LimitKind::Velocity => "velocity",
+        LimitKind::Acceleration => "acceleration",
+        LimitKind::Torque => "torque",
+    }
+}
+
+fn check_options(o: &TimeOptimalOptions) -> Result<()> {
+    let bad = |what: &str, why: &str| Err(Error::InvalidArgument(format!("{what} {why}")));
+    if o.grid == Some(0) || o.initial_grid == 0 {
+        return bad("the grid", "needs at least one interval");
+    }
+    if o.max_grid < o.initial_grid {
+        return bad("the finest grid", "must not be smaller than the first grid");
+    }
+    for (what, x) in [
+        ("the duration tolerance", o.duration_tolerance),
+        ("the check step", o.check_step),
+    ] {
+        if !(x.is_finite() && x > 0.0) {
+            return bad(what, &format!("must be positive and finite (got {x})"));
+        }
+    }
+    if !(0.0..1.0).contains(&o.limit_margin) {
+        return bad(
+            "the limit margin",
+            &format!("must be at least 0 and below 1 (got {})", o.limit_margin),
+        );
+    }
+    Ok(())
+}
+
+/// `N + 1` points evenly spaced over the path's range.
+fn uniform_grid(path: &dyn Path, n: usize) -> Vec<f64> {
+    let (a, b) = path.s_range();
+    (0..=n)
+        .map(|i| {
+            if i == n {
+                b
+            } else {
+                a + (b - a) * i as f64 / n as f64
+            }
+        })
+        .collect()
+}
+
+/// The timing on a uniform grid of `n` intervals.
+fn time_on_grid(
+    model: &Model,
+    path: &dyn Path,
+    n: usize,
+    limits: &TimingLimits,
+    dynamics: &mut PathDynamics,
+    constraints: &mut Constraints,
+) -> Result<Timing> {
+    let s = uniform_grid(path, n);
+    fill_constraints(model, path, &s, limits, dynamics, constraints)?;
+    let mut p = Parameterization::default();
+    if let Err(e) = parameterize(&s, constraints, &mut p) {
+        return Err(Error::InvalidArgument(format!(
+            "no timing can follow the path at s = {}: from there the end cannot be reached at rest within the limits",
+            fmt_s(s[e.point])
+        )));
+    }
+    let mut t = Vec::with_capacity(s.len());
+    let duration = interval_times(&s, &p.x, &mut t);
+    if !duration.is_finite() {
+        return Err(Error::InvalidArgument(
+            "the path does not move the joints (q' = 0 everywhere), so it has no timing".into(),
+        ));
+    }
+    Ok(Timing {
+        s,
+        x: p.x,
+        u: p.u,
+        t,
+    })
+}
+
+fn fmt_s(s: f64) -> String {
+    format!("{}", (s * 1e6).round() / 1e6)
+}
+
+/// The rows `α u + β x ≤ γ` of every grid point (acceleration and torque, both signs) and the
+/// speed bounds `x ≤ min_j (vmax_j / |q'_j|)²`; refuses points outside the position limits or
+/// where `|c_j(s)| > τmax_j` (the robot could not be held there).
+fn fill_constraints(
+    model: &Model,
+    path: &dyn Path,
+    s: &[f64],
+    limits: &TimingLimits,
+    dynamics: &mut PathDynamics,
+    c: &mut Constraints,
+) -> Result<()> {
+    let n = path.nq();
+    let names = model.joint_names();
+    c.rows_per_point = 4 * n;
+    c.rows.clear();
+    c.x_max.clear();
+    for &si in s {
+        let p = dynamics.at(model, path, si)?;
+        let mut x_max = f64::INFINITY;
+        for (j, joint) in model.joints().iter().enumerate() {
+            let (lo, hi) = (joint.limits.lower, joint.limits.upper);
+            if p.q[j] < lo || p.q[j] > hi {
+                return Err(Error::InvalidArgument(format!(
+                    "the path leaves the position limits of joint {} at s = {}: q = {} outside [{lo}, {hi}]",
+                    names[j],
+                    fmt_s(si),
+                    p.q[j]
+                )));
+            }
+            let effort = limits.effort[j];
+            if p.c[j].abs() > effort {
+                return Err(Error::InvalidArgument(format!(
+                    "gravity alone needs {:.3} at joint {} at s = {}, more than its effort limit {effort}: the robot cannot be held there",
+                    p.c[j].abs(),
+                    names[j],
+                    fmt_s(si)
+                )));
+            }
+            // x ≤ (vmax / |q'|)²
+            if p.dq[j] != 0.0 {
+                x_max = x_max.min((limits.velocity[j] / p.dq[j]).powi(2));
+            }
+            // ±(q' u + q'' x) ≤ amax,  ±(a u + b x + c) ≤ τmax
+            let amax = limits.acceleration[j];
+            c.rows.push([p.dq[j], p.ddq[j], amax]);
+            c.rows.push([-p.dq[j], -p.ddq[j], amax]);
+            c.rows.push([p.a[j], p.b[j], effort - p.c[j]]);
+            c.rows.push([-p.a[j], -p.b[j], effort + p.c[j]]);
+        }
+        c.x_max.push(x_max);
+    }
+    Ok(())
+}
+
+/// Samples the timing every `step` seconds (and at its end) and returns the largest excess
+/// `|value| / limit − 1` over velocity, acceleration and torque (inverse dynamics plus Coulomb
+/// friction), where it occurs, and the number of samples.
+fn check_limits(
+    model: &Model,
+    ws: &mut Workspace,
+    path: &dyn Path,
+    timing: &Timing,
+    limits: &TimingLimits,
+    step: f64,
+) -> (f64, (LimitKind, usize, f64), usize) {
+    let n = path.nq();
+    let (mut q, mut qd, mut qdd) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let duration = timing.duration();
+    let samples = (duration / step).ceil() as usize + 1;
+    let mut worst = (f64::NEG_INFINITY, (LimitKind::Torque, 0, 0.0));
+    for k in 0..samples {
+        let t = (k as f64 * step).min(duration);
+        timing.eval(path, t, &mut q, &mut qd, &mut qdd);
+        let Ok(tau) = rnea(model, ws, &q, &qd, &qdd) else {
+            return (f64::INFINITY, (LimitKind::Torque, 0, t), k + 1);
+        };
+        for (j, joint) in model.joints().iter().enumerate() {
+            let friction = if qd[j] != 0.0 {
+                joint.friction * qd[j].signum()
+            } else {
+                0.0
+            };
+            for (kind, value, limit) in [
+                (LimitKind::Velocity, qd[j], limits.velocity[j]),
+                (LimitKind::Acceleration, qdd[j], limits.acceleration[j]),
+                (LimitKind::Torque, tau[j] + friction, limits.effort[j]),
+            ] {
+                let excess = value.abs() / limit - 1.0;
+                if excess > worst.0 {
+                    worst = (excess, (kind, j, t));
+                }
+            }
+        }
+    }
+    (worst.0, worst.1, samples)
+}

@@ -1,0 +1,200 @@
+//! Time-optimal timing (TOPP-RA) against analytic cases, and every result checked with inverse
+//! dynamics.
+
+use nalgebra::Vector3;
+use screwdyn::motion::{time_optimal, CubicSpline, TimeOptimalOptions, TimingLimits};
+use screwdyn::sim::{torque_profile, Trajectory};
+use screwdyn::{builtin, Model};
+
+/// A 0.5 m, 2 kg pendulum in zero gravity: constant inertia I = m l² = 0.5 kg·m².
+fn free_pendulum() -> Model {
+    builtin::pendulum_with(0.5, 2.0)
+        .with_gravity(Vector3::zeros())
+        .unwrap()
+}
+
+fn limits(v: f64, a: f64, tau: f64) -> TimingLimits {
+    TimingLimits {
+        velocity: vec![v],
+        acceleration: vec![a],
+        effort: vec![tau],
+    }
+}
+
+fn line(d: f64) -> CubicSpline {
+    CubicSpline::new(&[0.0, 1.0], &[vec![0.0], vec![d]]).unwrap()
+}
+
+#[test]
+fn constant_inertia_under_a_torque_limit_is_bang_bang() {
+    // Accelerate at τmax / I for half the distance, brake for the other: T = 2 √(d I / τmax),
+    // with τmax the limit less the default margin of 10⁻⁴.
+    let (d, inertia, limit) = (1.2, 0.5, 3.0);
+    let tau = limit * (1.0 - 1e-4);
+    let m = free_pendulum();
+    let inf = f64::INFINITY;
+    let timed = time_optimal(&m, line(d), &limits(inf, inf, limit), &Default::default()).unwrap();
+    let expected = 2.0 * (d * inertia / tau).sqrt();
+    assert!(
+        (timed.duration() - expected).abs() < 1e-9 * expected,
+        "{} vs {expected}",
+        timed.duration()
+    );
+    // The torque is +τmax, then −τmax (inverse dynamics along the result).
+    let p = torque_profile(&m, &timed, 1e-3).unwrap();
+    for k in 0..p.samples.len() {
+        let (t, tau_k) = (p.samples.t[k], p.samples.tau[k][0]);
+        if (t - expected / 2.0).abs() > 2e-3 && t > 0.0 && t < expected - 1e-9 {
+            assert!((tau_k.abs() - tau).abs() < 1e-9, "t = {t}: τ = {tau_k}");
+            assert_eq!(tau_k > 0.0, t < expected / 2.0);
+        }
+    }
+}
+
+#[test]
+fn a_velocity_limit_adds_a_cruise() {
+    // Trapezoid: T = d / v + v I / τmax when the triangle would be faster than v.
+    let (d, inertia, tau, v) = (3.0, 0.5, 3.0, 2.0);
+    let m = free_pendulum();
+    // The switch to cruising lies at s = v² I / (2 τmax d) = 1/9: exact on a grid of 900
+    // intervals without the margin; within the duration tolerance on the refined grid.
+    let fixed = TimeOptimalOptions {
+        grid: Some(900),
+        limit_margin: 0.0,
+        ..Default::default()
+    };
+    let timed = time_optimal(&m, line(d), &limits(v, f64::INFINITY, tau), &fixed).unwrap();
+    let expected = d / v + v * inertia / tau;
+    assert!(
+        (timed.duration() - expected).abs() < 1e-9 * expected,
+        "{} vs {expected}",
+        timed.duration()
+    );
+    let timed = time_optimal(
+        &m,
+        line(d),
+        &limits(v, f64::INFINITY, tau),
+        &Default::default(),
+    )
+    .unwrap();
+    assert!(timed.duration() >= expected && timed.duration() < expected * (1.0 + 1e-3));
+    assert!(timed.report().max_excess <= 0.0);
+    // And an acceleration limit below τmax / I = 6 rad/s² takes over: T = d / v + v / a.
+    let a = 4.0;
+    let timed = time_optimal(&m, line(d), &limits(v, a, tau), &fixed).unwrap();
+    let expected = d / v + v / a;
+    assert!((timed.duration() - expected).abs() < 1e-9 * expected);
+}
+
+fn ur5_path() -> CubicSpline {
+    CubicSpline::chord_length(&[
+        vec![0.0, -1.8, 1.4, -1.2, -1.6, 0.0],
+        vec![0.8, -1.2, 1.0, -1.4, -1.6, 0.5],
+        vec![1.6, -1.6, 1.8, -1.0, -1.2, 1.0],
+        vec![2.2, -1.0, 1.2, -1.6, -1.6, 0.3],
+    ])
+    .unwrap()
+}
+
+#[test]
+fn ur5_within_its_limits_with_one_limit_active_at_every_instant() {
+    let m = builtin::load("ur5").unwrap();
+    let limits = TimingLimits {
+        acceleration: vec![8.0; 6],
+        ..TimingLimits::from_model(&m)
+    };
+    let timed = time_optimal(&m, ur5_path(), &limits, &Default::default()).unwrap();
+    let report = timed.report();
+    eprintln!("{report:?} duration {}", timed.duration());
+    // Inverse dynamics along the result: every torque, speed and acceleration within its limit.
+    let p = torque_profile(&m, &timed, 5e-4).unwrap();
+    let rec = &p.samples;
+    let mut saturated = 0;
+    for k in 0..rec.len() {
+        let mut nearest = 0.0_f64;
+        for j in 0..6 {
+            let r = [
+                rec.tau[k][j].abs() / limits.effort[j],
+                rec.v[k][j].abs() / limits.velocity[j],
+                rec.a[k][j].abs() / limits.acceleration[j],
+            ];
+            for x in r {
+                assert!(x <= 1.0, "t = {}: joint {j} at {x} of a limit", rec.t[k]);
+                nearest = nearest.max(x);
+            }
+        }
+        // Time-optimal: some limit is (within 3 %) reached at almost every instant: away from the
+        // switches and the grid intervals around them (95.5 % of samples within 1 % at 1600 intervals).
+        if nearest > 0.97 {
+            saturated += 1;
+        }
+    }
+    assert!(
+        saturated as f64 > 0.97 * rec.len() as f64,
+        "{saturated} of {}",
+        rec.len()
+    );
+    // The duration has converged: a grid twice as fine changes it by less than 0.1 %, and it
+    // decreases as the grid is refined (each grid's timing is feasible for the finer one).
+    let &[.., (_, a), (_, b)] = report.durations.as_slice() else {
+        panic!()
+    };
+    assert!((a - b).abs() < 1e-3 * b);
+    assert!(report.durations.windows(2).all(|w| w[1].1 <= w[0].1));
+    // It ends at rest at the last waypoint.
+    let (mut q, mut v, mut acc) = ([0.0; 6], [0.0; 6], [0.0; 6]);
+    timed
+        .sample(timed.duration(), &mut q, &mut v, &mut acc)
+        .unwrap();
+    assert!(q
+        .iter()
+        .zip([2.2, -1.0, 1.2, -1.6, -1.6, 0.3])
+        .all(|(a, b)| (a - b).abs() < 1e-12));
+    assert!(v.iter().all(|x| x.abs() < 1e-12));
+}
+
+#[test]
+fn bad_input_is_one_sentence_naming_where() {
+    let m = builtin::load("ur5").unwrap();
+    let ok = TimingLimits::from_model(&m);
+    let opts = TimeOptimalOptions::default();
+    let err =
+        |l: &TimingLimits, p: CubicSpline| time_optimal(&m, p, l, &opts).unwrap_err().to_string();
+    // Gravity alone above an effort limit: the shoulder holding the stretched arm.
+    let weak = TimingLimits {
+        effort: vec![150.0, 20.0, 150.0, 28.0, 28.0, 28.0],
+        ..ok.clone()
+    };
+    let e = err(&weak, ur5_path());
+    assert!(
+        e.contains("gravity alone") && e.contains("shoulder") && e.contains("s = 0"),
+        "{e}"
+    );
+    // Zero, negative and NaN limits.
+    for bad in [0.0, -1.0, f64::NAN] {
+        let mut l = ok.clone();
+        l.velocity[2] = bad;
+        assert!(err(&l, ur5_path()).contains("velocity limits must be positive"));
+    }
+    let short = TimingLimits {
+        effort: vec![1.0],
+        ..ok.clone()
+    };
+    assert!(err(&short, ur5_path()).contains("effort limits has 1 values"));
+    // A waypoint outside the position limits (the Panda's fourth joint stays below −0.0698).
+    let panda = builtin::load("panda").unwrap();
+    let p = CubicSpline::chord_length(&[
+        vec![0.0, 0.0, 0.0, -1.5, 0.0, 1.5, 0.0],
+        vec![0.5, 0.0, 0.0, 0.0, 0.0, 1.5, 0.0],
+    ])
+    .unwrap();
+    let e = time_optimal(&panda, p, &TimingLimits::from_model(&panda), &opts)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("position limits of joint") && e.contains("s = "),
+        "{e}"
+    );
+    // A path of the wrong number of joints.
+    assert!(err(&ok, line(1.0)).contains("the path has 1 joints"));
+}
