@@ -74,7 +74,7 @@ def median_time(f, n=5):
 
 
 def pinocchio_model(name):
-    urdf = subprocess.run([EXE, "export", f"builtin:{name}", "--format", "urdf"],
+    urdf = subprocess.run([EXE, "export", f"builtin:{name}", "--to", "urdf"],
                           check=True, capture_output=True, text=True).stdout
     model = pin.buildModelFromXML(urdf)
     return model, model.createData()
@@ -97,7 +97,9 @@ def worst_torque(model, data, effort, q, v, a):
 def toppra_timing(model, data, points, vmax, amax, effort, intervals):
     ss = chord(points)
     path = ta.SplineInterpolator(ss, points)
-    cons = [constraint.JointVelocityConstraint(np.column_stack([-vmax, vmax]))]
+    cons = []
+    if np.all(np.isfinite(vmax)):
+        cons.append(constraint.JointVelocityConstraint(np.column_stack([-vmax, vmax])))
     if amax is not None:
         cons.append(constraint.JointAccelerationConstraint(np.column_stack([-amax, amax])))
     cons.append(constraint.JointTorqueConstraint(
@@ -110,10 +112,10 @@ def toppra_timing(model, data, points, vmax, amax, effort, intervals):
 
 
 def topp_rows():
-    print("| robot | path | screwdyn 1000 (s) | screwdyn refined (s, grid) | toppra 250 / 1000 / 4000 (s) "
+    print("| robot | path | limits | screwdyn 1000 (s) | screwdyn refined (s, grid) | toppra 250 / 1000 / 4000 (s) "
           "| duration vs toppra 1000 | max τ/τmax screwdyn | max τ/τmax toppra 1000 "
           "| time screwdyn 1000 (ms) | time toppra 1000 (ms) | ratio | CLI run (ms) |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for name, paths in PATHS.items():
         robot = screwdyn.load(f"builtin:{name}")
         model, data = pinocchio_model(name)
@@ -124,8 +126,12 @@ def topp_rows():
         rng = np.random.default_rng(1)
         q, v, a = (rng.uniform(-1, 1, model.nq) for _ in range(3))
         assert np.allclose(robot.rnea(q, v, a), pin.rnea(model, data, q, v, a), atol=1e-9)
-        for label, pts in paths.items():
+        cases = [(label, pts, True) for label, pts in paths.items()]
+        cases += [(label, pts, False) for label, pts in list(paths.items())[:2]]
+        model_vmax = vmax
+        for label, pts, with_speed in cases:
             pts = np.array(pts)
+            vmax = model_vmax if with_speed else np.full(len(model_vmax), np.inf)
             kw = dict(vmax=vmax, effort=effort)
             if amax is not None:
                 kw["amax"] = amax
@@ -145,10 +151,13 @@ def topp_rows():
                     f.write(",".join(repr(float(x)) for x in p) + "\n")
             cli = [EXE, "torque-profile", f"builtin:{name}", "--trajectory", "time-optimal",
                    "--waypoints", f.name, "--grid", "1000", "--format", "json"]
+            if not with_speed:
+                cli += ["--vmax", "inf"]
             if amax is not None:
                 cli += ["--amax", ",".join(map(str, amax))]
             cli_t, _ = median_time(lambda: subprocess.run(cli, check=True, capture_output=True))
-            print(f"| {name} | {label} | {ours.duration:.4f} | {refined.duration:.4f} ({grid_refined}) "
+            limits = ("speed, " if with_speed else "") + ("accel., " if amax is not None else "") + "torque"
+            print(f"| {name} | {label} | {limits} | {ours.duration:.4f} | {refined.duration:.4f} ({grid_refined}) "
                   f"| {conv[0]:.4f} / {theirs.duration:.4f} / {conv[1]:.4f} "
                   f"| {100 * (ours.duration / theirs.duration - 1):+.3f} % "
                   f"| {w_ours:.5f} | {w_theirs:.5f} | {1e3 * ours_t:.2f} | {1e3 * theirs_t:.1f} "
@@ -181,6 +190,7 @@ def ruckig_rows(cases=20):
 
 
 if __name__ == "__main__":
-    print(f"toppra {ta.__version__}, ruckig {getattr(ruckig, '__version__', '?')}, pin {pin.__version__}\n")
+    from importlib.metadata import version
+    print(f"toppra {version('toppra')}, ruckig {version('ruckig')}, pin {version('pin')}\n")
     topp_rows()
     ruckig_rows()
