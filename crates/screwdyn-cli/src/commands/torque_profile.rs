@@ -75,6 +75,28 @@ fn required<'a>(x: &'a Option<String>, name: &str, kind: &str) -> Result<&'a str
         .ok_or_else(|| CliError::input(format!("--{name} is required with --trajectory {kind}")))
 }
 
+/// A time-optimal limit flag: one value for all joints or one per joint, `inf` for none (the
+/// library refuses zero, negative and NaN limits naming the joint).
+fn parse_limit(text: &str, name: &str, m: &Model) -> Result<Vec<f64>, CliError> {
+    let flag = format!("--{name}");
+    let v = text
+        .split(',')
+        .map(|s| {
+            s.trim()
+                .parse::<f64>()
+                .map_err(|_| CliError::input(format!("{flag}: '{}' is not a number", s.trim())))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    match v.len() {
+        1 => Ok(vec![v[0]; m.nq()]),
+        n if n == m.nq() => Ok(v),
+        n => Err(CliError::input(format!(
+            "{flag} has {n} values: give one for all joints or one per joint ({})",
+            m.nq()
+        ))),
+    }
+}
+
 /// Flags that `--trajectory kind` does not use are refused.
 fn unused(flags: &[(&str, bool)], kind: &str) -> Result<(), CliError> {
     match flags.iter().find(|(_, given)| *given) {
@@ -169,10 +191,10 @@ fn trajectory(a: &TorqueProfileArgs, m: &Model) -> Result<Motion, CliError> {
                 .map_err(|e| CliError::input(format!("{}: {e}", file.display())))?;
             let mut limits = TimingLimits::from_model(m);
             if let Some(v) = &a.vmax {
-                limits.velocity = parse_per_joint(v, "vmax", m)?;
+                limits.velocity = parse_limit(v, "vmax", m)?;
             }
             if let Some(v) = &a.amax {
-                limits.acceleration = parse_per_joint(v, "amax", m)?;
+                limits.acceleration = parse_limit(v, "amax", m)?;
             }
             let options = TimeOptimalOptions {
                 grid: a.grid,
