@@ -36,6 +36,9 @@ pub enum Command {
     Fk(FkArgs),
     /// The 6×n Jacobian of --frame at --q (angular rows first).
     Jacobian(JacobianArgs),
+    /// Inverse kinematics: joint positions that put --frame at --target (or --position), or
+    /// at every target of --input; with --all every closed-form solution.
+    Ik(IkArgs),
     /// Inverse dynamics τ = M(q) q̈ + C(q, q̇) q̇ + g(q) − Σ Jᵀ W_ext by RNEA.
     #[command(visible_alias = "rnea")]
     InverseDynamics(InverseDynamicsArgs),
@@ -261,6 +264,54 @@ pub struct JacobianArgs {
     /// Frame the twist is written in.
     #[arg(long, value_enum, default_value = "world")]
     pub reference: ReferenceArg,
+}
+
+/// `screwdyn ik MODEL --frame NAME --target x,y,z,qw,qx,qy,qz` (docs/cli.md, docs/ik.md).
+#[derive(Args, Debug)]
+pub struct IkArgs {
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// The frame to place.
+    #[arg(long)]
+    pub frame: String,
+    /// The target pose in the world frame: position (m) and unit quaternion, scalar first.
+    #[arg(long, allow_hyphen_values = true, value_name = "X,Y,Z,QW,QX,QY,QZ")]
+    pub target: Option<String>,
+    /// A target position only (m, world frame); the orientation is free.
+    #[arg(long, allow_hyphen_values = true, value_name = "X,Y,Z")]
+    pub position: Option<String>,
+    /// Every closed-form solution within the joint limits (6R arms with a spherical wrist or
+    /// three parallel axes).
+    #[arg(long)]
+    pub all: bool,
+    /// The start (default: each joint at 0, or at the nearer limit when 0 is outside them);
+    /// with --input, the start of rows without q0.<joint> columns.
+    #[arg(long, allow_hyphen_values = true)]
+    pub q0: Option<String>,
+    /// Seed of the random restarts (the same seed gives the same answer).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Largest accepted position error (m; default 1e-6).
+    #[arg(long, value_name = "M")]
+    pub position_tolerance: Option<f64>,
+    /// Largest accepted orientation error (rad; default 1e-6).
+    #[arg(long, value_name = "RAD")]
+    pub orientation_tolerance: Option<f64>,
+    /// Random restarts after the first attempt (default 50).
+    #[arg(long, value_name = "N")]
+    pub max_restarts: Option<usize>,
+    /// Many targets from a CSV file: columns x, y, z, qw, qx, qy, qz (world frame, quaternion
+    /// scalar first; without the quaternion columns the targets are positions) and optional
+    /// q0.<joint>; one output row per target, streamed.
+    #[arg(long, value_name = "TARGETS.CSV")]
+    pub input: Option<PathBuf>,
+    /// With --input: write the rows to this .csv or .json file instead of stdout.
+    #[arg(long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// With --input: threads solving the rows (default: one per core). The answers do not
+    /// depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
 }
 
 /// External wrenches on bodies and at frames.

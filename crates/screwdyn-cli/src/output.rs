@@ -43,6 +43,8 @@ pub enum Value {
     Scalar(f64),
     /// A count (written as an integer: `10001`, not `10001.0`).
     Count(usize),
+    /// A yes/no answer (`true` or `false` in every format).
+    Flag(bool),
     /// A vector whose entries carry labels (joint names, `wx`…`vz`, ...).
     Vector(Labels, Vec<f64>),
     /// A matrix with row and column labels.
@@ -80,7 +82,7 @@ impl Value {
                 .iter()
                 .enumerate()
                 .find_map(|(k, v)| v.non_finite().map(|at| format!(".{k}{at}"))),
-            Value::Count(_) | Value::Text(_) | Value::Names(_) => None,
+            Value::Count(_) | Value::Flag(_) | Value::Text(_) | Value::Names(_) => None,
         }
     }
 
@@ -119,6 +121,7 @@ impl Value {
         match self {
             Value::Scalar(x) => json_number(*x),
             Value::Count(n) => Json::from(*n),
+            Value::Flag(b) => Json::Bool(*b),
             Value::Vector(_, x) => Json::Array(x.iter().map(|v| json_number(*v)).collect()),
             Value::Matrix(_, _, m) => Json::Array(
                 (0..m.nrows())
@@ -140,7 +143,9 @@ impl Value {
     /// The CSV column names of this value under `key`.
     fn columns(&self, key: &str, out: &mut Vec<String>) {
         match self {
-            Value::Scalar(_) | Value::Count(_) | Value::Text(_) => out.push(key.into()),
+            Value::Scalar(_) | Value::Count(_) | Value::Flag(_) | Value::Text(_) => {
+                out.push(key.into())
+            }
             Value::Vector(l, _) => out.extend(l.iter().map(|l| format!("{key}.{l}"))),
             Value::Matrix(rl, cl, _) => {
                 for rn in rl.iter() {
@@ -166,6 +171,7 @@ impl Value {
         match self {
             Value::Scalar(x) => csv_cell(w, cells, num.csv(*x)),
             Value::Count(n) => csv_cell(w, cells, &n.to_string()),
+            Value::Flag(b) => csv_cell(w, cells, if *b { "true" } else { "false" }),
             Value::Vector(_, x) => x.iter().try_for_each(|x| csv_cell(w, cells, num.csv(*x))),
             Value::Matrix(_, _, m) => {
                 for r in 0..m.nrows() {
@@ -188,6 +194,7 @@ impl Value {
         match self {
             Value::Scalar(x) => json_num(w, num, *x),
             Value::Count(n) => write!(w, "{n}"),
+            Value::Flag(b) => write!(w, "{b}"),
             Value::Vector(_, x) => {
                 w.write_all(b"[")?;
                 for (k, x) in x.iter().enumerate() {
@@ -241,6 +248,7 @@ impl Value {
         match self {
             Value::Scalar(x) => out.push_str(&format!("{key} = {}\n", fmt(*x))),
             Value::Count(n) => out.push_str(&format!("{key} = {n}\n")),
+            Value::Flag(b) => out.push_str(&format!("{key}: {b}\n")),
             Value::Text(s) => out.push_str(&format!("{key}: {s}\n")),
             Value::Names(n) => out.push_str(&format!("{key}: {}\n", n.join(", "))),
             Value::Vector(l, x) => {

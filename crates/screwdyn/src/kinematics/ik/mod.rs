@@ -17,6 +17,7 @@ mod restart;
 mod result;
 mod seed;
 mod subproblems;
+mod target;
 mod workspace;
 
 pub use all_solutions::IkSolution;
@@ -26,4 +27,8 @@ pub use numerical::IkSolver;
 pub use options::{IkOptions, IkTask};
 pub use pose_error::ORTHONORMAL_TOLERANCE;
 pub use result::{IkFailure, IkResult};
+pub use target::{
+    default_start, target_from_matrix, target_from_quaternion, BOTTOM_ROW_TOLERANCE,
+    QUATERNION_TOLERANCE,
+};
 pub use workspace::IkWorkspace;
