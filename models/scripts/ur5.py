@@ -56,33 +56,45 @@ for i in range(6):
 toml += ["[[frame]]", 'name = "tool0"', 'link = "wrist_3_link"', ""]
 open("ur5.toml", "w").write("\n".join(toml))
 
-# URDF: joint i turns link "<name>" about z of DH frame {i-1}; the DH frame {i} follows as the
-# fixed link LINKS[i] at Trans_z(d) Trans_x(a) Rot_x(alpha), carrying the inertial.
+# URDF: link LINKS[i] is the body joint i turns, its frame on joint i's axis: the DH frame
+# {i-1} turned by q_i (a URDF joint turns its child about an axis through the child's origin,
+# so the child cannot sit at the DH frame {i}, which is a_i away from that axis). The DH frame
+# {i} follows at D_i = Trans_z(d) Trans_x(a) Rot_x(alpha): the next joint's origin, and the
+# frame the centre of mass and the inertia axes are given in (<inertial> origin D_i com, rpy
+# alpha 0 0). Link, joint and frame names are those of the published UR5 URDF (Universal
+# Robots' ur_description, as in example-robot-data).
+def rot_x(alpha, c):
+    ca, sa = math.cos(alpha), math.sin(alpha)
+    return [c[0], ca * c[1] - sa * c[2], sa * c[1] + ca * c[2]]
+
+
+def dh_origin(i):
+    return '<origin xyz="%s 0 %s" rpy="%s 0 0"/>' % (f(A[i]), f(D[i]), f(ALPHA[i]))
+
+
 u = ['<?xml version="1.0"?>', "<!-- UR5 written by models/scripts/ur5.py from Universal Robots' published DH",
      "     parameters, masses and centres of mass; rotational inertias approximated as solid",
      "     cylinders (see the script). Not derived from any third-party URDF file. -->",
      '<robot name="ur5">', '  <link name="base_link"/>']
 for i in range(6):
     it = INERTIA[i]
-    u += ['  <link name="%s"/>' % NAMES[i],
-          '  <link name="%s">' % LINKS[i],
+    c = rot_x(ALPHA[i], COM[i])
+    com = [c[0] + A[i], c[1], c[2] + D[i]]
+    u += ['  <link name="%s">' % LINKS[i],
           '    <inertial>',
-          '      <origin xyz="%s" rpy="0 0 0"/>' % " ".join(f(x) for x in COM[i]),
+          '      <origin xyz="%s" rpy="%s 0 0"/>' % (" ".join(f(x) for x in com), f(ALPHA[i])),
           '      <mass value="%s"/>' % f(MASS[i]),
           '      <inertia ixx="%s" ixy="0" ixz="0" iyy="%s" iyz="0" izz="%s"/>' % (f(it[0]), f(it[3]), f(it[5])),
           '    </inertial>', '  </link>']
 u += ['  <link name="tool0"/>']
 for i in range(6):
     parent = "base_link" if i == 0 else LINKS[i - 1]
+    origin = '<origin xyz="0 0 0" rpy="0 0 0"/>' if i == 0 else dh_origin(i - 1)
     u += ['  <joint name="%s_joint" type="revolute">' % NAMES[i],
-          '    <parent link="%s"/>' % parent, '    <child link="%s"/>' % NAMES[i],
-          '    <origin xyz="0 0 0" rpy="0 0 0"/>', '    <axis xyz="0 0 1"/>',
+          '    <parent link="%s"/>' % parent, '    <child link="%s"/>' % LINKS[i],
+          '    ' + origin, '    <axis xyz="0 0 1"/>',
           '    <limit lower="%s" upper="%s" effort="%s" velocity="3.15"/>' % (f(-2 * PI), f(2 * PI), f(EFFORT[i])),
-          '  </joint>',
-          '  <joint name="%s_dh" type="fixed">' % NAMES[i],
-          '    <parent link="%s"/>' % NAMES[i], '    <child link="%s"/>' % LINKS[i],
-          '    <origin xyz="%s 0 %s" rpy="%s 0 0"/>' % (f(A[i]), f(D[i]), f(ALPHA[i])),
           '  </joint>']
-u += ['  <joint name="tool0_fixed" type="fixed">', '    <parent link="wrist_3_link"/>',
-      '    <child link="tool0"/>', '  </joint>', "</robot>", ""]
+u += ['  <joint name="wrist_3_link-tool0_fixed_joint" type="fixed">', '    <parent link="wrist_3_link"/>',
+      '    <child link="tool0"/>', '    ' + dh_origin(5), '  </joint>', "</robot>", ""]
 open("ur5.urdf", "w").write("\n".join(u))

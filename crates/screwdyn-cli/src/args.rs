@@ -5,14 +5,22 @@ use std::path::PathBuf;
 
 /// Kinematics and dynamics of robot manipulators, in the screw-theory notation.
 ///
-/// MODEL is a .urdf or .toml file, or builtin:<name> (builtin:planar2, builtin:pendulum,
-/// builtin:ur5, builtin:panda, builtin:branched). Joint-space vectors are comma-separated numbers
-/// in model joint order (`--q 0.1,0.2`); an absent vector is all zeros. Numeric commands take one
+/// MODEL is a .urdf, .xml (MuJoCo's MJCF) or .toml file, or builtin:<name> (builtin:planar2,
+/// builtin:pendulum, builtin:ur5, builtin:panda, builtin:branched). Joint-space vectors are
+/// comma-separated numbers in model joint order (`--q 0.1,0.2`), or for `--q` a model's named
+/// configuration (`--q key:home`, an MJCF <key>); an absent vector is all zeros. Numeric commands take one
 /// state from flags or many from `--input states.csv` (columns q.<joint>, v.<joint>, a.<joint>,
 /// tau.<joint>; a missing column is zero). Output: `--format table|json|csv` (table on a
 /// terminal, JSON otherwise). Bad input exits with status 2 and one sentence on stderr.
 #[derive(Parser, Debug)]
-#[command(name = "screwdyn", version, about, long_about)]
+// `about` is the first paragraph (with its full stop, which clap would drop) and `long_about`
+// the whole comment, so that `screwdyn` alone (the short help, on stderr) starts with the same
+// line as `--help`.
+#[command(
+    name = "screwdyn",
+    version,
+    about = "Kinematics and dynamics of robot manipulators, in the screw-theory notation."
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
@@ -28,6 +36,9 @@ pub enum Command {
     Fk(FkArgs),
     /// The 6×n Jacobian of --frame at --q (angular rows first).
     Jacobian(JacobianArgs),
+    /// Inverse kinematics: joint positions that put --frame at --target (or --position), or
+    /// at every target of --input; with --all every closed-form solution.
+    Ik(IkArgs),
     /// Inverse dynamics τ = M(q) q̈ + C(q, q̇) q̇ + g(q) − Σ Jᵀ W_ext by RNEA.
     #[command(visible_alias = "rnea")]
     InverseDynamics(InverseDynamicsArgs),
@@ -82,7 +93,7 @@ pub enum Command {
 pub struct DerivativesArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Joint velocities q̇ (default: all zero).
@@ -99,7 +110,7 @@ pub struct DerivativesArgs {
 pub struct RegressorArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Joint velocities q̇ (default: all zero).
@@ -186,7 +197,7 @@ pub struct ModelArgs {
 
 #[derive(Args, Debug)]
 pub struct CheckArgs {
-    /// A .urdf or .toml file, or builtin:<name>.
+    /// A .urdf, .xml (MJCF) or .toml file, or builtin:<name>.
     pub model: String,
     /// Output format (default: table on a terminal, JSON otherwise).
     #[arg(long, value_enum)]
@@ -211,7 +222,7 @@ pub struct Common {
 pub struct QArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
 }
@@ -220,7 +231,7 @@ pub struct QArgs {
 pub struct QvArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Joint velocities q̇, comma-separated (default: all zero).
@@ -232,7 +243,7 @@ pub struct QvArgs {
 pub struct FkArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Only this frame.
@@ -244,7 +255,7 @@ pub struct FkArgs {
 pub struct JacobianArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// The frame whose Jacobian to compute (default: the last frame of the model).
@@ -253,6 +264,54 @@ pub struct JacobianArgs {
     /// Frame the twist is written in.
     #[arg(long, value_enum, default_value = "world")]
     pub reference: ReferenceArg,
+}
+
+/// `screwdyn ik MODEL --frame NAME --target x,y,z,qw,qx,qy,qz` (docs/cli.md, docs/ik.md).
+#[derive(Args, Debug)]
+pub struct IkArgs {
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// The frame to place.
+    #[arg(long)]
+    pub frame: String,
+    /// The target pose in the world frame: position (m) and unit quaternion, scalar first.
+    #[arg(long, allow_hyphen_values = true, value_name = "X,Y,Z,QW,QX,QY,QZ")]
+    pub target: Option<String>,
+    /// A target position only (m, world frame); the orientation is free.
+    #[arg(long, allow_hyphen_values = true, value_name = "X,Y,Z")]
+    pub position: Option<String>,
+    /// Every closed-form solution within the joint limits (6R arms with a spherical wrist or
+    /// three parallel axes).
+    #[arg(long)]
+    pub all: bool,
+    /// The start (default: each joint at 0, or at the nearer limit when 0 is outside them);
+    /// with --input, the start of rows without q0.<joint> columns.
+    #[arg(long, allow_hyphen_values = true)]
+    pub q0: Option<String>,
+    /// Seed of the random restarts (the same seed gives the same answer).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Largest accepted position error (m; default 1e-6).
+    #[arg(long, value_name = "M")]
+    pub position_tolerance: Option<f64>,
+    /// Largest accepted orientation error (rad; default 1e-6).
+    #[arg(long, value_name = "RAD")]
+    pub orientation_tolerance: Option<f64>,
+    /// Random restarts after the first attempt (default 50).
+    #[arg(long, value_name = "N")]
+    pub max_restarts: Option<usize>,
+    /// Many targets from a CSV file: columns x, y, z, qw, qx, qy, qz (world frame, quaternion
+    /// scalar first; without the quaternion columns the targets are positions) and optional
+    /// q0.<joint>; one output row per target, streamed.
+    #[arg(long, value_name = "TARGETS.CSV")]
+    pub input: Option<PathBuf>,
+    /// With --input: write the rows to this .csv or .json file instead of stdout.
+    #[arg(long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// With --input: threads solving the rows (default: one per core). The answers do not
+    /// depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
 }
 
 /// External wrenches on bodies and at frames.
@@ -272,7 +331,7 @@ pub struct WrenchArgs {
 pub struct InverseDynamicsArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Joint velocities q̇ (default: all zero).
@@ -289,7 +348,7 @@ pub struct InverseDynamicsArgs {
 pub struct ForwardDynamicsArgs {
     #[command(flatten)]
     pub common: Common,
-    /// Joint positions q, comma-separated (default: all zero).
+    /// Joint positions q, comma-separated, or key:NAME (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Joint velocities q̇ (default: all zero).
@@ -443,6 +502,24 @@ pub enum TrajectoryArg {
     Trapezoid,
     /// Rest-to-rest quintic polynomial over --duration.
     Quintic,
+    /// The fastest timing of the cubic spline through --waypoints within the velocity
+    /// (--vmax, default the model's), acceleration (--amax, default none) and effort limits.
+    TimeOptimal,
+    /// The fastest jerk-limited motion from --q0 to --qf within --vmax, --amax and --jmax, all
+    /// joints finishing together.
+    JerkLimited,
+}
+
+impl TrajectoryArg {
+    /// The value as written on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            TrajectoryArg::Trapezoid => "trapezoid",
+            TrajectoryArg::Quintic => "quintic",
+            TrajectoryArg::TimeOptimal => "time-optimal",
+            TrajectoryArg::JerkLimited => "jerk-limited",
+        }
+    }
 }
 
 #[derive(Args, Debug)]
@@ -458,15 +535,28 @@ pub struct TorqueProfileArgs {
     /// Start position (default: all zero).
     #[arg(long, allow_hyphen_values = true)]
     pub q0: Option<String>,
-    /// End position.
+    /// End position (trapezoid, quintic, jerk-limited).
     #[arg(long, allow_hyphen_values = true)]
-    pub qf: String,
-    /// Trapezoid cruise-speed limit (rad/s): one value for all joints or one per joint.
-    #[arg(long, allow_hyphen_values = true, default_value = "1")]
-    pub vmax: String,
-    /// Trapezoid acceleration (rad/s²): one value for all joints or one per joint.
-    #[arg(long, allow_hyphen_values = true, default_value = "2")]
-    pub amax: String,
+    pub qf: Option<String>,
+    /// Speed limit (rad/s): one value for all joints or one per joint. Default: 1 for the
+    /// trapezoid, the model's velocity limits for time-optimal and jerk-limited.
+    #[arg(long, allow_hyphen_values = true)]
+    pub vmax: Option<String>,
+    /// Acceleration limit (rad/s²): one value for all joints or one per joint. Default: 2 for
+    /// the trapezoid, none for time-optimal; required for jerk-limited.
+    #[arg(long, allow_hyphen_values = true)]
+    pub amax: Option<String>,
+    /// Jerk limit (rad/s³) of jerk-limited: one value for all joints or one per joint.
+    #[arg(long, allow_hyphen_values = true)]
+    pub jmax: Option<String>,
+    /// Time-optimal: the waypoints, a CSV file with columns q.<joint> for every joint and an
+    /// optional s (the path parameter, increasing; default: the chord length).
+    #[arg(long, value_name = "PATH.CSV")]
+    pub waypoints: Option<PathBuf>,
+    /// Time-optimal: a fixed grid of this many intervals in s (default: refined until the
+    /// duration converges).
+    #[arg(long)]
+    pub grid: Option<usize>,
     /// Let each trapezoid joint finish on its own (default: all joints end together).
     #[arg(long)]
     pub unsynchronised: bool,
@@ -476,7 +566,10 @@ pub struct TorqueProfileArgs {
     /// Sampling step (s).
     #[arg(long, default_value_t = 1e-3)]
     pub dt: f64,
-    /// Refuse profiles with more samples than this (a profile is held in memory).
+    /// Refuse profiles with more samples than this. Without --plot, samples are streamed to
+    /// --output (or to stdout with --format csv) as they are computed, in constant memory;
+    /// with --plot (or for a report alone) they are held, and a profile the machine cannot hold
+    /// is refused up front with the memory it would need.
     #[arg(long, default_value_t = screwdyn::sim::MAX_PROFILE_SAMPLES)]
     pub max_samples: usize,
     /// Write the samples (t, q, v, a, tau, energies) to a .csv or .json file.
@@ -490,14 +583,16 @@ pub struct TorqueProfileArgs {
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ExportFormat {
     Urdf,
+    /// MuJoCo's XML format.
+    Mjcf,
 }
 
 #[derive(Args, Debug)]
 pub struct ExportArgs {
     /// A .urdf or .toml file, or builtin:<name>.
     pub model: String,
-    /// The format to write.
-    #[arg(long, value_enum)]
+    /// The format to write: urdf or mjcf (MuJoCo).
+    #[arg(long, value_enum, alias = "format")]
     pub to: ExportFormat,
     /// Write to this file instead of stdout.
     #[arg(long)]

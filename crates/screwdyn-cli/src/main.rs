@@ -70,16 +70,37 @@ fn clap_error(e: clap::Error) -> ExitCode {
         };
     }
     let text = e.render().to_string();
-    let parts: Vec<&str> = text
+    let lines: Vec<&str> = text
         .lines()
         .map(str::trim)
         .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
-        .filter(|l| !l.is_empty() && !l.starts_with("tip:"))
+        .filter(|l| !l.is_empty())
+        .collect();
+    let parts: Vec<&str> = lines
+        .iter()
+        .copied()
+        .filter(|l| !l.starts_with("tip:"))
         .collect();
     let line = parts.join(" ");
     let line = line.strip_prefix("error: ").unwrap_or(&line);
-    eprintln!("screwdyn: {line}");
+    // clap's suggestion ("tip: a similar subcommand exists: 'jacobian'") becomes "did you
+    // mean"; its other tips (how to pass a value that starts with '-') are dropped.
+    match lines.iter().find_map(|l| similar(l)) {
+        Some(names) => eprintln!("screwdyn: {line}; did you mean {names}?"),
+        None => eprintln!("screwdyn: {line}"),
+    }
     ExitCode::from(2)
+}
+
+/// The most similar name of clap's "similar … exist(s): 'a', 'b'" tip (clap lists them from
+/// the least to the most similar).
+fn similar(tip: &str) -> Option<String> {
+    let rest = tip.strip_prefix("tip:")?.trim();
+    if !rest.contains("similar") {
+        return None;
+    }
+    let (_, names) = rest.split_once(": ")?;
+    names.rsplit(", ").next().map(|n| n.trim().to_string())
 }
 
 impl From<screwdyn::Error> for CliError {

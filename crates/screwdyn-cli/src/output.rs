@@ -43,6 +43,8 @@ pub enum Value {
     Scalar(f64),
     /// A count (written as an integer: `10001`, not `10001.0`).
     Count(usize),
+    /// A yes/no answer (`true` or `false` in every format).
+    Flag(bool),
     /// A vector whose entries carry labels (joint names, `wx`…`vz`, ...).
     Vector(Labels, Vec<f64>),
     /// A matrix with row and column labels.
@@ -53,6 +55,9 @@ pub enum Value {
     Text(String),
     /// A list of names (the joint names); omitted from CSV, whose columns carry them.
     Names(Labels),
+    /// A list of values of any length (a run's events); omitted from CSV, whose columns are
+    /// fixed.
+    List(Vec<Value>),
 }
 
 impl Value {
@@ -73,7 +78,11 @@ impl Value {
             Value::Map(items) => items
                 .iter()
                 .find_map(|(k, v)| v.non_finite().map(|at| format!(".{k}{at}"))),
-            Value::Count(_) | Value::Text(_) | Value::Names(_) => None,
+            Value::List(items) => items
+                .iter()
+                .enumerate()
+                .find_map(|(k, v)| v.non_finite().map(|at| format!(".{k}{at}"))),
+            Value::Count(_) | Value::Flag(_) | Value::Text(_) | Value::Names(_) => None,
         }
     }
 
@@ -112,6 +121,7 @@ impl Value {
         match self {
             Value::Scalar(x) => json_number(*x),
             Value::Count(n) => Json::from(*n),
+            Value::Flag(b) => Json::Bool(*b),
             Value::Vector(_, x) => Json::Array(x.iter().map(|v| json_number(*v)).collect()),
             Value::Matrix(_, _, m) => Json::Array(
                 (0..m.nrows())
@@ -126,13 +136,16 @@ impl Value {
             ),
             Value::Text(s) => Json::String(s.clone()),
             Value::Names(n) => Json::Array(n.iter().map(|s| Json::String(s.clone())).collect()),
+            Value::List(items) => Json::Array(items.iter().map(Value::to_json).collect()),
         }
     }
 
     /// The CSV column names of this value under `key`.
     fn columns(&self, key: &str, out: &mut Vec<String>) {
         match self {
-            Value::Scalar(_) | Value::Count(_) | Value::Text(_) => out.push(key.into()),
+            Value::Scalar(_) | Value::Count(_) | Value::Flag(_) | Value::Text(_) => {
+                out.push(key.into())
+            }
             Value::Vector(l, _) => out.extend(l.iter().map(|l| format!("{key}.{l}"))),
             Value::Matrix(rl, cl, _) => {
                 for rn in rl.iter() {
@@ -144,7 +157,7 @@ impl Value {
                     v.columns(&format!("{key}.{k}"), out);
                 }
             }
-            Value::Names(_) => {}
+            Value::Names(_) | Value::List(_) => {}
         }
     }
 
@@ -158,6 +171,7 @@ impl Value {
         match self {
             Value::Scalar(x) => csv_cell(w, cells, num.csv(*x)),
             Value::Count(n) => csv_cell(w, cells, &n.to_string()),
+            Value::Flag(b) => csv_cell(w, cells, if *b { "true" } else { "false" }),
             Value::Vector(_, x) => x.iter().try_for_each(|x| csv_cell(w, cells, num.csv(*x))),
             Value::Matrix(_, _, m) => {
                 for r in 0..m.nrows() {
@@ -171,7 +185,7 @@ impl Value {
                 .iter()
                 .try_for_each(|(_, v)| v.write_csv(w, num, cells)),
             Value::Text(s) => csv_cell(w, cells, &csv_field(s)),
-            Value::Names(_) => Ok(()),
+            Value::Names(_) | Value::List(_) => Ok(()),
         }
     }
 
@@ -180,6 +194,7 @@ impl Value {
         match self {
             Value::Scalar(x) => json_num(w, num, *x),
             Value::Count(n) => write!(w, "{n}"),
+            Value::Flag(b) => write!(w, "{b}"),
             Value::Vector(_, x) => {
                 w.write_all(b"[")?;
                 for (k, x) in x.iter().enumerate() {
@@ -216,6 +231,16 @@ impl Value {
                 }
                 w.write_all(b"]")
             }
+            Value::List(items) => {
+                w.write_all(b"[")?;
+                for (k, v) in items.iter().enumerate() {
+                    if k > 0 {
+                        w.write_all(b",")?;
+                    }
+                    v.write_json(w, num)?;
+                }
+                w.write_all(b"]")
+            }
         }
     }
 
@@ -223,6 +248,7 @@ impl Value {
         match self {
             Value::Scalar(x) => out.push_str(&format!("{key} = {}\n", fmt(*x))),
             Value::Count(n) => out.push_str(&format!("{key} = {n}\n")),
+            Value::Flag(b) => out.push_str(&format!("{key}: {b}\n")),
             Value::Text(s) => out.push_str(&format!("{key}: {s}\n")),
             Value::Names(n) => out.push_str(&format!("{key}: {}\n", n.join(", "))),
             Value::Vector(l, x) => {
@@ -240,6 +266,11 @@ impl Value {
             }
             Value::Map(items) => {
                 for (k, v) in items {
+                    v.table(&format!("{key} {k}"), out);
+                }
+            }
+            Value::List(items) => {
+                for (k, v) in items.iter().enumerate() {
                     v.table(&format!("{key} {k}"), out);
                 }
             }

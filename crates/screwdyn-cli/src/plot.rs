@@ -111,6 +111,7 @@ pub fn plot_panels(
         };
         result.map_err(|e| CliError::input(format!("cannot write plot {}: {e}", path.display())))
     })?;
+    crate::write::announce(path);
     Ok(size)
 }
 

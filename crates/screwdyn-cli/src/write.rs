@@ -66,6 +66,17 @@ where
     Ok(out.commit()?)
 }
 
+/// Says on stderr that `path` was written ("wrote run.csv"), when stderr is a terminal: a
+/// person at the terminal learns where the file went, a script's stderr stays free of it.
+/// Every command calls it once a file is complete (`view` and `identify --excite`, whose
+/// result is the file, say so on stdout instead).
+pub fn announce(path: &Path) {
+    use std::io::IsTerminal;
+    if std::io::stderr().is_terminal() {
+        eprintln!("wrote {}", path.display());
+    }
+}
+
 /// Refuses an output `path` (given as `flag`) that names one of the command's `inputs` (files
 /// only: a `builtin:` model is not a path), comparing canonical paths so that `./m.urdf`,
 /// `dir/../m.urdf` and a symbolic link to the model are all recognised.

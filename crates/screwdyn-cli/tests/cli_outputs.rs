@@ -220,7 +220,10 @@ fn a_reader_going_away_ends_a_streamed_run_quietly() {
         let result = child.wait_with_output().unwrap();
         let err = String::from_utf8_lossy(&result.stderr);
         assert_eq!(result.status.code(), Some(0), "{cmd:?}: {err}");
-        assert!(err.is_empty(), "{cmd:?}: {err}");
+        // Nothing but the run's warnings (the UR5's wrist reaches its limit stops; the JSON
+        // run is written whole at its end, so the run is over when the reader goes away).
+        let other = err.lines().find(|l| !l.starts_with("screwdyn: warning: "));
+        assert_eq!(other, None, "{cmd:?}: {err}");
     }
 }
 

@@ -109,8 +109,9 @@ impl PyModel {
     }
 }
 
-/// Loads a model from a `.urdf` file, a `.toml` file (DH, modified DH, product of exponentials or
-/// the native format, chosen by its `format` key) or `builtin:<name>`.
+/// Loads a model from a `.urdf` file, a `.xml` file (MuJoCo's MJCF), a `.toml` file (DH, modified
+/// DH, product of exponentials or the native format, chosen by its `format` key) or
+/// `builtin:<name>`.
 ///
 /// Raises FileNotFoundError for a missing file and screwdyn.ModelError (a ValueError) for a
 /// description that cannot be loaded; the message names the file and line. Physically
@@ -283,6 +284,23 @@ impl PyModel {
         self.joint(joint)
     }
 
+    /// Names of the model's keyframes (named configurations, an MJCF file's `<key>`s).
+    #[getter]
+    fn keyframe_names(&self) -> Vec<String> {
+        self.model
+            .keyframe_names()
+            .into_iter()
+            .map(String::from)
+            .collect()
+    }
+
+    /// The named configuration `name` (an MJCF `<key>`): `q`, `(nq,)`. Raises
+    /// screwdyn.ModelError for a name the model does not have.
+    fn keyframe<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        let q = self.model.keyframe(name).map_err(call_err)?;
+        convert::vector(py, q)
+    }
+
     /// The parent link of each link (`None` for a link attached to the base): `λ(i)` of docs/notation.md.
     #[getter]
     fn parents(&self) -> Vec<Option<usize>> {
@@ -331,6 +349,14 @@ impl PyModel {
     #[getter]
     fn damping<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let v: Vec<f64> = self.model.joints().iter().map(|j| j.damping).collect();
+        convert::frozen(convert::vector(py, &v)?)
+    }
+
+    /// Armatures: the rotor inertias reflected to the joints (kg·m² or kg), added to the
+    /// mass matrix's diagonal.
+    #[getter]
+    fn armature<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let v: Vec<f64> = self.model.joints().iter().map(|j| j.armature).collect();
         convert::frozen(convert::vector(py, &v)?)
     }
 
@@ -422,6 +448,12 @@ impl PyModel {
     /// The model as URDF text (the library's exporter; gravity is not part of URDF).
     fn to_urdf(&self) -> PyResult<String> {
         screwdyn::io::urdf::to_urdf_string(&self.model).map_err(call_err)
+    }
+
+    /// The model as MJCF text, MuJoCo's format (the library's exporter: armature, limits,
+    /// damping, friction, effort limits as motors, frames as sites, gravity).
+    fn to_mjcf(&self) -> PyResult<String> {
+        screwdyn::io::mjcf_export::to_mjcf_string(&self.model).map_err(call_err)
     }
 
     fn __repr__(&self) -> String {

@@ -449,6 +449,20 @@ fn recording<'py>(py: Python<'py>, r: &Recording) -> PyResult<Bound<'py, PyDict>
         poses.set_item(name, convert::array(py, out, &[r.poses.len(), 4, 4])?)?;
     }
     d.set_item("poses", poses)?;
+    // What happened at the position limits (a start outside them, each limit-stop contact).
+    let events = PyList::empty(py);
+    for e in &r.events {
+        let x = PyDict::new(py);
+        x.set_item("kind", e.kind.name())?;
+        x.set_item("t", e.t)?;
+        x.set_item("joint", &e.joint_name)?;
+        x.set_item("side", e.side.name())?;
+        x.set_item("bound", e.bound)?;
+        x.set_item("position", e.position)?;
+        x.set_item("velocity", e.velocity)?;
+        events.append(x)?;
+    }
+    d.set_item("events", events)?;
     Ok(d)
 }
 

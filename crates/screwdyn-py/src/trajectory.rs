@@ -3,9 +3,13 @@
 
 use crate::convert::{self, joint_count, per_joint, values_1d, vector, ArrayIn};
 use crate::errors::{call_err, guard};
+use crate::model::PyModel;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
+use screwdyn::motion::{
+    time_optimal, CubicSpline, JerkLimited, TimeOptimal, TimeOptimalOptions, TimingLimits,
+};
 use screwdyn::sim::{Quintic, Trajectory, Trapezoid, Waypoints};
 
 /// The library trajectory a `Trajectory` holds.
@@ -14,6 +18,8 @@ pub(crate) enum Traj {
     Trapezoid(Trapezoid),
     Quintic(Quintic),
     Waypoints(Waypoints),
+    TimeOptimal(Box<TimeOptimal<CubicSpline>>),
+    JerkLimited(JerkLimited),
 }
 
 impl Traj {
@@ -23,6 +29,8 @@ impl Traj {
             Traj::Trapezoid(t) => t,
             Traj::Quintic(t) => t,
             Traj::Waypoints(t) => t,
+            Traj::TimeOptimal(t) => t.as_ref(),
+            Traj::JerkLimited(t) => t,
         }
     }
 
@@ -32,13 +40,16 @@ impl Traj {
             Traj::Trapezoid(t) => Box::new(t),
             Traj::Quintic(t) => Box::new(t),
             Traj::Waypoints(t) => Box::new(t),
+            Traj::TimeOptimal(t) => t,
+            Traj::JerkLimited(t) => Box::new(t),
         }
     }
 }
 
-/// A joint-space trajectory (from rest to constant velocity, and then back to stop, or through
-/// waypoints): make one with `Trajectory.trapezoid`, `Trajectory.quintic` or
-/// `Trajectory.waypoints`; sample it with `sample(t)`.
+/// A joint-space trajectory (from rest to constant velocity, and then back to stop, through
+/// waypoints, or timed to the limits): make one with `Trajectory.trapezoid`,
+/// `Trajectory.quintic`, `Trajectory.waypoints`, `Trajectory.time_optimal` or
+/// `Trajectory.jerk_limited`; sample it with `sample(t)`.
 #[pyclass(name = "Trajectory", module = "screwdyn._screwdyn", frozen)]
 pub(crate) struct PyTrajectory {
     pub(crate) traj: Traj,
@@ -131,6 +142,105 @@ impl PyTrajectory {
                 kind: "waypoints",
             })
         })
+    }
+
+    /// The fastest timing of the cubic spline (not-a-knot) through `waypoints` (shape
+    /// `(K, nq)`) at path parameters `s` (default: the chord length), from rest to rest within
+    /// the joint velocity limits `vmax` (default: the model's), acceleration limits `amax`
+    /// (default: none) and effort limits `effort` (default: the model's); `inf` means no
+    /// limit. TOPP-RA on a grid refined until the duration converges (or `grid` intervals).
+    #[staticmethod]
+    #[pyo3(signature = (model, waypoints, s = None, vmax = None, amax = None, effort = None, grid = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn time_optimal(
+        model: &PyModel,
+        waypoints: ArrayIn<'_>,
+        s: Option<ArrayIn<'_>>,
+        vmax: Option<ArrayIn<'_>>,
+        amax: Option<ArrayIn<'_>>,
+        effort: Option<ArrayIn<'_>>,
+        grid: Option<usize>,
+    ) -> PyResult<Self> {
+        use numpy::PyUntypedArrayMethods;
+        guard(|| {
+            let m = &model.model;
+            if waypoints.ndim() != 2 {
+                return Err(PyValueError::new_err(
+                    "waypoints must have shape (K, nq): one row per waypoint",
+                ));
+            }
+            let rows = convert::rows_of(&waypoints);
+            let s = s.map(|s| values_1d(&s, "s")).transpose()?;
+            let mut limits = TimingLimits::from_model(m);
+            for (x, name, slot) in [
+                (&vmax, "vmax", &mut limits.velocity),
+                (&amax, "amax", &mut limits.acceleration),
+                (&effort, "effort", &mut limits.effort),
+            ] {
+                if let Some(x) = x {
+                    *slot = values_1d(x, name)?;
+                }
+            }
+            let options = TimeOptimalOptions {
+                grid,
+                ..Default::default()
+            };
+            let path = CubicSpline::for_model(m, s.as_deref(), &rows).map_err(call_err)?;
+            let timed = time_optimal(m, path, &limits, &options).map_err(call_err)?;
+            Ok(PyTrajectory {
+                traj: Traj::TimeOptimal(Box::new(timed)),
+                kind: "time_optimal",
+            })
+        })
+    }
+
+    /// Jerk-limited motion from rest at `q0` to rest at `qf`: per joint the fastest
+    /// seven-segment profile within `vmax`, `amax` and `jmax` (positive), every joint
+    /// stretched in time to finish with the slowest.
+    #[staticmethod]
+    fn jerk_limited(
+        q0: ArrayIn<'_>,
+        qf: ArrayIn<'_>,
+        vmax: ArrayIn<'_>,
+        amax: ArrayIn<'_>,
+        jmax: ArrayIn<'_>,
+    ) -> PyResult<Self> {
+        guard(|| {
+            let t = JerkLimited::new(
+                &values_1d(&q0, "q0")?,
+                &values_1d(&qf, "qf")?,
+                &values_1d(&vmax, "vmax")?,
+                &values_1d(&amax, "amax")?,
+                &values_1d(&jmax, "jmax")?,
+            )
+            .map_err(call_err)?;
+            Ok(PyTrajectory {
+                traj: Traj::JerkLimited(t),
+                kind: "jerk_limited",
+            })
+        })
+    }
+
+    /// Time-optimal timings only: the phase-plane curve `(s_i, ṡ_i)` at the grid points, and
+    /// the times `t_i` at which they are passed, three arrays `(N + 1,)`.
+    fn phase_plane<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        match &self.traj {
+            Traj::TimeOptimal(t) => {
+                let sd: Vec<f64> = t.speed_squared().iter().map(|x| x.sqrt()).collect();
+                PyTuple::new(
+                    py,
+                    [
+                        vector(py, t.grid())?,
+                        vector(py, &sd)?,
+                        vector(py, t.times())?,
+                    ],
+                )
+            }
+            _ => Err(PyTypeError::new_err(format!(
+                "phase_plane is defined for time-optimal timings, this is a {} trajectory",
+                self.kind
+            ))),
+        }
     }
 
     /// Duration (s).

@@ -479,3 +479,54 @@ fn negative_or_non_finite_armature_is_refused() {
         .to_string();
     assert!(e.contains("armature"), "{e}");
 }
+
+#[test]
+fn toml_formats_read_the_armature_key() {
+    use screwdyn::io::{load_str, LoadOptions};
+    let o = LoadOptions::default();
+    let native = r#"
+format = "screwdyn"
+[[body]]
+name = "l1"
+parent = "base"
+type = "revolute"
+screw_in_parent = [0, 0, 1, 0, 0, 0]
+armature = 0.25
+mass = 1.0
+com = [0.5, 0, 0]
+"#;
+    let m = load_str(native, "n.toml", &o).unwrap();
+    assert_eq!(m.joints()[0].armature, 0.25);
+    // M = m l² + I_a for the point mass 0.5 m from the axis.
+    let mut ws = Workspace::new(&m);
+    assert!((crba(&m, &mut ws, &[0.4]).unwrap()[(0, 0)] - (0.25 + 0.25)).abs() < 1e-14);
+    let dh = "format = \"dh\"\n[[row]]\ntype = \"P\"\narmature = 0.5\nmass = 2.0\n";
+    let m = load_str(dh, "d.toml", &o).unwrap();
+    let mut ws = Workspace::new(&m);
+    assert!((crba(&m, &mut ws, &[0.1]).unwrap()[(0, 0)] - 2.5).abs() < 1e-14);
+    let poe = r#"
+format = "poe"
+Slist = [[0, 0, 1, 0, 0, 0], [0, 0, 1, 0, -1, 0]]
+Mlist = [[[1, 0, 0, 1], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]],
+         [[1, 0, 0, 1], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]]
+Glist = [[[0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 1, 0, 0], [0, 0, 0, 0, 1, 0], [0, 0, 0, 0, 0, 1]],
+         [[0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0], [0, 0, 0, 1, 0, 0], [0, 0, 0, 0, 1, 0], [0, 0, 0, 0, 0, 1]]]
+armature = [0.1, 0.2]
+"#;
+    let m = load_str(poe, "p.toml", &o).unwrap();
+    assert_eq!(
+        m.joints().iter().map(|j| j.armature).collect::<Vec<_>>(),
+        [0.1, 0.2]
+    );
+    let e = load_str(&poe.replace("[0.1, 0.2]", "[0.1]"), "p.toml", &o)
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("p.toml") && e.contains("armature"), "{e}");
+    let e = load_str(&native.replace("0.25", "-1.0"), "n.toml", &o)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("n.toml") && e.contains("armature must be non-negative"),
+        "{e}"
+    );
+}

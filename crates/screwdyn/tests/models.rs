@@ -1,12 +1,15 @@
 //! The shipped robots in `models/` against their published numbers and each other.
 
-use nalgebra::{DMatrix, Matrix6xX, Vector3};
+use nalgebra::{DMatrix, Matrix6xX, Rotation3, Vector3};
 use rand::{Rng, SeedableRng};
+use screwdyn::dynamics::{inverse_dynamics, ExternalWrenches};
 use screwdyn::io::load_model;
 use screwdyn::kinematics::{
     compute_joint_jacobians, forward_kinematics, frame_pose, link_jacobian,
 };
+use screwdyn::spatial::Se3;
 use screwdyn::{Model, Workspace};
+use std::f64::consts::FRAC_PI_2;
 
 const MODELS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../models/");
 
@@ -96,29 +99,111 @@ fn ur5_urdf_and_dh_table_are_the_same_robot() {
     let urdf = file("ur5.urdf");
     assert_eq!(dh.joint_names(), urdf.joint_names());
     let mut rng = rand::rngs::StdRng::seed_from_u64(11);
-    let frames = [
-        "base_link",
+    // UR5's standard DH table (d, a, α per row).
+    let d = [0.089159, 0.0, 0.0, 0.10915, 0.09465, 0.0823];
+    let a = [0.0, -0.425, -0.39225, 0.0, 0.0, 0.0];
+    let alpha = [FRAC_PI_2, 0.0, 0.0, FRAC_PI_2, -FRAC_PI_2, 0.0];
+    let links = [
         "shoulder_link",
         "upper_arm_link",
         "forearm_link",
         "wrist_1_link",
         "wrist_2_link",
         "wrist_3_link",
-        "tool0",
     ];
     for _ in 0..20 {
         let q = random_q(&dh, &mut rng);
         assert!((mass_matrix(&dh, &q) - mass_matrix(&urdf, &q)).amax() < 1e-12);
-        for f in frames {
+        for f in ["base_link", "tool0"] {
             assert!(
                 (pose(&dh, &q, f) - pose(&urdf, &q, f)).amax() < 1e-12,
                 "{f}"
             );
         }
+        // The URDF's link i sits on joint i's axis; the DH frame {i} of the same link follows
+        // by the row's Trans_z(d) Trans_x(a) Rot_x(α).
+        for (i, link) in links.iter().enumerate() {
+            let row = Se3::from_translation(Vector3::new(0.0, 0.0, d[i]))
+                * Se3::from_translation(Vector3::new(a[i], 0.0, 0.0))
+                * Se3::new(
+                    Rotation3::from_axis_angle(&Vector3::x_axis(), alpha[i]).into_inner(),
+                    Vector3::zeros(),
+                );
+            let via_urdf = pose(&urdf, &q, link) * row.to_matrix();
+            assert!((pose(&dh, &q, link) - via_urdf).amax() < 1e-12, "{link}");
+        }
     }
     for (a, b) in dh.joints().iter().zip(urdf.joints()) {
         assert_eq!(a.limits, b.limits);
     }
+}
+
+/// The link (body), joint and frame names of a model.
+fn names(m: &Model) -> (Vec<String>, Vec<String>, Vec<String>) {
+    (
+        m.bodies().iter().map(|b| b.name.clone()).collect(),
+        m.joint_names().iter().map(|j| j.to_string()).collect(),
+        m.frames().iter().map(|f| f.name.clone()).collect(),
+    )
+}
+
+#[test]
+fn builtin_ur5_and_its_urdf_file_have_the_published_names() {
+    // Issue 25: the same robot under two sets of link names, so `fext` on "wrist_3_link"
+    // worked on one and not the other. Both now use the names of Universal Robots' published
+    // UR5 URDF (ur_description, as in example-robot-data 6.0.0): links base_link,
+    // shoulder_link … wrist_3_link, tool0; joints shoulder_pan_joint … wrist_3_joint.
+    let builtin = screwdyn::builtin::load("ur5").unwrap();
+    let urdf = file("ur5.urdf");
+    assert_eq!(names(&builtin), names(&urdf));
+    let (bodies, joints, frames) = names(&builtin);
+    assert_eq!(
+        bodies,
+        [
+            "shoulder_link",
+            "upper_arm_link",
+            "forearm_link",
+            "wrist_1_link",
+            "wrist_2_link",
+            "wrist_3_link"
+        ]
+    );
+    assert_eq!(
+        joints,
+        [
+            "shoulder_pan_joint",
+            "shoulder_lift_joint",
+            "elbow_joint",
+            "wrist_1_joint",
+            "wrist_2_joint",
+            "wrist_3_joint"
+        ]
+    );
+    assert_eq!(frames.first().map(String::as_str), Some("base_link"));
+    assert_eq!(frames.last().map(String::as_str), Some("tool0"));
+    // The same wrench (in the world frame) on "wrist_3_link" needs the same torques on both:
+    // τ = RNEA(q, q̇, q̈) − J_6ᵀ W.
+    let mut rng = rand::rngs::StdRng::seed_from_u64(25);
+    let q = random_q(&builtin, &mut rng);
+    let v: Vec<f64> = (0..6).map(|_| rng.gen_range(-1.0..1.0)).collect();
+    let acc: Vec<f64> = (0..6).map(|_| rng.gen_range(-1.0..1.0)).collect();
+    let w = nalgebra::Vector6::new(0.1, -0.2, 0.3, 5.0, -4.0, 3.0);
+    let tau = |m: &Model| {
+        let mut ext = ExternalWrenches::new(m);
+        ext.add_on_link(m, m.frame_id("wrist_3_link").unwrap(), w, true)
+            .unwrap();
+        let mut ws = Workspace::new(m);
+        inverse_dynamics(m, &mut ws, &q, &v, &acc, Some(&ext))
+            .unwrap()
+            .clone()
+    };
+    let (a, b) = (tau(&builtin), tau(&urdf));
+    assert!((&a - &b).amax() < 1e-9 * (1.0 + a.amax()), "{a} vs {b}");
+    let mut ws = Workspace::new(&builtin);
+    let free = inverse_dynamics(&builtin, &mut ws, &q, &v, &acc, None)
+        .unwrap()
+        .clone();
+    assert!((&a - &free).amax() > 1e-3, "the wrench acts");
 }
 
 #[test]

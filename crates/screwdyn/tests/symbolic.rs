@@ -358,8 +358,16 @@ fn check_numeric(model: &Model, states: usize, poly: bool) {
                         .map(|i| (0..10 * n).map(|k| y[i * 10 * n + k] * pi[k]).sum())
                         .collect()
                 };
-                from_graph = y_pi(&from_graph);
-                from_poly = from_poly.map(|y| y_pi(&y));
+                // τ = Y π + I_a q̈: the armature is a known term outside the regressor.
+                let with_armature = |t: Vec<f64>| -> Vec<f64> {
+                    t.iter()
+                        .zip(model.joints())
+                        .zip(&a)
+                        .map(|((t, j), a)| t + j.armature * a)
+                        .collect()
+                };
+                from_graph = with_armature(y_pi(&from_graph));
+                from_poly = from_poly.map(|y| with_armature(y_pi(&y)));
             }
             let what = format!("{} {:?} {:?}", model.name(), quantity, o.coriolis);
             assert_close(&from_graph, &expect, 1e-12, &format!("graph {what}"));
@@ -537,6 +545,69 @@ fn bad_input_gives_clear_errors() {
     .unwrap_err()
     .to_string();
     assert!(e.contains("no frame named 'hand'"), "{e}");
+}
+
+/// The armature is a symbol of its own, `Ia_<i>`: `M = M_bodies + diag(Ia_1, Ia_2)` term by
+/// term, in the kinetic energy as `½ Ia_i θ̇_i²`, and the Euler–Lagrange τ (from the energies)
+/// equals the Newton–Euler τ symbol for symbol.
+#[test]
+fn armature_is_a_symbol_of_its_own() {
+    let m = builtin::planar2().with_armature(&[0.2, 0.1]).unwrap();
+    let d = derive(&m, Quantity::MassMatrix, &all()).unwrap();
+    let (m1, m2, l1, l2) = (sym(&d, "m1"), sym(&d, "m2"), sym(&d, "L1"), sym(&d, "L2"));
+    let (ia1, ia2) = (sym(&d, "Ia_1"), sym(&d, "Ia_2"));
+    let m11 = prod(&[&m1.add(&m2), &l1, &l1])
+        .add(&prod(&[&m2, &l2, &l2]))
+        .add(&prod(&[&m2, &l1, &l2, &c(2)]).scale(2.0))
+        .add(&ia1);
+    let m12 = prod(&[&m2, &l2, &l2]).add(&prod(&[&m2, &l1, &l2, &c(2)]));
+    let m22 = prod(&[&m2, &l2, &l2]).add(&ia2);
+    assert_eq!(entry(&d, 0, 0, 0), &m11);
+    assert_eq!(entry(&d, 0, 0, 1), &m12);
+    assert_eq!(entry(&d, 0, 1, 1), &m22);
+    assert!(
+        d.entry_text(0, 1, 1).contains("Ia_2"),
+        "{}",
+        d.entry_text(0, 1, 1)
+    );
+    let e = derive(&m, Quantity::Energy, &all()).unwrap();
+    let k = &e.matrices[0].entries[0];
+    // ∂²K/∂θ̇1² = M11
+    assert_eq!(k.diff_var(Var::Qd(0)).diff_var(Var::Qd(0)), m11);
+    let steps = screwdyn::symbolic::lagrange_steps(&m, &all()).unwrap();
+    let t = derive(&m, Quantity::Torque, &all()).unwrap();
+    assert_eq!(steps.tau[0], t.matrices[0].entries[0]);
+    assert_eq!(steps.tau[1], t.matrices[0].entries[1]);
+    // Generated code takes it as an argument.
+    let unit = generate(&m, Quantity::MassMatrix, &all()).unwrap();
+    assert!(unit.param_names().iter().any(|n| n == "Ia_1"));
+    // A zero armature stays a zero under `all`, but can be named.
+    let bare = derive(&builtin::planar2(), Quantity::MassMatrix, &all()).unwrap();
+    assert!(!bare.entry_text(0, 0, 0).contains("Ia_"));
+    let named = derive(
+        &builtin::planar2(),
+        Quantity::MassMatrix,
+        &Options {
+            symbols: "armature,Ia_1".into(),
+            ..Options::default()
+        },
+    )
+    .unwrap();
+    assert!(named.entry_text(0, 0, 0).contains("Ia_1"));
+}
+
+#[test]
+fn armature_numeric() {
+    check_numeric(
+        &builtin::planar2().with_armature(&[0.3, 0.7]).unwrap(),
+        3,
+        true,
+    );
+    let mut rng = StdRng::seed_from_u64(43);
+    let m = random_tree(&mut rng, 3, true)
+        .with_armature(&[0.2, 0.05, 0.4])
+        .unwrap();
+    check_numeric(&m, 2, true);
 }
 
 #[test]

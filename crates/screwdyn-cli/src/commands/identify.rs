@@ -334,9 +334,6 @@ pub fn identify(a: &IdentifyArgs) -> Result<(), CliError> {
     for (n, x) in j.iter().zip(&rms) {
         t.push_str(&format!("  {n:<24} {}\n", output::fmt(*x)));
     }
-    if let Some(p) = &a.plot {
-        t.push_str(&format!("plot written to {}\n", p.display()));
-    }
     r.table = Some(t);
     output::print(&[r], output::resolve(a.model.format), false)
 }

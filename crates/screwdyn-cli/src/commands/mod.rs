@@ -8,6 +8,7 @@ mod derivatives;
 mod dynamics;
 mod explain;
 mod identify;
+mod ik;
 mod inertia;
 mod inputs;
 mod kinematics;
@@ -19,6 +20,7 @@ mod states;
 mod symbolic;
 mod torque_profile;
 mod view;
+mod waypoints;
 
 use crate::args::{Cli, Command};
 use crate::CliError;
@@ -31,6 +33,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Export(a) => model::export(&a),
         Command::Fk(a) => kinematics::fk(&a),
         Command::Jacobian(a) => kinematics::jacobian(&a),
+        Command::Ik(a) => ik::ik(&a),
         Command::InverseDynamics(a) => dynamics::inverse_dynamics(&a),
         Command::MassMatrix(a) => dynamics::mass_matrix(&a),
         Command::Coriolis(a) => dynamics::coriolis(&a),

@@ -51,7 +51,7 @@ pub fn info(a: &ModelArgs) -> Result<(), CliError> {
                         "name": j.name, "kind": j.kind.name(), "screw": j.screw.as_slice(),
                         "lower": finite(j.limits.lower), "upper": finite(j.limits.upper),
                         "velocity": finite(j.limits.velocity), "effort": finite(j.limits.effort),
-                        "damping": j.damping, "friction": j.friction,
+                        "damping": j.damping, "friction": j.friction, "armature": j.armature,
                     })
                 })
                 .collect();
@@ -99,7 +99,9 @@ pub fn info(a: &ModelArgs) -> Result<(), CliError> {
                 g.z
             );
             let mut t = table();
-            t.set_header(vec![
+            // The armature column only when some joint has one.
+            let armature = m.joints().iter().any(|j| j.armature != 0.0);
+            let mut header = vec![
                 "joint",
                 "kind",
                 "screw S_i^{i,λ(i)} (ω | v)",
@@ -107,10 +109,14 @@ pub fn info(a: &ModelArgs) -> Result<(), CliError> {
                 "upper",
                 "velocity",
                 "effort",
-            ]);
+            ];
+            if armature {
+                header.push("armature");
+            }
+            t.set_header(header);
             for j in m.joints() {
                 let s: Vec<String> = j.screw.iter().map(|x| format!("{x:.3}")).collect();
-                t.add_row(vec![
+                let mut row = vec![
                     j.name.clone(),
                     j.kind.name().to_string(),
                     format!("({} | {})", s[..3].join(", "), s[3..].join(", ")),
@@ -118,7 +124,11 @@ pub fn info(a: &ModelArgs) -> Result<(), CliError> {
                     lim(j.limits.upper),
                     lim(j.limits.velocity),
                     lim(j.limits.effort),
-                ]);
+                ];
+                if armature {
+                    row.push(fmt(j.armature));
+                }
+                t.add_row(row);
             }
             out.push_str(&format!("{t}\n\n"));
             let mut t = table();
@@ -142,9 +152,16 @@ pub fn info(a: &ModelArgs) -> Result<(), CliError> {
 }
 
 /// `screwdyn check MODEL`: lists the model's physical-consistency problems and whether forward
-/// dynamics works at `q = 0`; exit status 2 when there is any problem.
+/// dynamics works at `q = 0`; exit status 2 when there is any problem. For an MJCF file, also
+/// every element and attribute the loader ignored (information, not a problem).
 pub fn check(a: &CheckArgs) -> Result<(), CliError> {
     let loose = screwdyn::io::load_model_with(&a.model, &LoadOptions { strict: false })?;
+    let ignored: Vec<String> =
+        screwdyn::io::mjcf::report_of_file(&a.model, &LoadOptions { strict: false })?
+            .unwrap_or_default()
+            .iter()
+            .map(|i| i.to_string())
+            .collect();
     let mut problems: Vec<String> = loose
         .physical_problems()
         .iter()
@@ -174,10 +191,21 @@ pub fn check(a: &CheckArgs) -> Result<(), CliError> {
             for p in &problems {
                 out.push_str(&format!("problem: {p}\n"));
             }
+            if !ignored.is_empty() {
+                out.push_str(&format!(
+                    "the loader ignored {} element{} or attribute list{} (MJCF conformance):\n",
+                    ignored.len(),
+                    if ignored.len() == 1 { "" } else { "s" },
+                    if ignored.len() == 1 { "" } else { "s" }
+                ));
+            }
+            for i in &ignored {
+                out.push_str(&format!("ignored: {i}\n"));
+            }
             write_stdout(&out)?;
         }
         _ => {
-            let v = serde_json::json!({"model": a.model, "ok": ok, "problems": problems});
+            let v = serde_json::json!({"model": a.model, "ok": ok, "problems": problems, "ignored": ignored});
             write_stdout(&format!(
                 "{}\n",
                 serde_json::to_string_pretty(&v).expect("JSON of strings")
@@ -197,20 +225,37 @@ pub fn check(a: &CheckArgs) -> Result<(), CliError> {
     }
 }
 
-/// `screwdyn export MODEL --to urdf [--output FILE]`.
+/// `screwdyn export MODEL --to urdf|mjcf [--output FILE]` (`--format` is the same flag).
 pub fn export(a: &ExportArgs) -> Result<(), CliError> {
     if let Some(p) = &a.output {
         crate::write::refuse_inputs("--output", p, &[Path::new(&a.model)])?;
     }
     let m = super::inputs::load_model(&a.model, a.strict)?;
     let text = match a.to {
-        ExportFormat::Urdf => screwdyn::io::urdf::to_urdf_string(&m)?,
+        ExportFormat::Urdf => {
+            let text = screwdyn::io::urdf::to_urdf_string(&m)?;
+            for w in screwdyn::io::urdf::urdf_export_warnings(&m) {
+                eprintln!("screwdyn: warning: {w}");
+            }
+            text
+        }
+        ExportFormat::Mjcf => {
+            let text = screwdyn::io::mjcf_export::to_mjcf_string(&m)?;
+            for w in screwdyn::io::mjcf_export::mjcf_export_warnings(&m) {
+                eprintln!("screwdyn: warning: {w}");
+            }
+            text
+        }
     };
     match &a.output {
-        Some(p) => crate::write::atomic(p, |w| {
-            std::io::Write::write_all(w, text.as_bytes())
-                .map_err(|e| CliError::input(format!("cannot write {} ({e})", p.display())))
-        }),
+        Some(p) => {
+            crate::write::atomic(p, |w| {
+                std::io::Write::write_all(w, text.as_bytes())
+                    .map_err(|e| CliError::input(format!("cannot write {} ({e})", p.display())))
+            })?;
+            crate::write::announce(p);
+            Ok(())
+        }
         None => write_stdout(&text),
     }
 }

@@ -12,8 +12,8 @@ use crate::write::OutputFile;
 use crate::CliError;
 use screwdyn::dynamics::ForwardMethod;
 use screwdyn::sim::{
-    self, Controller, ControllerSpec, Disturbance, Integrator, JointEffects, Quintic, Recording,
-    Sample, SampleSink, SimOptions,
+    self, Controller, ControllerSpec, Disturbance, Integrator, JointEffects, LimitEvent, Quintic,
+    Recording, Sample, SampleSink, SimOptions,
 };
 use screwdyn::Model;
 use std::io::IsTerminal;
@@ -27,7 +27,14 @@ struct RunSinks {
     first: Option<Recording>,
     last: Recording,
     joints: Vec<String>,
+    /// The first [`MAX_EVENT_LINES`] events at the limits, for stderr and the summary, and
+    /// how many there were in all.
+    events: Vec<LimitEvent>,
+    event_count: usize,
 }
+
+/// Events at the limits printed on stderr (the rest are counted).
+const MAX_EVENT_LINES: usize = 20;
 
 /// At most `2 · MAX_PLOT_SAMPLES` samples of a run for its plot: every `stride`-th sample,
 /// the stride doubling (and every other kept sample dropped) whenever the buffer is full.
@@ -83,6 +90,32 @@ impl SampleSink for RunSinks {
         }
         self.last = Recording::new(self.joints.clone(), vec![]);
         self.last.push(&Sample { poses: &[], ..*s })
+    }
+    fn event(&mut self, e: &LimitEvent) -> screwdyn::Result<()> {
+        if let Some(w) = &mut self.file {
+            w.sink().event(e)?;
+        }
+        if self.events.len() < MAX_EVENT_LINES {
+            self.events.push(e.clone());
+        }
+        self.event_count += 1;
+        Ok(())
+    }
+}
+
+impl RunSinks {
+    /// Prints the events at the limits on stderr, one line each, after the run (the progress
+    /// bar is gone by then).
+    fn print_events(&self, m: &Model) {
+        for e in &self.events {
+            eprintln!("screwdyn: warning: {}", e.message(e.unit(m)));
+        }
+        if self.event_count > self.events.len() {
+            eprintln!(
+                "screwdyn: warning: {} more contacts with the limit stops",
+                self.event_count - self.events.len()
+            );
+        }
     }
 }
 
@@ -398,6 +431,8 @@ fn run_streamed(
         first: None,
         last: Recording::default(),
         joints: Vec::new(),
+        events: Vec::new(),
+        event_count: 0,
     };
     let result = sim::simulate_into(
         m,
@@ -412,6 +447,7 @@ fn run_streamed(
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
+    sinks.print_events(m);
     // A run that failed part-way keeps the samples written so far (complete rows); a file that
     // could not be written leaves the previous --output as it was. The reader of stdout going
     // away (`| head`) ends the command quietly.
@@ -462,6 +498,9 @@ fn run_streamed(
         (Some(Err(e)), _) => return Err(e.into()),
         _ => {}
     }
+    if let Some(p) = &a.output {
+        crate::write::announce(p);
+    }
     Ok((summary, sinks))
 }
 
@@ -501,7 +540,21 @@ fn plot_run(m: &Model, rec: &Recording, controller: &str, p: &Path) -> Result<()
     plot_panels(p, &title, "t (s)", &panels).map(|_| ())
 }
 
-/// The summary of a run: first and last state, energies, what was written.
+/// An event at a limit as the summary's JSON object (see [`LimitEvent::to_json`]).
+fn event_value(e: &LimitEvent) -> Value {
+    Value::Map(vec![
+        ("kind".into(), Value::Text(e.kind.name().into())),
+        ("t".into(), Value::Scalar(e.t)),
+        ("joint".into(), Value::Text(e.joint_name.clone())),
+        ("side".into(), Value::Text(e.side.name().into())),
+        ("bound".into(), Value::Scalar(e.bound)),
+        ("position".into(), Value::Scalar(e.position)),
+        ("velocity".into(), Value::Scalar(e.velocity)),
+    ])
+}
+
+/// The summary of a run: first and last state, energies, events at the limits, what was
+/// written.
 fn report_run(
     a: &SimulateArgs,
     m: &Model,
@@ -523,7 +576,11 @@ fn report_run(
         .add("q", Value::joints(&j, last.q))
         .add("v", Value::joints(&j, last.v))
         .add("total_energy_start", Value::Scalar(energy(&first)))
-        .add("total_energy_end", Value::Scalar(energy(&last)));
+        .add("total_energy_end", Value::Scalar(energy(&last)))
+        .add(
+            "events",
+            Value::List(sinks.events.iter().map(event_value).collect()),
+        );
     if format == Format::Table {
         let mut t = table();
         t.set_header(vec![
@@ -556,11 +613,11 @@ fn report_run(
             fmt(energy(&first)),
             fmt(energy(&last))
         ));
-        if let Some(p) = &a.output {
-            text.push_str(&format!("run written to {}\n", p.display()));
-        }
-        if let Some(p) = &a.plot {
-            text.push_str(&format!("plot written to {}\n", p.display()));
+        if sinks.event_count > 0 {
+            text.push_str(&format!(
+                "limit events: {} (listed on stderr)\n",
+                sinks.event_count
+            ));
         }
         r.table = Some(text);
     }

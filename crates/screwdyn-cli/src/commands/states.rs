@@ -60,7 +60,7 @@ pub const MAX_LINE_BYTES: usize = 8 << 20;
 
 /// A reader that refuses what cannot be a text CSV file before it reaches the CSV parser: a NUL
 /// byte, or a line longer than [`MAX_LINE_BYTES`]. It counts lines for the message.
-struct TextOnly<R> {
+pub(super) struct TextOnly<R> {
     inner: R,
     /// The number of the line being read (1-based).
     line: u64,
@@ -133,19 +133,28 @@ struct StateReader {
     rows: usize,
 }
 
+/// A buffered reader of `path` that refuses binary data and overlong lines ([`TextOnly`]), and
+/// the path as text for messages.
+pub(super) fn open_text(
+    path: &Path,
+) -> Result<(String, std::io::BufReader<TextOnly<std::fs::File>>), CliError> {
+    let file = path.display().to_string();
+    let f = std::fs::File::open(path)
+        .map_err(|e| CliError::input(format!("{file}: cannot be read ({e})")))?;
+    let input = std::io::BufReader::with_capacity(
+        1 << 16,
+        TextOnly {
+            inner: f,
+            line: 1,
+            run: 0,
+        },
+    );
+    Ok((file, input))
+}
+
 impl StateReader {
     fn open(m: &Model, path: &Path) -> Result<Self, CliError> {
-        let file = path.display().to_string();
-        let f = std::fs::File::open(path)
-            .map_err(|e| CliError::input(format!("{file}: cannot be read ({e})")))?;
-        let input = std::io::BufReader::with_capacity(
-            1 << 16,
-            TextOnly {
-                inner: f,
-                line: 1,
-                run: 0,
-            },
-        );
+        let (file, input) = open_text(path)?;
         let mut r = StateReader {
             file,
             input,
@@ -360,7 +369,7 @@ fn read_chunks(
 }
 
 /// The cells of one line that holds quotes, by the `csv` crate's rules.
-fn split_cells(text: &str, line: u64, file: &str) -> Result<Vec<String>, CliError> {
+pub(super) fn split_cells(text: &str, line: u64, file: &str) -> Result<Vec<String>, CliError> {
     if !text.contains('"') {
         return Ok(text.split(',').map(String::from).collect());
     }
@@ -384,7 +393,7 @@ fn ragged(file: &str, line: u64, fields: usize, expected: usize) -> CliError {
 }
 
 /// At most 60 characters of a cell or column name, for messages.
-fn shorten(s: &str) -> String {
+pub(super) fn shorten(s: &str) -> String {
     match s.char_indices().nth(60) {
         Some((i, _)) => format!("{}…", &s[..i]),
         None => s.to_string(),

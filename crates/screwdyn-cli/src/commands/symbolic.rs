@@ -16,7 +16,9 @@ pub fn write_output(path: &Path, text: &str, model: &str) -> Result<(), CliError
     crate::write::atomic(path, |w| {
         w.write_all(text.as_bytes())
             .map_err(|e| CliError::input(format!("cannot write --output {} ({e})", path.display())))
-    })
+    })?;
+    crate::write::announce(path);
+    Ok(())
 }
 
 /// `screwdyn symbolic MODEL --quantity Q [...]`.

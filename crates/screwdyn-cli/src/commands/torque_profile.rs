@@ -5,16 +5,28 @@ use super::inputs::{load, names, parse_per_joint, parse_vector};
 use super::run_files::{
     in_flag_words, joint_series, plot_kind, refuse_onto_inputs, run_file_kind, RunWriter,
 };
-use crate::args::{TorqueProfileArgs, TrajectoryArg};
+use super::waypoints::read_waypoints;
+use crate::args::{Format, TorqueProfileArgs, TrajectoryArg};
 use crate::output::{fmt, resolve, table, Report, Value};
-use crate::plot::{plot_panels, Panel};
+use crate::plot::{plot_panels, Panel, Series};
 use crate::write::OutputFile;
 use crate::CliError;
+use screwdyn::motion::{
+    limit_fractions, time_optimal, CubicSpline, JerkLimited, TimeOptimalOptions, TimingLimits,
+};
 use screwdyn::sim::{self, Quintic, Trajectory, Trapezoid};
 use screwdyn::Model;
 use std::path::Path;
 
-/// `screwdyn torque-profile MODEL --trajectory trapezoid|quintic --q0 --qf ...`.
+/// The motion of `--trajectory`, a phrase describing it, and for time-optimal timings the
+/// limits it was timed within, with the grid and check results.
+struct Motion {
+    trajectory: Box<dyn Trajectory>,
+    what: String,
+    timing: Option<(TimingLimits, screwdyn::motion::TimingReport)>,
+}
+
+/// `screwdyn torque-profile MODEL --trajectory trapezoid|quintic|time-optimal|jerk-limited ...`.
 pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
     let output_kind = a
         .output
@@ -26,9 +38,22 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
     }
     refuse_onto_inputs(&a.model.model, None, a.output.as_deref(), a.plot.as_deref())?;
     let m = load(&a.model, a.gravity.as_deref())?;
-    let q0 = parse_vector(a.q0.as_deref(), "q0", &m)?;
-    let qf = parse_vector(Some(&a.qf), "qf", &m)?;
-    let (traj, what) = trajectory(a, &m, &q0, &qf)?;
+    let motion = trajectory(a, &m)?;
+    let traj = &motion.trajectory;
+    let format = resolve(a.model.format);
+    // Without a plot nothing needs the samples in memory: they are streamed to --output, or
+    // to stdout with --format csv (and no --output), as they are computed.
+    let to_stdout = a.output.is_none() && format == Format::Csv;
+    if a.plot.is_none() && (a.output.is_some() || to_stdout) {
+        let summary = match (&a.output, output_kind) {
+            (Some(path), Some(kind)) => stream_to_file(a, &m, traj.as_ref(), path, kind)?,
+            _ => return stream_to_stdout(a, &m, traj.as_ref()),
+        };
+        let r = profile_report(a, &m, &summary, &motion);
+        return crate::output::print(&[r], format, false);
+    }
+    // A plot needs every sample: the profile is held, or refused up front with the memory it
+    // would need.
     let p = sim::torque_profile_limited(&m, traj.as_ref(), a.dt, a.max_samples)
         .map_err(in_flag_words)?;
     let rec = &p.samples;
@@ -42,33 +67,140 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
             }
             w.finish()
         })();
-        whole.map_err(|e| match e {
-            screwdyn::Error::Io { message: why, .. } => {
-                CliError::input(format!("cannot write {} ({why})", path.display()))
-            }
-            e => e.into(),
-        })?;
+        whole.map_err(|e| cannot_write(e, path))?;
         file.commit()?;
+        crate::write::announce(path);
     }
-    let r = profile_report(a, &m, &p, traj.duration(), &what);
+    let summary = sim::ProfileSummary {
+        samples: rec.len(),
+        peak: p.peak.clone(),
+        peak_time: p.peak_time.clone(),
+        rms: p.rms.clone(),
+        effort_limit: p.effort_limit.clone(),
+        violation_summary: p.violation_summary.clone(),
+    };
+    let r = profile_report(a, &m, &summary, &motion);
     if let Some(path) = &a.plot {
-        plot_profile(a, &m, &p, traj.duration(), path)?;
+        plot_profile(a, &m, &p, &motion, path)?;
     }
-    crate::output::print(&[r], resolve(a.model.format), false)
+    crate::output::print(&[r], format, false)
+}
+
+/// A write error of the run file as the CLI's sentence naming it.
+fn cannot_write(e: screwdyn::Error, path: &Path) -> CliError {
+    match e {
+        screwdyn::Error::Io { message: why, .. } => {
+            CliError::input(format!("cannot write {} ({why})", path.display()))
+        }
+        e => e.into(),
+    }
+}
+
+/// Streams the profile's samples into `path` (atomically: a temporary file renamed over it
+/// once complete); returns the statistics.
+fn stream_to_file(
+    a: &TorqueProfileArgs,
+    m: &Model,
+    traj: &dyn Trajectory,
+    path: &Path,
+    kind: Format,
+) -> Result<sim::ProfileSummary, CliError> {
+    let file = OutputFile::create(path)?;
+    let mut w = RunWriter::new(kind, Box::new(file.writer()?));
+    let summary =
+        sim::torque_profile_into(m, traj, a.dt, a.max_samples, w.sink()).map_err(|e| match e {
+            screwdyn::Error::Io { .. } => cannot_write(e, path),
+            // A setting's error is worded with its flag (`--dt must be positive …`).
+            e => in_flag_words(e),
+        })?;
+    w.finish().map_err(|e| cannot_write(e, path))?;
+    file.commit()?;
+    crate::write::announce(path);
+    Ok(summary)
+}
+
+/// `--format csv` without `--output`: the samples to stdout as they are computed; a reader
+/// that goes away (`| head`) ends the command quietly.
+fn stream_to_stdout(
+    a: &TorqueProfileArgs,
+    m: &Model,
+    traj: &dyn Trajectory,
+) -> Result<(), CliError> {
+    let mut w = sim::CsvSampleWriter::new(std::io::BufWriter::new(std::io::stdout()));
+    let result =
+        sim::torque_profile_into(m, traj, a.dt, a.max_samples, &mut w).and_then(|_| w.flush());
+    match result {
+        Ok(()) => Ok(()),
+        Err(e) if e.io_kind() == Some(std::io::ErrorKind::BrokenPipe) => Err(CliError::stop()),
+        Err(e) => Err(in_flag_words(e)),
+    }
+}
+
+/// `--name`, required by `--trajectory kind`.
+fn required<'a>(x: &'a Option<String>, name: &str, kind: &str) -> Result<&'a str, CliError> {
+    x.as_deref()
+        .ok_or_else(|| CliError::input(format!("--{name} is required with --trajectory {kind}")))
+}
+
+/// A time-optimal limit flag: one value for all joints or one per joint, `inf` for none (the
+/// library refuses zero, negative and NaN limits naming the joint).
+fn parse_limit(text: &str, name: &str, m: &Model) -> Result<Vec<f64>, CliError> {
+    let flag = format!("--{name}");
+    let v = text
+        .split(',')
+        .map(|s| {
+            s.trim()
+                .parse::<f64>()
+                .map_err(|_| CliError::input(format!("{flag}: '{}' is not a number", s.trim())))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    match v.len() {
+        1 => Ok(vec![v[0]; m.nq()]),
+        n if n == m.nq() => Ok(v),
+        n => Err(CliError::input(format!(
+            "{flag} has {n} values: give one for all joints or one per joint ({})",
+            m.nq()
+        ))),
+    }
+}
+
+/// Flags that `--trajectory kind` does not use are refused.
+fn unused(flags: &[(&str, bool)], kind: &str) -> Result<(), CliError> {
+    match flags.iter().find(|(_, given)| *given) {
+        Some((name, _)) => Err(CliError::input(format!(
+            "--{name} is not used by --trajectory {kind}"
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// The trajectory of `--trajectory` and a phrase describing it.
-fn trajectory(
-    a: &TorqueProfileArgs,
-    m: &Model,
-    q0: &[f64],
-    qf: &[f64],
-) -> Result<(Box<dyn Trajectory>, String), CliError> {
+fn trajectory(a: &TorqueProfileArgs, m: &Model) -> Result<Motion, CliError> {
+    let plain = |trajectory: Box<dyn Trajectory>, what: String| Motion {
+        trajectory,
+        what,
+        timing: None,
+    };
+    let q0 = || parse_vector(a.q0.as_deref(), "q0", m);
+    let kind = a.trajectory.name();
+    if a.trajectory != TrajectoryArg::TimeOptimal {
+        unused(
+            &[
+                ("waypoints", a.waypoints.is_some()),
+                ("grid", a.grid.is_some()),
+            ],
+            kind,
+        )?;
+    }
+    if a.trajectory != TrajectoryArg::JerkLimited {
+        unused(&[("jmax", a.jmax.is_some())], kind)?;
+    }
     Ok(match a.trajectory {
         TrajectoryArg::Trapezoid => {
-            let vmax = parse_per_joint(&a.vmax, "vmax", m)?;
-            let amax = parse_per_joint(&a.amax, "amax", m)?;
-            let t = Trapezoid::new(q0, qf, &vmax, &amax, !a.unsynchronised)?;
+            let qf = parse_vector(Some(required(&a.qf, "qf", kind)?), "qf", m)?;
+            let vmax = parse_per_joint(a.vmax.as_deref().unwrap_or("1"), "vmax", m)?;
+            let amax = parse_per_joint(a.amax.as_deref().unwrap_or("2"), "amax", m)?;
+            let t = Trapezoid::new(&q0()?, &qf, &vmax, &amax, !a.unsynchronised)?;
             let cruise: Vec<String> = t
                 .cruise_speeds()
                 .iter()
@@ -78,12 +210,84 @@ fn trajectory(
                 "trapezoid: accelerate from rest, cruise at ({}) rad/s, stop",
                 cruise.join(", ")
             );
-            (Box::new(t), what)
+            plain(Box::new(t), what)
         }
-        TrajectoryArg::Quintic => (
-            Box::new(Quintic::rest_to_rest(q0, qf, a.duration).map_err(in_flag_words)?),
-            "quintic rest-to-rest".to_string(),
-        ),
+        TrajectoryArg::Quintic => {
+            let qf = parse_vector(Some(required(&a.qf, "qf", kind)?), "qf", m)?;
+            plain(
+                Box::new(Quintic::rest_to_rest(&q0()?, &qf, a.duration).map_err(in_flag_words)?),
+                "quintic rest-to-rest".to_string(),
+            )
+        }
+        TrajectoryArg::JerkLimited => {
+            let qf = parse_vector(Some(required(&a.qf, "qf", kind)?), "qf", m)?;
+            let vmax = match &a.vmax {
+                Some(v) => parse_per_joint(v, "vmax", m)?,
+                None => TimingLimits::from_model(m).velocity,
+            };
+            if let Some(j) = vmax.iter().position(|v| v.is_infinite()) {
+                return Err(CliError::input(format!(
+                    "--vmax is required: joint {} has no velocity limit in the model",
+                    m.joint_names()[j]
+                )));
+            }
+            let amax = parse_per_joint(required(&a.amax, "amax", kind)?, "amax", m)?;
+            let jmax = parse_per_joint(required(&a.jmax, "jmax", kind)?, "jmax", m)?;
+            let t = JerkLimited::new(&q0()?, &qf, &vmax, &amax, &jmax).map_err(in_flag_words)?;
+            plain(
+                Box::new(t),
+                "jerk-limited rest-to-rest, all joints finishing together".to_string(),
+            )
+        }
+        TrajectoryArg::TimeOptimal => {
+            unused(
+                &[
+                    ("q0", a.q0.is_some()),
+                    ("qf", a.qf.is_some()),
+                    ("unsynchronised", a.unsynchronised),
+                ],
+                kind,
+            )?;
+            let Some(file) = &a.waypoints else {
+                return Err(CliError::input(
+                    "--waypoints is required with --trajectory time-optimal",
+                ));
+            };
+            let (s, points) = read_waypoints(m, file)?;
+            let path = CubicSpline::for_model(m, s.as_deref(), &points)
+                .map_err(|e| CliError::input(format!("{}: {e}", file.display())))?;
+            let mut limits = TimingLimits::from_model(m);
+            if let Some(v) = &a.vmax {
+                limits.velocity = parse_limit(v, "vmax", m)?;
+            }
+            if let Some(v) = &a.amax {
+                limits.acceleration = parse_limit(v, "amax", m)?;
+            }
+            let options = TimeOptimalOptions {
+                grid: a.grid,
+                ..Default::default()
+            };
+            let timed = time_optimal(m, path, &limits, &options)?;
+            let report = timed.report().clone();
+            let &(grid, _) = report.durations.last().expect("one grid at least");
+            let check = if report.max_excess <= 0.0 {
+                "every checked sample within the limits".to_string()
+            } else {
+                format!(
+                    "a checked sample over a limit by {:.2e} of it",
+                    report.max_excess
+                )
+            };
+            let what = format!(
+                "time-optimal through {} waypoints: grid of {grid} intervals, {check}",
+                points.len()
+            );
+            Motion {
+                trajectory: Box::new(timed),
+                what,
+                timing: Some((limits, report)),
+            }
+        }
     })
 }
 
@@ -91,11 +295,10 @@ fn trajectory(
 fn profile_report(
     a: &TorqueProfileArgs,
     m: &Model,
-    p: &sim::TorqueProfile,
-    duration: f64,
-    what: &str,
+    p: &sim::ProfileSummary,
+    motion: &Motion,
 ) -> Report {
-    let rec = &p.samples;
+    let (duration, what) = (motion.trajectory.duration(), &motion.what);
     let j = names(m);
     let viol: Vec<(String, Value)> = j
         .iter()
@@ -122,6 +325,17 @@ fn profile_report(
         .add("rms", Value::joints(&j, &p.rms))
         .add("effort_limit", Value::joints(&j, &p.effort_limit))
         .add("violations", Value::Map(viol));
+    if let Some((_, report)) = &motion.timing {
+        let durations = report
+            .durations
+            .iter()
+            .map(|(g, d)| (g.to_string(), Value::Scalar(*d)))
+            .collect();
+        let &(grid, _) = report.durations.last().expect("one grid at least");
+        r.add("grid_intervals", Value::Count(grid))
+            .add("grid_durations", Value::Map(durations))
+            .add("max_limit_excess", Value::Scalar(report.max_excess));
+    }
     let mut t = table();
     t.set_header(vec![
         "joint",
@@ -149,9 +363,8 @@ fn profile_report(
             worst,
         ]);
     }
-    let over: Vec<&str> = p
-        .joints_over_limit()
-        .into_iter()
+    let over: Vec<&str> = (0..j.len())
+        .filter(|&i| p.violation_summary[i].is_some())
         .map(|i| j[i].as_str())
         .collect();
     let verdict = if over.is_empty() {
@@ -160,14 +373,11 @@ fn profile_report(
         format!("over the effort limit: {}", over.join(", "))
     };
     r.table = Some(format!(
-        "{} on {}: {what}, {} s, {} samples every {} s\n{t}\n{verdict}\n",
-        match a.trajectory {
-            TrajectoryArg::Trapezoid => "torque profile (trapezoid)",
-            TrajectoryArg::Quintic => "torque profile (quintic)",
-        },
+        "torque profile ({}) on {}: {what}, {} s, {} samples every {} s\n{t}\n{verdict}\n",
+        a.trajectory.name(),
         m.name(),
         fmt(duration),
-        rec.len(),
+        p.samples,
         a.dt
     ));
     r
@@ -178,9 +388,10 @@ fn plot_profile(
     a: &TorqueProfileArgs,
     m: &Model,
     p: &sim::TorqueProfile,
-    duration: f64,
+    motion: &Motion,
     path: &Path,
 ) -> Result<(), CliError> {
+    let duration = motion.trajectory.duration();
     let rec = &p.samples;
     let mut lines = Vec::new();
     let mut limits: Vec<(f64, Vec<String>)> = Vec::new();
@@ -203,7 +414,7 @@ fn plot_profile(
         lines.push((label.clone(), *l));
         lines.push((label, -*l));
     }
-    let panels = vec![
+    let mut panels = vec![
         Panel {
             title: "Required joint torques (inverse dynamics)".into(),
             y_label: "τ (N·m)".into(),
@@ -223,10 +434,36 @@ fn plot_profile(
             lines: vec![],
         },
     ];
-    let kind = match a.trajectory {
-        TrajectoryArg::Trapezoid => "trapezoid",
-        TrajectoryArg::Quintic => "quintic",
-    };
+    if let Some((limits, _)) = &motion.timing {
+        // The limiting constraint along the motion: each kind's nearest joint, 1 = on the limit.
+        let kinds = ["velocity", "acceleration", "torque"];
+        let mut series: Vec<Series> = kinds
+            .iter()
+            .map(|k| Series {
+                name: format!("{k} (max over joints of |value| / limit)"),
+                points: Vec::with_capacity(rec.len()),
+            })
+            .collect();
+        for k in 0..rec.len() {
+            let f = limit_fractions(limits, &rec.v[k], &rec.a[k], &rec.tau[k]);
+            for (s, x) in series.iter_mut().zip(f) {
+                if x.is_finite() {
+                    s.points.push((rec.t[k], x));
+                }
+            }
+        }
+        series.retain(|s| s.points.iter().any(|p| p.1 > 0.0));
+        panels.insert(
+            1,
+            Panel {
+                title: "Limiting constraint: fraction of each limit used".into(),
+                y_label: "|value| / limit".into(),
+                series,
+                lines: vec![("limit".into(), 1.0)],
+            },
+        );
+    }
+    let kind = a.trajectory.name();
     let title = format!(
         "{}: torques for a {kind} motion of {} s",
         m.name(),

@@ -224,8 +224,12 @@ class RneaTrace:
 
 class SimResult:
     """A recorded simulation: ``t`` (T,), ``q``, ``v``, ``a``, ``tau`` (T, nq),
-    ``kinetic_energy``, ``potential_energy``, ``total_energy`` (T,) and ``poses`` (frame →
-    (T, 4, 4)). ``to_dataframe()`` gives the CLI's CSV columns; ``plot()`` draws them."""
+    ``kinetic_energy``, ``potential_energy``, ``total_energy`` (T,), ``poses`` (frame →
+    (T, 4, 4)) and ``events``: what happened at the joints' position limits, one dict each
+    (``kind`` ``"start_outside"`` or ``"contact"``, ``t``, ``joint``, ``side`` ``"lower"`` or
+    ``"upper"``, ``bound``, ``position``, ``velocity``) — a joint that starts outside its limits
+    is not moved inside, its limit stop pushes it back; each contact with a limit stop is listed
+    once. ``to_dataframe()`` gives the CLI's CSV columns; ``plot()`` draws them."""
 
     def __init__(self, data: Dict[str, Any]):
         self.joint_names: List[str] = list(data["joints"])
@@ -238,6 +242,7 @@ class SimResult:
         self.potential_energy: np.ndarray = data["potential_energy"]
         self.total_energy: np.ndarray = data["total_energy"]
         self.poses: Dict[str, np.ndarray] = dict(data["poses"])
+        self.events: List[Dict[str, Any]] = list(data.get("events", []))
 
     def __len__(self) -> int:
         return len(self.t)

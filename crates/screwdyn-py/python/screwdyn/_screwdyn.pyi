@@ -71,6 +71,7 @@ class Model:
     joint_types: List[str]
     link_names: List[str]
     frame_names: List[str]
+    keyframe_names: List[str]
     parents: List[Optional[int]]
     lower_limits: FloatArray
     upper_limits: FloatArray
@@ -78,6 +79,8 @@ class Model:
     effort_limits: FloatArray
     damping: FloatArray
     friction: FloatArray
+    armature: FloatArray
+    """Rotor inertias reflected to the joints (kg·m² or kg), added to the mass matrix's diagonal."""
     screw_axes: FloatArray
     """``S_i^{i,λ(i)}``, (nq, 6)."""
     spatial_inertias: FloatArray
@@ -95,6 +98,9 @@ class Model:
     def with_joint_friction(self, damping: ArrayLike, friction: ArrayLike) -> Model:
         """Each one value per joint or one number for every joint."""
     def to_urdf(self) -> str: ...
+    def to_mjcf(self) -> str:
+        """MJCF (MuJoCo) text: armature, limits, damping, friction, motors, frames as sites."""
+    def keyframe(self, name: str) -> FloatArray: ...
 
     # frames and joints by name or index (every method taking a frame takes either)
     def frame_id(self, frame: FrameRef) -> int:
@@ -243,5 +249,14 @@ class Trajectory:
                 af: Optional[ArrayLike] = None) -> Trajectory: ...
     @staticmethod
     def waypoints(times: ArrayLike, points: ArrayLike) -> Trajectory: ...
+    @staticmethod
+    def time_optimal(model: Model, waypoints: ArrayLike, s: Optional[ArrayLike] = None,
+                     vmax: Optional[ArrayLike] = None, amax: Optional[ArrayLike] = None,
+                     effort: Optional[ArrayLike] = None,
+                     grid: Optional[int] = None) -> Trajectory: ...
+    @staticmethod
+    def jerk_limited(q0: ArrayLike, qf: ArrayLike, vmax: ArrayLike, amax: ArrayLike,
+                     jmax: ArrayLike) -> Trajectory: ...
+    def phase_plane(self) -> Tuple[FloatArray, FloatArray, FloatArray]: ...
     def sample(self, t: ArrayLike) -> Tuple[FloatArray, FloatArray, FloatArray]: ...
     def cruise_speeds(self) -> FloatArray: ...

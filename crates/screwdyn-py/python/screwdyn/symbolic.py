@@ -30,7 +30,8 @@ simple fraction (denominator ≤ 64, e.g. ``½`` of the kinetic energy) becomes 
 
 ``symbols`` selects the parameters kept as symbols, as ``screwdyn symbolic --symbols``:
 ``""``/``"none"`` (all numeric, the default), ``"all"``, groups ``"mass"``, ``"com"``,
-``"inertia"``, ``"gravity"``, ``"lengths"``, or names ``"m_link1,a_2"``, comma-separated.
+``"inertia"``, ``"gravity"``, ``"lengths"``, ``"armature"`` (``Ia_<i>``), or names
+``"m_link1,a_2"``, comma-separated.
 
 Bad input (an unknown quantity or symbol name, a frame that does not exist, an expression
 past ``max_terms``) raises ``ValueError`` with the library's sentence.

@@ -238,11 +238,13 @@ pub(crate) struct LimitSpec {
 }
 
 impl LimitSpec {
+    /// The limits, and the joint's `damping`, `friction` and `armature` keys when present.
     pub fn apply(
         &self,
         mut j: JointSpec,
         damping: Option<f64>,
         friction: Option<f64>,
+        armature: Option<f64>,
     ) -> JointSpec {
         let d = crate::model::JointLimits::<f64>::default();
         j = j.limits(self.lower.unwrap_or(d.lower), self.upper.unwrap_or(d.upper));
@@ -257,6 +259,9 @@ impl LimitSpec {
         }
         if let Some(x) = friction {
             j = j.friction(x);
+        }
+        if let Some(x) = armature {
+            j = j.armature(x);
         }
         j
     }

@@ -21,7 +21,8 @@
 //! | `row.a`, `row.alpha`, `row.d`, `row.theta` | DH parameters (m, rad); the joint's own variable (`θ` for R, `d` for P) is `q + offset`, its value here the offset; all default 0 |
 //! | `row.name`, `row.link` | joint and link names (default `joint<i>`, `link<i>`) |
 //! | `row.parent` | parent link (default: the previous row's link, or the base) — allows trees |
-//! | `row.limits = { lower, upper, velocity, effort }`, `row.damping`, `row.friction` | joint limits |
+//! | `row.limits = { lower, upper, velocity, effort }`, `row.damping`, `row.friction` | joint limits, viscous and Coulomb coefficients |
+//! | `row.armature` | rotor inertia reflected to the joint (kg·m² or kg), added to `M(q)`'s diagonal |
 //! | `row.mass`, `row.com`, `row.inertia` | link mass, CoM in link frame `{i}`, inertia about the CoM `[ixx, ixy, ixz, iyy, iyz, izz]` |
 //! | `[[frame]]` `name`, `link`, `pose = { xyz, rpy }` | extra frames (a flange, a tool) |
 //!
@@ -97,6 +98,8 @@ struct Row {
     damping: Option<f64>,
     #[serde(default)]
     friction: Option<f64>,
+    #[serde(default)]
+    armature: Option<f64>,
     #[serde(default)]
     mass: Option<f64>,
     #[serde(default)]
@@ -198,7 +201,7 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
         } else {
             j.screw_in_parent(s)
         };
-        j = row.limits.apply(j, row.damping, row.friction);
+        j = row.limits.apply(j, row.damping, row.friction, row.armature);
         if row.mass.is_none() && (row.com.is_some() || row.inertia.is_some()) {
             return Err(bad("gives com or inertia without mass".into()));
         }

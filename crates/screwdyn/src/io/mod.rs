@@ -11,6 +11,9 @@
 //!   written directly: [`native`];
 //! - **built-in robots**: `builtin:<name>` (see [`builtin`]).
 //!
+//! Any model is written as URDF ([`urdf::to_urdf_string`]) or as MJCF, MuJoCo's format
+//! ([`mjcf_export::to_mjcf_string`]).
+//!
 //! Output files are written by the one rule of [`output`]: a regular file is replaced atomically,
 //! a device or FIFO is written directly.
 //!
@@ -41,6 +44,7 @@
 pub mod builtin;
 pub mod dh;
 pub mod mjcf;
+pub mod mjcf_export;
 pub mod native;
 pub mod output;
 pub mod poe;

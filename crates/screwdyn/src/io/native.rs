@@ -18,6 +18,7 @@
 //! | `body.screw_in_parent` / `body.screw_in_child` | `[ωx, ωy, ωz, vx, vy, vz]` (one of them; not for `fixed`) |
 //! | `body.limits = { lower, upper, velocity, effort }` | each optional, infinite when absent |
 //! | `body.damping`, `body.friction` | viscous and Coulomb coefficients |
+//! | `body.armature` | rotor inertia reflected to the joint (kg·m² or kg), added to `M(q)`'s diagonal |
 //! | `body.mass`, `body.com`, `body.inertia` | mass, CoM in the link frame, inertia about the CoM `[ixx, ixy, ixz, iyy, iyz, izz]` |
 //! | `body.shape` | or a uniform shape centred at `com`: `{ type = "box", size = [w, l, h] }`, `cylinder` `[r, h]` (axis z), `sphere` `[r]`, `rod` `[length]` (along z), `point`; optional `rpy` turns its axes |
 //! | `body.spatial_inertia` | or the full 6×6 `𝔍^{i,i}` (6 rows, angular first, about the link origin) |
@@ -103,6 +104,8 @@ struct BodySpec {
     damping: Option<f64>,
     #[serde(default)]
     friction: Option<f64>,
+    #[serde(default)]
+    armature: Option<f64>,
     #[serde(default)]
     mass: Option<f64>,
     #[serde(default)]
@@ -236,7 +239,9 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
                 ))
             }
         }
-        j = body.limits.apply(j, body.damping, body.friction);
+        j = body
+            .limits
+            .apply(j, body.damping, body.friction, body.armature);
         b.link(&body.name, &body.parent, j, home, inertia);
     }
     header.finish(b, file, text)

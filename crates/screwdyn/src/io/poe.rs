@@ -21,6 +21,7 @@
 //! | `Glist` | list of `n` 6×6 matrices |
 //! | `joints`, `links` | optional names (default `joint<i>`, `link<i>`) |
 //! | `lower`, `upper`, `velocity`, `effort` | optional lists of `n` joint limits |
+//! | `armature` | optional list of `n` rotor inertias reflected to the joints (kg·m² or kg) |
 //! | `[[frame]]` `name`, `link`, `pose = { xyz, rpy }` | extra frames, placed in the CoM frames |
 //!
 //! ```
@@ -59,6 +60,8 @@ pub struct PoeExtras {
     pub velocity: Option<Vec<f64>>,
     /// Effort limits per joint.
     pub effort: Option<Vec<f64>>,
+    /// Armature (rotor inertia reflected to the joint) per joint.
+    pub armature: Option<Vec<f64>>,
     /// Make physical-consistency problems errors (see [`ModelBuilder::strict`]).
     pub strict: bool,
 }
@@ -127,10 +130,11 @@ pub fn poe_builder(
         extras.limits.as_ref().map(|v| v.len()),
         extras.velocity.as_ref().map(|v| v.len()),
         extras.effort.as_ref().map(|v| v.len()),
+        extras.armature.as_ref().map(|v| v.len()),
     ];
     if let Some(len) = lens.into_iter().flatten().find(|&l| l != n) {
         return bad(format!(
-            "a list of joint limits has {len} entries but Slist has {n}"
+            "a list of joint limits or armatures has {len} entries but Slist has {n}"
         ));
     }
     let mut b = ModelBuilder::new(name);
@@ -189,6 +193,8 @@ struct PoeFile {
     #[serde(default)]
     effort: Option<Vec<f64>>,
     #[serde(default)]
+    armature: Option<Vec<f64>>,
+    #[serde(default)]
     frame: Vec<toml::Spanned<FrameSpec>>,
 }
 
@@ -237,6 +243,7 @@ pub fn parse_poe(text: &str, file: &str, options: &LoadOptions) -> Result<Model>
         ("upper", &f.upper),
         ("velocity", &f.velocity),
         ("effort", &f.effort),
+        ("armature", &f.armature),
     ] {
         if let Some(v) = v {
             if v.len() != n {
@@ -265,6 +272,7 @@ pub fn parse_poe(text: &str, file: &str, options: &LoadOptions) -> Result<Model>
         limits,
         velocity: f.velocity.clone(),
         effort: f.effort.clone(),
+        armature: f.armature.clone(),
         strict: options.strict,
     };
     let header = common::Header {
@@ -328,6 +336,9 @@ fn poe_joint(
     }
     if let Some(e) = &extras.effort {
         j = j.effort_limit(e[i]);
+    }
+    if let Some(a) = &extras.armature {
+        j = j.armature(a[i]);
     }
     Ok(j)
 }

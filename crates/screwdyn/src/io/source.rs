@@ -197,7 +197,7 @@ impl Format {
     }
 
     /// A file name for a text in this format called `name`: `name` itself when it already ends
-    /// in one of the format's extensions, else `name` with `.urdf` or `.toml` appended (the
+    /// in one of the format's extensions, else `name` with `.urdf`, `.xml` or `.toml` appended (the
     /// loaders choose the format by the extension).
     ///
     /// ```
@@ -206,7 +206,9 @@ impl Format {
     /// assert_eq!(Format::Urdf.file_name("arm.xml"), "arm.xml");
     /// ```
     pub fn file_name(self, name: &str) -> String {
-        if Format::of_file(name) == Some(self) {
+        // A `.xml` name suits URDF too: a `.xml` text whose root is <robot> loads as URDF.
+        let xml_urdf = self == Format::Urdf && Format::of_file(name) == Some(Format::Mjcf);
+        if Format::of_file(name) == Some(self) || xml_urdf {
             name.to_string()
         } else {
             match self {

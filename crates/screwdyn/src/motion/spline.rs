@@ -3,6 +3,7 @@
 //! with not-a-knot ends.
 
 use crate::error::{Error, Result};
+use crate::model::Model;
 
 /// A joint-space path `q(s)` on `[s_start, s_end]` with its derivatives `q'(s) = dq/ds` and
 /// `q''(s) = d²q/ds²`: anything the library can evaluate this way can be timed by
@@ -123,6 +124,47 @@ impl CubicSpline {
             )));
         }
         CubicSpline::new(&s, points)
+    }
+
+    /// The spline through joint-space waypoints of `model`: at `s` when given, else at the
+    /// chord length ([`CubicSpline::chord_length`]); every waypoint must have one value per
+    /// joint and lie within the joint position limits.
+    ///
+    /// # Errors
+    /// As [`CubicSpline::new`]; [`Error::InvalidArgument`] for a waypoint of the wrong length or
+    /// outside a joint's position limits (naming the waypoint and the joint).
+    ///
+    /// ```
+    /// use screwdyn::motion::CubicSpline;
+    /// let panda = screwdyn::builtin::load("panda").unwrap();
+    /// let e = CubicSpline::for_model(&panda, None, &[vec![0.0; 7], vec![0.1; 7]]).unwrap_err();
+    /// assert!(e.to_string().starts_with("waypoint 0: joint panda_joint4 = 0 is outside its position limits"));
+    /// ```
+    pub fn for_model(model: &Model, s: Option<&[f64]>, points: &[Vec<f64>]) -> Result<Self> {
+        let names = model.joint_names();
+        for (k, p) in points.iter().enumerate() {
+            if p.len() != model.nq() {
+                return Err(Error::InvalidArgument(format!(
+                    "waypoint {k} has {} values, the model has {} joints: {}",
+                    p.len(),
+                    model.nq(),
+                    names.join(", ")
+                )));
+            }
+            for (j, joint) in model.joints().iter().enumerate() {
+                let (lo, hi) = (joint.limits.lower, joint.limits.upper);
+                if p[j] < lo || p[j] > hi {
+                    return Err(Error::InvalidArgument(format!(
+                        "waypoint {k}: joint {} = {} is outside its position limits [{lo}, {hi}]",
+                        names[j], p[j]
+                    )));
+                }
+            }
+        }
+        match s {
+            Some(s) => CubicSpline::new(s, points),
+            None => CubicSpline::chord_length(points),
+        }
     }
 
     /// The path parameters `s_k` of the waypoints.

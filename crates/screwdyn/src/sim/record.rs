@@ -1,6 +1,7 @@
 //! [`Recording`]: what a simulation or torque profile produced, sample by sample, with CSV and
 //! JSON output (column names `t`, `q.<joint>`, …, listed in docs/cli.md).
 
+use super::limit_events::LimitEvent;
 use crate::error::{Error, Result};
 use crate::format::{csv_field, NumberText};
 use crate::spatial::Se3;
@@ -58,6 +59,15 @@ pub trait SampleSink {
     /// # Errors
     /// Whatever the sink cannot do (e.g. write a row); the simulation stops with it.
     fn push(&mut self, sample: &Sample) -> Result<()>;
+    /// Receives an event at a joint's position limit (a start outside the limits, a contact
+    /// with a limit stop), before the sample at or after its time; ignored unless the sink
+    /// keeps events.
+    ///
+    /// # Errors
+    /// Whatever the sink cannot do; the simulation stops with it.
+    fn event(&mut self, _event: &LimitEvent) -> Result<()> {
+        Ok(())
+    }
 }
 
 /// Column names of a run: `t`, `q.<joint>`…, `v.<joint>`…, `a.<joint>`…, `tau.<joint>`…,
@@ -104,6 +114,9 @@ pub struct Recording {
     pub frames: Vec<String>,
     /// Poses of the recorded frames, one vector (in `frames` order) per sample.
     pub poses: Vec<Vec<Se3>>,
+    /// What happened at the joints' position limits: a start outside them, each contact with
+    /// a limit stop (in time order).
+    pub events: Vec<LimitEvent>,
 }
 
 impl Recording {
@@ -225,8 +238,8 @@ impl Recording {
     }
 
     /// The recording as JSON: the same names as the CSV columns, each holding an array over
-    /// samples (`q.<joint>` etc.), plus `joints`, `t` and, per frame, `poses.<frame>` as 4×4
-    /// row-major matrices.
+    /// samples (`q.<joint>` etc.), plus `joints`, `t`, per frame `poses.<frame>` as 4×4
+    /// row-major matrices, and `events` (see [`LimitEvent::to_json`]).
     pub fn to_json(&self) -> serde_json::Value {
         let mut m = serde_json::Map::new();
         m.insert("joints".into(), self.joints.clone().into());
@@ -262,6 +275,8 @@ impl Recording {
                 .collect();
             m.insert(format!("poses.{f}"), series.into());
         }
+        let events = self.events.iter().map(LimitEvent::to_json).collect();
+        m.insert("events".into(), serde_json::Value::Array(events));
         serde_json::Value::Object(m)
     }
 }
@@ -297,6 +312,11 @@ impl SampleSink for Recording {
         if !self.frames.is_empty() {
             self.poses.push(s.poses.to_vec());
         }
+        Ok(())
+    }
+
+    fn event(&mut self, event: &LimitEvent) -> Result<()> {
+        self.events.push(event.clone());
         Ok(())
     }
 }
@@ -400,6 +420,8 @@ pub struct JsonSampleWriter<W: Write> {
     samples: usize,
     row: Vec<f64>,
     number: NumberText,
+    /// The events so far, as JSON text each.
+    events: Vec<String>,
 }
 
 impl<W: Write> JsonSampleWriter<W> {
@@ -412,6 +434,7 @@ impl<W: Write> JsonSampleWriter<W> {
             samples: 0,
             row: Vec::new(),
             number: NumberText::new(),
+            events: Vec::new(),
         }
     }
 
@@ -444,7 +467,7 @@ impl<W: Write> JsonSampleWriter<W> {
             }
             self.out.write_all(b"]").map_err(io_error)?;
         }
-        self.out.write_all(b"}\n").map_err(io_error)?;
+        writeln!(self.out, ",\"events\":[{}]}}", self.events.join(",")).map_err(io_error)?;
         self.out.flush().map_err(io_error)?;
         Ok(self.out)
     }
@@ -494,6 +517,11 @@ impl<W: Write> SampleSink for JsonSampleWriter<W> {
             write!(spool, ",{text}").map_err(io_error)?;
         }
         self.samples += 1;
+        Ok(())
+    }
+
+    fn event(&mut self, event: &LimitEvent) -> Result<()> {
+        self.events.push(event.to_json().to_string());
         Ok(())
     }
 }

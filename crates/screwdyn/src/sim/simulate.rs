@@ -4,6 +4,7 @@
 use super::controller::Controller;
 use super::effects::{EffectGains, JointEffects};
 use super::integrate::Stepper;
+use super::limit_events::LimitWatch;
 use super::options::SimOptions;
 use super::record::{Recording, Sample, SampleSink};
 use crate::dynamics::energy::{kinetic_energy_given_twists, potential_energy_given_poses};
@@ -185,6 +186,9 @@ pub struct RunSummary {
     pub samples: usize,
     /// The time reached (s): `duration` exactly.
     pub end_time: f64,
+    /// Events sent to the sink's [`SampleSink::event`]: joints that start outside their
+    /// limits, and contacts with a limit stop.
+    pub limit_events: usize,
 }
 
 /// The step times of a run of `duration` seconds with step `dt`: `ceil(duration / dt)` steps,
@@ -261,6 +265,10 @@ pub fn simulate_into(
     let joints: Vec<String> = model.joint_names().into_iter().map(String::from).collect();
     sink.begin(&joints, &recorder.frame_names)?;
     let (mut q, mut v, mut a) = (q0.to_vec(), v0.to_vec(), vec![0.0; n]);
+    // The state before the step, for the limit watch's crossing times.
+    let (mut q_before, mut v_before) = (q0.to_vec(), v0.to_vec());
+    let mut watch = LimitWatch::new(model, opts.effects.position_limits);
+    let mut limit_events = watch.start(model, q0, v0, &mut |e| sink.event(e))?;
     let (steps, last_dt) = step_plan(opts.duration, opts.dt);
     let every = opts.record_every;
     recorder.record(0.0, &q, &v, &mut plant, &mut a, sink)?;
@@ -270,6 +278,8 @@ pub fn simulate_into(
     let mut t = 0.0;
     for k in 0..steps {
         let h = if k + 1 == steps { last_dt } else { opts.dt };
+        q_before.copy_from_slice(&q);
+        v_before.copy_from_slice(&v);
         stepper.advance(
             &mut |t, q, v, qdd| plant.accel(t, q, v, qdd),
             t,
@@ -277,6 +287,9 @@ pub fn simulate_into(
             &mut q,
             &mut v,
         )?;
+        limit_events += watch.step(model, t, h, (&q_before, &v_before), &q, &mut |e| {
+            sink.event(e)
+        })?;
         t = if k + 1 == steps {
             opts.duration
         } else {
@@ -298,6 +311,7 @@ pub fn simulate_into(
         steps,
         samples: recorder.samples,
         end_time: t,
+        limit_events,
     })
 }
 

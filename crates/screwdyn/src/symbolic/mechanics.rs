@@ -40,6 +40,8 @@ pub struct SymRobot<R> {
     pub inertia: Vec<Inertia<R>>,
     /// `g⁰`.
     pub gravity: V3<R>,
+    /// `I_a,i`: each joint's armature (rotor inertia reflected to the joint).
+    pub armature: Vec<R>,
 }
 
 fn numeric_pose<R: Ring>(h: &crate::spatial::Se3) -> Pose<R> {
@@ -171,6 +173,7 @@ impl<R: Ring> SymRobot<R> {
         } else {
             V3([0, 1, 2].map(|a| gpar.scale(clean(g0[a] / gn))))
         };
+        let armature = (0..n).map(|i| par(ParamKind::Armature(i))).collect();
         SymRobot {
             n,
             parents: model.parents().to_vec(),
@@ -178,6 +181,7 @@ impl<R: Ring> SymRobot<R> {
             joint_pose,
             inertia,
             gravity,
+            armature,
         }
     }
 
@@ -212,7 +216,8 @@ impl<R: Ring> SymRobot<R> {
         out
     }
 
-    /// `M(θ) = Sᵀ Lᵀ 𝔍 L S = Σ_k J_kᵀ 𝔍_k J_k` (seed 000), row-major.
+    /// `M(θ) = Sᵀ Lᵀ 𝔍 L S + I_a = Σ_k J_kᵀ 𝔍_k J_k + diag(I_a,i)` (seed 000, and the
+    /// joints' armatures), row-major.
     pub fn mass_matrix(&self) -> Vec<R> {
         let n = self.n;
         let jac = self.body_jacobians();
@@ -227,6 +232,10 @@ impl<R: Ring> SymRobot<R> {
                     }
                 }
             }
+        }
+        // + diag(I_a,i)
+        for (i, a) in self.armature.iter().enumerate() {
+            m[i * n + i] = m[i * n + i].add(a);
         }
         for i in 0..n {
             for j in 0..i {
@@ -343,9 +352,14 @@ impl<R: Ring> SymRobot<R> {
         tau
     }
 
-    /// `τ(θ, θ̇, θ̈) = M θ̈ + C θ̇ + g` by the RNEA.
+    /// `τ(θ, θ̇, θ̈) = M θ̈ + C θ̇ + g` by the RNEA, plus the armatures' `I_a,i θ̈_i`.
     pub fn inverse_dynamics(&self, qd: &[R], qdd: &[R]) -> Vec<R> {
-        self.rnea_with(&self.inertia, Some(qd), Some(qdd), true)
+        let mut tau = self.rnea_with(&self.inertia, Some(qd), Some(qdd), true);
+        // τ_i += I_a,i θ̈_i
+        for ((t, a), qddi) in tau.iter_mut().zip(&self.armature).zip(qdd) {
+            *t = t.add(&a.mul(qddi));
+        }
+        tau
     }
 
     /// `g(θ)`: the RNEA at rest (seed 000's `Sᵀ Lᵀ 𝔍 L V̇_base`).
@@ -360,7 +374,8 @@ impl<R: Ring> SymRobot<R> {
 
     /// The regressor `Y(θ, θ̇, θ̈)` with `τ = Y π`, `π` = for each body `(m, m cx, m cy, m cz,
     /// Ixx, Ixy, Ixz, Iyy, Iyz, Izz)` (inertia about the body-frame origin): column `k` is the
-    /// RNEA with `π = e_k` (τ is linear in `π`). Row-major, `n × 10n`.
+    /// RNEA with `π = e_k` (τ is linear in `π`). Row-major, `n × 10n`. The armatures are a known
+    /// term outside it, as in [`crate::dynamics::regressor`]: `τ = Y π + I_a θ̈`.
     pub fn regressor(&self, qd: &[R], qdd: &[R]) -> Vec<R> {
         let n = self.n;
         let zero_inertia = || Inertia {
@@ -392,7 +407,7 @@ impl<R: Ring> SymRobot<R> {
         y
     }
 
-    /// Kinetic energy `½ Σ_k V_kᵀ 𝔍_k V_k` (seed 001).
+    /// Kinetic energy `½ Σ_k V_kᵀ 𝔍_k V_k + ½ Σ_i I_a,i θ̇_i²` (seed 001, and the rotors).
     pub fn kinetic_energy(&self, qd: &[R]) -> R {
         let mut v: Vec<Tw<R>> = Vec::with_capacity(self.n);
         let mut e = R::zero();
@@ -403,6 +418,8 @@ impl<R: Ring> SymRobot<R> {
             };
             vi = vi.add(&self.screw[i].times(qdi));
             e = e.add(&vi.dot(&self.inertia[i].apply(&vi)));
+            // + I_a,i θ̇_i²
+            e = e.add(&self.armature[i].mul(qdi).mul(qdi));
             v.push(vi);
         }
         e.scale(0.5)

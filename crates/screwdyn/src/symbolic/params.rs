@@ -18,10 +18,12 @@ pub enum ParamKind {
     Gravity,
     /// Component `axis` of joint `i`'s home offset `H_i^{λ(i)}(0)` translation, in the parent.
     Length(usize, usize),
+    /// Armature of joint `i`: the rotor inertia reflected to it, `I_a,i`, added to `M_ii`.
+    Armature(usize),
 }
 
 impl ParamKind {
-    /// The selection group (`mass`, `com`, `inertia`, `gravity`, `lengths`).
+    /// The selection group (`mass`, `com`, `inertia`, `gravity`, `lengths`, `armature`).
     pub fn group(&self) -> &'static str {
         match self {
             ParamKind::Mass(_) => "mass",
@@ -29,6 +31,7 @@ impl ParamKind {
             ParamKind::Inertia(..) => "inertia",
             ParamKind::Gravity => "gravity",
             ParamKind::Length(..) => "lengths",
+            ParamKind::Armature(_) => "armature",
         }
     }
 }
@@ -49,7 +52,7 @@ pub struct Param {
 }
 
 /// Every parameter of a model, in printing order (masses, inertias, centres of mass, gravity,
-/// lengths).
+/// lengths, armatures).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ParamTable {
     /// The parameters.
@@ -94,7 +97,7 @@ impl ParamTable {
     /// The parameters of `model`, all numeric. The built-in two-link arm (`planar2`) uses the
     /// seeds' names `m1, m2, L1, L2, g`; other models `m_<link>`, `cx_<link>`,
     /// `Ixx_<link>`, …, `g`, and `a_<i>`, `d_<i>` (standard-DH joints) or `px_<i>`, `py_<i>`,
-    /// `pz_<i>` (joint `i`'s home offset, 1-based).
+    /// `pz_<i>` (joint `i`'s home offset, 1-based), and `Ia_<i>` (joint `i`'s armature, 1-based).
     pub fn new(model: &Model) -> Self {
         let seeds = model.name() == "planar2" && model.nq() == 2;
         let mut params = Vec::new();
@@ -181,11 +184,23 @@ impl ParamTable {
                 });
             }
         }
+        for (i, j) in model.joints().iter().enumerate() {
+            params.push(Param {
+                name: format!("Ia_{}", i + 1),
+                value: j.armature,
+                kind: ParamKind::Armature(i),
+                symbolic: false,
+                meaning: format!(
+                    "armature of joint {} (rotor inertia reflected to it)",
+                    j.name
+                ),
+            });
+        }
         ParamTable { params }
     }
 
     /// Marks parameters as symbols from a selection: a comma-separated list of `all`, groups
-    /// (`mass`, `com`, `inertia`, `gravity`, `lengths`) and names. Groups and `all` take only
+    /// (`mass`, `com`, `inertia`, `gravity`, `lengths`, `armature`) and names. Groups and `all` take only
     /// the parameters whose value is not zero (a zero stays a zero); a name is taken even when
     /// its value is zero. `none` or an empty string keeps everything numeric.
     ///
@@ -195,7 +210,8 @@ impl ParamTable {
         for item in spec.split(',').map(str::trim).filter(|s| !s.is_empty()) {
             match item {
                 "none" => {}
-                "all" | "mass" | "com" | "inertia" | "gravity" | "lengths" | "length" => {
+                "all" | "mass" | "com" | "inertia" | "gravity" | "lengths" | "length"
+                | "armature" => {
                     for p in &mut self.params {
                         let g = p.kind.group();
                         if (item == "all" || item == g || (item == "length" && g == "lengths"))
@@ -220,7 +236,7 @@ impl ParamTable {
                                 .collect();
                             Error::InvalidArgument(format!(
                                 "unknown symbol '{name}' (use all, mass, com, inertia, gravity, \
-                             lengths or parameter names such as {})",
+                             lengths, armature or parameter names such as {})",
                                 known.join(", ")
                             ))
                         })?;

@@ -378,7 +378,10 @@ impl<'a> Printer<'a> {
         match v {
             Var::Param(k) => matches!(
                 self.params.params[usize::from(k)].kind,
-                ParamKind::Mass(_) | ParamKind::Inertia(..) | ParamKind::Com(..)
+                ParamKind::Mass(_)
+                    | ParamKind::Inertia(..)
+                    | ParamKind::Com(..)
+                    | ParamKind::Armature(_)
             ),
             _ => false,
         }

@@ -27,6 +27,7 @@ pub(crate) fn effort_limits(
     let mut sum = vec![0.0_f64; joints.len()];
     let mut driven = vec![false; joints.len()];
     for block in tree.root.children_named("actuator") {
+        block.take();
         for a in &block.children {
             if default_key(&a.tag) != "actuator" || a.tag == "plugin" {
                 continue;

@@ -49,7 +49,7 @@ pub(crate) struct Walk<'t> {
     pub tree: &'t Tree,
     pub defaults: &'t Defaults<'t>,
     pub compiler: &'t Compiler,
-    pub meshes: &'t MeshTable,
+    pub meshes: &'t MeshTable<'t>,
     pub links: Vec<Link>,
     /// In MuJoCo's order (bodies depth first, joints of a body in file order).
     pub joints: Vec<MJoint>,
@@ -69,7 +69,7 @@ impl<'t> Walk<'t> {
         tree: &'t Tree,
         defaults: &'t Defaults<'t>,
         compiler: &'t Compiler,
-        meshes: &'t MeshTable,
+        meshes: &'t MeshTable<'t>,
     ) -> Self {
         Walk {
             tree,

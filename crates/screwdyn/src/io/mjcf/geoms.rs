@@ -17,7 +17,7 @@ use std::f64::consts::PI;
 pub(crate) fn geom_inertia(
     v: &Values,
     compiler: &Compiler,
-    meshes: &MeshTable,
+    meshes: &MeshTable<'_>,
 ) -> Result<Option<SpatialInertia>> {
     let group = v.number("group")?.unwrap_or(0.0);
     let (lo, hi) = compiler.inertia_group_range;

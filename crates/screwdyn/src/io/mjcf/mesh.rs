@@ -1,8 +1,5 @@
-//! Mesh assets (`<asset><mesh name file scale>`) and their mass properties by exact volume
-//! integration over the closed triangle surface: each triangle `(a, b, c)` and the origin span a
-//! tetrahedron of signed volume `V_t = a·(b × c)/6`, centroid `(a + b + c)/4` and second
-//! moments `∫ x xᵀ dV = V_t/20 (a aᵀ + b bᵀ + c cᵀ + s sᵀ)` with `s = a + b + c`; summed, they
-//! give the volume, the centre and `I = tr(C) 1 − C` about the origin, moved to the centre.
+//! Mesh assets (`<asset><mesh name file scale inertia>`) and their mass properties by volume
+//! integration over the triangle surface, as MuJoCo computes them (see [`integrate`]).
 //!
 //! Files are read by the `mesh-loader` crate (STL binary and ASCII, Wavefront OBJ): pure Rust,
 //! no dependency of its own for these two formats, single-precision vertices as MuJoCo stores
@@ -27,24 +24,27 @@ pub(crate) struct MeshProps {
     pub inertia_per_volume: Matrix3<f64>,
 }
 
-struct Asset {
+struct Asset<'t> {
     file: PathBuf,
     scale: Vector3<f64>,
+    mode: MeshInertia,
+    element: &'t super::tree::Element,
     at: String,
 }
 
 /// The mesh assets by name, each read the first time a geom needs its inertia.
-pub(crate) struct MeshTable {
-    assets: HashMap<String, Asset>,
+pub(crate) struct MeshTable<'t> {
+    assets: HashMap<String, Asset<'t>>,
     cache: RefCell<HashMap<String, MeshProps>>,
 }
 
-impl MeshTable {
+impl<'t> MeshTable<'t> {
     /// The `<mesh>` elements of every `<asset>` (name: the `name` attribute, else the file name
     /// without its extension).
-    pub fn read(tree: &Tree, defaults: &Defaults, compiler: &Compiler) -> Result<MeshTable> {
+    pub fn read(tree: &'t Tree, defaults: &Defaults<'t>, compiler: &Compiler) -> Result<Self> {
         let mut assets = HashMap::new();
         for a in tree.root.children_named("asset") {
+            a.take();
             for m in a.children_named("mesh") {
                 let class = defaults.class_of(tree, m, defaults.main())?;
                 let v = Values {
@@ -66,11 +66,21 @@ impl MeshTable {
                 let scale = v
                     .vec3("scale")?
                     .unwrap_or_else(|| Vector3::new(1.0, 1.0, 1.0));
+                let mode = match v.keyword("inertia", &["legacy", "exact", "shell", "convex"])? {
+                    None | Some("legacy") => MeshInertia::Legacy,
+                    Some("exact") => MeshInertia::Exact,
+                    Some("shell") => MeshInertia::Shell,
+                    Some(_) => return Err(v.error(
+                        "<mesh inertia=\"convex\"> (the convex hull's inertia) is not supported; use exact or legacy, or give the body an <inertial>",
+                    )),
+                };
                 assets.insert(
                     name,
                     Asset {
                         file: compiler.meshdir.join(file),
                         scale,
+                        mode,
+                        element: m,
                         at: tree.at(m),
                     },
                 );
@@ -104,10 +114,11 @@ impl MeshTable {
             .iter()
             .map(|t| t.map(|p| p.component_mul(&s)))
             .collect::<Vec<_>>();
-        let p = integrate(&scaled);
-        if p.volume.abs() < 1e-18 {
+        asset.element.take();
+        let p = integrate(&scaled, asset.mode);
+        if p.volume < 1e-15 {
             return Err(v.error(format!(
-                "mesh '{name}' ({}) encloses no volume, so its inertia cannot be computed; give the body an <inertial>",
+                "mesh '{name}' ({}) encloses no volume (or a negative one: its triangles are wound inward), so its inertia cannot be computed; give the body an <inertial>",
                 asset.file.display()
             )));
         }
@@ -149,39 +160,82 @@ fn read_triangles(path: &Path) -> std::io::Result<Vec<[Vector3<f64>; 3]>> {
     Ok(out)
 }
 
-/// Volume, centre and inertia about the centre (density 1) of a closed triangle surface.
-pub(crate) fn integrate(triangles: &[[Vector3<f64>; 3]]) -> MeshProps {
-    let mut volume = 0.0;
-    let mut first = Vector3::zeros();
-    let mut second = Matrix3::zeros();
-    for [a, b, c] in triangles {
-        // V_t = a·(b × c)/6
-        let vt = a.dot(&b.cross(c)) / 6.0;
-        let s = a + b + c;
-        volume += vt;
-        first += s * (vt / 4.0);
-        // ∫ x xᵀ dV = V_t/20 (a aᵀ + b bᵀ + c cᵀ + s sᵀ)
-        second += (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose())
-            * (vt / 20.0);
+/// How a mesh's mass is spread (`<mesh inertia>`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum MeshInertia {
+    /// MuJoCo's default: every pyramid's volume counted positive (exact for closed convex
+    /// meshes, more than the solid for others).
+    Legacy,
+    /// Signed volumes: exact for any closed, consistently wound mesh.
+    Exact,
+    /// Mass on the surface.
+    Shell,
+}
+
+/// Volume (area for a shell), centre and inertia about the centre (density 1) of a triangle
+/// surface, in MuJoCo's two passes. With `f̄` the area-weighted centroid of the faces and, for
+/// each triangle `(a, b, c)` of centroid `t` and area `A`, the pyramid from `f̄` of volume
+/// `V_t = (a − f̄)·((b − f̄) × (c − f̄))/6`: the centre `c = Σ V_t (3t/4 + f̄/4) / Σ V_t`; then,
+/// with `a, b, c` relative to the centre and `V_t` recomputed from it, the volume `Σ V_t` and
+/// `∫ x xᵀ dV = Σ V_t/20 (a aᵀ + b bᵀ + c cᵀ + s sᵀ)` (`s = a + b + c`), `I = tr(C) 1 − C`.
+/// Legacy takes `|V_t|`; a shell puts `A` for `V_t`, `f̄` for the centre and `/12` for `/20`.
+pub(crate) fn integrate(triangles: &[[Vector3<f64>; 3]], mode: MeshInertia) -> MeshProps {
+    let area_of = |[a, b, c]: &[Vector3<f64>; 3]| (b - a).cross(&(c - a)).norm() / 2.0;
+    let mut total_area = 0.0;
+    let mut facecen = Vector3::zeros();
+    for t in triangles {
+        let area = area_of(t);
+        total_area += area;
+        facecen += (t[0] + t[1] + t[2]) / 3.0 * area;
     }
-    // A surface wound inward gives a negative volume: the same solid.
-    if volume < 0.0 {
-        volume = -volume;
-        first = -first;
-        second = -second;
+    if total_area > 0.0 {
+        facecen /= total_area;
     }
-    let centre = if volume > 0.0 {
-        first / volume
-    } else {
-        Vector3::zeros()
+    let pyramid = |[a, b, c]: &[Vector3<f64>; 3], o: &Vector3<f64>| {
+        let v = (a - o).dot(&(b - o).cross(&(c - o))) / 6.0;
+        if mode == MeshInertia::Legacy {
+            v.abs()
+        } else {
+            v
+        }
     };
-    // I_o = tr(C) 1 − C; I_c = I_o − V (|c|² 1 − c cᵀ)
-    let i_origin = Matrix3::identity() * second.trace() - second;
-    let shift =
-        (Matrix3::identity() * centre.norm_squared() - centre * centre.transpose()) * volume;
+    let centre = if mode == MeshInertia::Shell {
+        facecen
+    } else {
+        let mut volume = 0.0;
+        let mut moment = Vector3::zeros();
+        for t in triangles {
+            let v = pyramid(t, &facecen);
+            volume += v;
+            moment += ((t[0] + t[1] + t[2]) / 4.0 + facecen / 4.0) * v;
+        }
+        if volume > 0.0 {
+            moment / volume
+        } else {
+            facecen
+        }
+    };
+    let mut volume = 0.0;
+    let mut second = Matrix3::zeros();
+    for t in triangles {
+        let w = match mode {
+            MeshInertia::Shell => area_of(t) / 12.0,
+            _ => pyramid(t, &centre) / 20.0,
+        };
+        volume += if mode == MeshInertia::Shell {
+            area_of(t)
+        } else {
+            pyramid(t, &centre)
+        };
+        let [a, b, c] = t.map(|p| p - centre);
+        let s = a + b + c;
+        second +=
+            (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose()) * w;
+    }
     MeshProps {
         volume,
         centre,
-        inertia_per_volume: i_origin - shift,
+        // I = tr(C) 1 − C
+        inertia_per_volume: Matrix3::identity() * second.trace() - second,
     }
 }

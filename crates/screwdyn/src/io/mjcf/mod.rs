@@ -124,6 +124,23 @@ pub fn parse_mjcf_report(
     Ok((model, report::ignored(&tree)))
 }
 
+/// The conformance report of the MJCF file at `path` ([`parse_mjcf_report`] of its text);
+/// `None` when `path` is not an MJCF file (another extension, or a `.xml` URDF).
+///
+/// # Errors
+/// [`Error::Io`](crate::Error::Io) when the file cannot be read; else as [`parse_mjcf`].
+pub fn report_of_file(path: &str, options: &LoadOptions) -> Result<Option<Vec<Ignored>>> {
+    use crate::io::Format;
+    if Format::of_file(path) != Some(Format::Mjcf) {
+        return Ok(None);
+    }
+    let text = std::fs::read_to_string(path).map_err(|e| crate::Error::unreadable(path, &e))?;
+    if Format::of_text(&text) != Format::Mjcf {
+        return Ok(None);
+    }
+    parse_mjcf_report(&text, path, options).map(|(_, r)| Some(r))
+}
+
 /// `settotalmass`: the factor that makes the bodies' masses add up to it (1 when unset).
 fn total_mass_scale(links: &[bodies::Link], total: f64) -> f64 {
     let sum: f64 = links.iter().map(|l| l.inertia.mass).sum();

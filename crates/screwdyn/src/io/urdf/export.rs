@@ -158,6 +158,33 @@ fn xml_comment(s: &str) -> String {
     out
 }
 
+/// What an export to URDF leaves out, one sentence each: URDF has no armature (rotor inertia
+/// reflected to a joint), so a joint with one loses it. Empty when nothing is lost.
+///
+/// ```
+/// use screwdyn::io::urdf::urdf_export_warnings;
+/// let m = screwdyn::builtin::planar2().with_armature(&[0.0, 0.2]).unwrap();
+/// let w = urdf_export_warnings(&m);
+/// assert_eq!(w.len(), 1);
+/// assert!(w[0].contains("joint2") && w[0].contains("armature"));
+/// assert!(urdf_export_warnings(&screwdyn::builtin::planar2()).is_empty());
+/// ```
+pub fn urdf_export_warnings(model: &Model) -> Vec<String> {
+    model
+        .joints()
+        .iter()
+        .filter(|j| j.armature != 0.0)
+        .map(|j| {
+            format!(
+                "joint '{}' has an armature of {}, which URDF cannot hold: it is left out \
+                 (export to MJCF keeps it)",
+                j.name,
+                num(j.armature)
+            )
+        })
+        .collect()
+}
+
 /// Writes `model` as URDF. Each moving body becomes a link named after it; when its screw axis
 /// does not pass through its frame origin (e.g. a standard-DH joint, which turns about
 /// `z_{i−1}`), a link `<body>_axis` on the axis carries the joint and the body's own frame

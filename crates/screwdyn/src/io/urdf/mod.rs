@@ -32,5 +32,5 @@
 mod export;
 mod parse;
 
-pub use export::to_urdf_string;
+pub use export::{to_urdf_string, urdf_export_warnings};
 pub use parse::parse_urdf;

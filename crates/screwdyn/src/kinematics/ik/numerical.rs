@@ -26,6 +26,13 @@ const STOP_FRACTION: f64 = 1e-3;
 const STALL_ITERATIONS: usize = 8;
 /// See [`STALL_ITERATIONS`].
 const PROGRESS: f64 = 1e-3;
+/// With a secondary objective, an attempt that meets its tasks goes on along their
+/// self-motion until the secondary step is below this (rad or m).
+const SECONDARY_STEP: f64 = 1e-6;
+/// A refused step multiplies the damping by this; an accepted one divides it (down to 1).
+const REFUSED: f64 = 4.0;
+/// Polishing ends when the damping's multiplier exceeds this (no step lowers the error).
+const MAX_MULTIPLIER: f64 = 1e12;
 
 /// How an attempt (one run of the iteration from one start) ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -67,8 +74,11 @@ struct Search {
 /// `Δθ = (Jᵀ W² J + λ I)⁻¹ Jᵀ W² e`, `λ = w E + λ_min`, `E = ½ eᵀ W² e`: near the target the
 /// damping vanishes and the step is Gauss–Newton's, quadratically convergent; far from it, or
 /// near a singularity, the damping shortens the step. `IKinBody` is the undamped `Δθ = J_b⁺ V_b`.
-/// For a redundant arm the step carries a secondary objective `d = −k ∇h` in the null space of
-/// the tasks: `Δθ = d + (Jᵀ W² J + λ I)⁻¹ Jᵀ W (W e − W J d)`.
+/// For a redundant arm with a secondary objective ([`IkOptions::posture_gain`],
+/// [`IkOptions::limit_gain`]), once the tasks are met within their tolerances each step also
+/// carries `d = −k ∇h` in the null space of the tasks,
+/// `Δθ = d + (Jᵀ W² J + λ I)⁻¹ Jᵀ W (W e − W J d)`, until `d` falls below `10⁻⁶`; the latest
+/// `q` that meets the tasks is kept.
 ///
 /// **Limits.** After each step every joint is put back within its limits (`θ_j` clamped to
 /// `[lower, upper]`); a continuous joint (no limits) is wrapped to within `π` of its `q0`.
@@ -83,7 +93,9 @@ struct Search {
 /// unbounded translation) by a generator seeded with [`IkOptions::seed`].
 ///
 /// **Result.** The best `q` of all attempts is returned and checked by forward kinematics
-/// (see [`IkResult`]).
+/// (see [`IkResult`]). When no attempt met the tasks, that `q` is first polished by a monotone
+/// descent (a step that raises the error is refused and the damping multiplied by 4, until no
+/// step lowers it), so that the errors reported are those of the nearest pose.
 ///
 /// ```
 /// use screwdyn::kinematics::ik::{IkOptions, IkSolver, IkTask, IkWorkspace};
@@ -107,20 +119,20 @@ struct Search {
 /// ```
 #[derive(Clone, Debug)]
 pub struct IkSolver {
-    model: Model,
-    tasks: Vec<IkTask>,
-    options: IkOptions,
+    pub(super) model: Model,
+    pub(super) tasks: Vec<IkTask>,
+    pub(super) options: IkOptions,
     /// The joints the solver moves, ascending.
-    active: Vec<usize>,
-    lower: Vec<f64>,
-    upper: Vec<f64>,
+    pub(super) active: Vec<usize>,
+    pub(super) lower: Vec<f64>,
+    pub(super) upper: Vec<f64>,
     /// Continuous joints, wrapped to within π of `q0`.
-    wraps: Vec<bool>,
+    pub(super) wraps: Vec<bool>,
     /// Where restarts draw each joint from.
-    ranges: Vec<(f64, f64)>,
+    pub(super) ranges: Vec<(f64, f64)>,
     /// More moving joints than weighed task axes.
-    redundant: bool,
-    closed_form: Option<ClosedForm>,
+    pub(super) redundant: bool,
+    pub(super) closed_form: Option<ClosedForm>,
 }
 
 impl IkSolver {
@@ -297,25 +309,35 @@ impl IkSolver {
         q0: &[f64],
         q_out: &mut [f64],
     ) -> Result<IkResult> {
-        self.solve_stream(ws, targets, q0, q_out, 0)
+        self.solve_from(ws, targets, q0, q_out, 0, None)
     }
 
-    /// [`solve`](IkSolver::solve) with the random restarts drawn from `stream` of the seed.
-    pub(super) fn solve_stream(
+    /// [`solve`](IkSolver::solve) with the random restarts drawn from `stream` of the seed;
+    /// or, given a `start`, one attempt from there (no restarts).
+    pub(super) fn solve_from(
         &self,
         ws: &mut IkWorkspace,
         targets: &[Se3],
         q0: &[f64],
         q_out: &mut [f64],
         stream: u64,
+        start: Option<&[f64]>,
     ) -> Result<IkResult> {
         ws.check(self)?;
-        self.check_inputs(targets, q0, q_out)?;
+        self.check_inputs(targets, q0, q_out.len())?;
         let deadline = self.options.time_limit.map(|t| Instant::now() + t);
         let mut rng = SplitMix::new(self.options.seed, stream);
         ws.q.copy_from_slice(q0);
         ws.best.copy_from_slice(q0);
-        if let Some(cf) = &self.closed_form {
+        let max_restarts = if start.is_some() {
+            0
+        } else {
+            self.options.max_restarts
+        };
+        if let Some(start) = start {
+            ws.q.copy_from_slice(start);
+            self.project(&mut ws.q, q0);
+        } else if let Some(cf) = &self.closed_form {
             let count = cf.solve(&targets[0], &mut ws.solutions);
             nearest_closed_form(
                 cf,
@@ -335,12 +357,12 @@ impl IkSolver {
         let mut restarts = 0;
         let out_of_time = loop {
             search.improved = false;
-            let end = self.attempt(ws, targets, q0, deadline, &mut search)?;
+            let end = self.attempt(ws, targets, q0, deadline, &mut search, false)?;
             if search.improved {
                 search.best_end = end;
             }
             let out_of_time = end == End::OutOfTime;
-            if out_of_time || search.best_score <= 1.0 || restarts >= self.options.max_restarts {
+            if out_of_time || search.best_score <= 1.0 || restarts >= max_restarts {
                 break out_of_time;
             }
             restarts += 1;
@@ -351,6 +373,16 @@ impl IkSolver {
             }
             self.project(&mut ws.q, q0);
         };
+        if search.best_score > 1.0 && !out_of_time && start.is_none() {
+            // No attempt met the tasks: descend monotonically from the best q to the nearest
+            // pose (a refused step raises the damping), so that the reported errors are the
+            // nearest pose's.
+            ws.q.copy_from_slice(&ws.best);
+            // How the search ended still says why it failed.
+            let best_end = search.best_end;
+            self.attempt(ws, targets, q0, deadline, &mut search, true)?;
+            search.best_end = best_end;
+        }
         q_out.copy_from_slice(&ws.best);
         let (position_error, orientation_error, within_limits) = self.verify(ws, targets, q_out)?;
         let success = position_error <= self.options.position_tolerance
@@ -383,27 +415,56 @@ impl IkSolver {
         q0: &[f64],
         deadline: Option<Instant>,
         search: &mut Search,
+        polish: bool,
     ) -> Result<End> {
         let o = &self.options;
         let cols = self.active.len();
         let mut lowest = f64::INFINITY;
         let mut stalled = 0;
+        let secondary = self.redundant && (o.posture_gain > 0.0 || o.limit_gain > 0.0);
+        // The damping's multiplier μ: λ = μ w E + λ_min; raised when a step is refused.
+        let mut mu = 1.0;
+        let mut previous_cost = f64::INFINITY;
         for iteration in 0..=o.max_iterations {
-            let (position, orientation, cost) = self.evaluate(ws, targets)?;
+            let (mut position, mut orientation, mut cost) = self.evaluate(ws, targets)?;
+            if polish && cost > previous_cost {
+                // Polishing: a step that raised the error is refused; go back and damp more.
+                ws.q.copy_from_slice(&ws.previous);
+                (position, orientation, cost) = self.evaluate(ws, targets)?;
+                mu *= REFUSED;
+            } else {
+                mu = f64::max(1.0, mu / REFUSED);
+            }
+            previous_cost = cost;
+            ws.previous.copy_from_slice(&ws.q);
             let score =
                 (position / o.position_tolerance).max(orientation / o.orientation_tolerance);
-            if score < search.best_score {
-                search.best_score = score;
+            // Among iterates that meet the tasks, the latest is best: the secondary objective
+            // has moved it furthest.
+            let met = score <= STOP_FRACTION;
+            if score < search.best_score || met {
+                search.best_score = score.max(STOP_FRACTION);
                 search.improved = true;
                 ws.best.copy_from_slice(&ws.q);
             }
-            if score <= STOP_FRACTION {
+            // d = −k ∇h once the tasks are met within their tolerances (a redundant arm then
+            // moves along their self-motion), zero before and for other arms.
+            let moving = secondary && score <= 1.0;
+            self.secondary(&ws.q, q0, moving, &mut ws.secondary);
+            let pull = ws.secondary.iter().fold(0.0, |m: f64, d| m.max(d.abs()));
+            if met && pull <= SECONDARY_STEP {
                 return Ok(End::Converged);
             }
             if iteration == o.max_iterations {
                 break;
             }
-            if cost < lowest * (1.0 - PROGRESS) {
+            if met || polish {
+                // Moving along the tasks' self-motion (the error is not expected to fall), or
+                // polishing (every kept step lowers the error).
+                if mu > MAX_MULTIPLIER {
+                    return Ok(End::Stalled);
+                }
+            } else if cost < lowest * (1.0 - PROGRESS) {
                 lowest = cost;
                 stalled = 0;
             } else {
@@ -415,10 +476,8 @@ impl IkSolver {
             if deadline.is_some_and(|d| Instant::now() >= d) {
                 return Ok(End::OutOfTime);
             }
-            // d = −k ∇h for a redundant arm, zero otherwise.
-            self.secondary(&ws.q, q0, &mut ws.secondary);
             // λ = w E + λ_min (error-scaled damping).
-            let lambda = o.damping * cost + o.min_damping;
+            let lambda = mu * o.damping * cost + o.min_damping;
             if !lm::step(
                 &ws.stacked,
                 &ws.error,
@@ -470,14 +529,14 @@ impl IkSolver {
         Ok((position, orientation, cost))
     }
 
-    /// The secondary step `d = −k_p (θ − θ_posture) − k_l (θ − m) / r²` on the moving joints of
-    /// a redundant arm (zero otherwise).
-    fn secondary(&self, q: &[f64], q0: &[f64], d: &mut [f64]) {
+    /// The secondary step `d = −k_p (θ − θ_posture) − k_l (θ − m) / r²` on the moving joints
+    /// when `moving` (zero otherwise).
+    fn secondary(&self, q: &[f64], q0: &[f64], moving: bool, d: &mut [f64]) {
         let o = &self.options;
         let posture = o.posture.as_deref().unwrap_or(q0);
         for (c, &j) in self.active.iter().enumerate() {
             d[c] = 0.0;
-            if !self.redundant {
+            if !moving {
                 continue;
             }
             let mut offset = q[j] - posture[j];
@@ -545,7 +604,7 @@ impl IkSolver {
         Ok(blocked > free)
     }
 
-    fn check_inputs(&self, targets: &[Se3], q0: &[f64], q_out: &[f64]) -> Result<()> {
+    pub(super) fn check_inputs(&self, targets: &[Se3], q0: &[f64], q_out_len: usize) -> Result<()> {
         if targets.len() != self.tasks.len() {
             return Err(Error::InvalidArgument(format!(
                 "{} IK targets were given for {} tasks",
@@ -565,10 +624,10 @@ impl IkSolver {
                 )));
             }
         }
-        if q_out.len() != self.model.nq() {
+        if q_out_len != self.model.nq() {
             return Err(Error::InvalidArgument(format!(
                 "the IK output q has {} values, the model has {} joints",
-                q_out.len(),
+                q_out_len,
                 self.model.nq()
             )));
         }

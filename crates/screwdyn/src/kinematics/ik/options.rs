@@ -73,7 +73,7 @@ pub struct IkOptions {
     pub position_tolerance: f64,
     /// Largest accepted rotation angle between each frame and its target (rad). Default `1e-6`.
     pub orientation_tolerance: f64,
-    /// Iterations of one attempt before it is abandoned for a restart. Default `100`.
+    /// Iterations of one attempt before it is abandoned for a restart. Default `40`.
     pub max_iterations: usize,
     /// Random restarts after the first attempt. Default `50`.
     pub max_restarts: usize,
@@ -82,14 +82,16 @@ pub struct IkOptions {
     /// Seed of the random restarts (the same seed, the same answer). Default `0`.
     pub seed: u64,
     /// `w` of the error-scaled damping `λ = w E + λ_min`, with `E = ½ eᵀ W e` the weighted
-    /// squared error. Default `1.0`.
+    /// squared error. Default `0.1`.
     pub damping: f64,
     /// `λ_min` of the damping (bounds the step at a singularity). Default `1e-9`.
     pub min_damping: f64,
     /// Joints that keep their `q0` value (indices into `q`). Default none.
     pub held_joints: Vec<usize>,
     /// Gain of the secondary objective `½ ‖q − q_posture‖²` that redundant arms follow in the
-    /// null space of their tasks. Default `0.1`; `0` turns it off.
+    /// null space of their tasks. Default `0` (off: the damped least-squares steps already
+    /// keep close to the start; a positive gain keeps closer to the posture at the price of
+    /// slower convergence).
     pub posture_gain: f64,
     /// The posture `q_posture` (length `nq`); `None` (the default) for `q0`.
     pub posture: Option<Vec<f64>>,
@@ -107,14 +109,14 @@ impl Default for IkOptions {
         IkOptions {
             position_tolerance: 1e-6,
             orientation_tolerance: 1e-6,
-            max_iterations: 100,
+            max_iterations: 40,
             max_restarts: 50,
             time_limit: None,
             seed: 0,
-            damping: 1.0,
+            damping: 0.1,
             min_damping: 1e-9,
             held_joints: Vec::new(),
-            posture_gain: 0.1,
+            posture_gain: 0.0,
             posture: None,
             limit_gain: 0.0,
             closed_form: true,

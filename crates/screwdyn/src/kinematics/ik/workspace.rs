@@ -33,6 +33,8 @@ pub struct IkWorkspace {
     pub(super) secondary: Vec<f64>,
     /// The iterate `θ` (nq).
     pub(super) q: Vec<f64>,
+    /// The iterate before the last step (nq).
+    pub(super) previous: Vec<f64>,
     /// The best `θ` found so far (nq).
     pub(super) best: Vec<f64>,
     /// The closed-form solutions, when the solver has a closed form.
@@ -54,6 +56,7 @@ impl IkWorkspace {
             step: vec![0.0; cols],
             secondary: vec![0.0; cols],
             q: vec![0.0; nq],
+            previous: vec![0.0; nq],
             best: vec![0.0; nq],
             solutions: [[0.0; 6]; 8],
             shape: (nq, rows, cols),

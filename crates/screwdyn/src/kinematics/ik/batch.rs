@@ -1,0 +1,228 @@
+//! Many targets at once on several threads, and paths solved point by point.
+
+use super::numerical::IkSolver;
+use super::result::IkResult;
+use super::workspace::IkWorkspace;
+use crate::error::{Error, Result};
+use crate::spatial::Se3;
+
+/// A joint that moved more than the threshold between two consecutive points of a path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IkJump {
+    /// The point (index into the path) the joint jumped to.
+    pub point: usize,
+    /// The joint.
+    pub joint: usize,
+    /// `q[point][joint] − q[point − 1][joint]` (rad or m).
+    pub change: f64,
+}
+
+/// What [`IkSolver::solve_path`] reports: one result per point and the jumps.
+#[derive(Clone, Debug, PartialEq)]
+pub struct IkPath {
+    /// One per point.
+    pub results: Vec<IkResult>,
+    /// Every joint change larger than the threshold between consecutive points.
+    pub jumps: Vec<IkJump>,
+}
+
+impl IkSolver {
+    /// Solves `k` independent problems on `threads` threads (`0`: as many as the machine has):
+    /// `targets` holds `k × tasks` poses (problem `i`'s targets at `i × tasks …`), `q0`
+    /// either one start for all (`nq` values) or one per problem (`k × nq`), `q_out`
+    /// receives `k × nq` values. Problem `i` draws its restarts from its own stream of the
+    /// seed, so each answer is the same whatever the number of threads.
+    ///
+    /// Returns one entry per problem: its result, or the error of its own input (a target
+    /// that is not a rotation, NaN, a `q0` outside the limits) as
+    /// [`Error::Batch`] naming the problem; the other problems are solved all the same.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the lengths do not fit together.
+    ///
+    /// ```
+    /// use screwdyn::kinematics::ik::{IkOptions, IkSolver, IkTask};
+    /// use screwdyn::kinematics::forward_kinematics_poe;
+    /// let ur5 = screwdyn::builtin::load("ur5").unwrap();
+    /// let tool = ur5.frame_id("tool0").unwrap();
+    /// let solver = IkSolver::new(&ur5, &[IkTask::pose(tool)], IkOptions::default()).unwrap();
+    /// let placement = ur5.frames()[tool].placement;
+    /// let targets: Vec<_> = (0..10)
+    ///     .map(|i| forward_kinematics_poe(&ur5, &[0.1 * i as f64, -1.0, 1.0, 0.2, 0.5, 0.0]).unwrap()[5].compose(&placement))
+    ///     .collect();
+    /// let mut q = vec![0.0; 10 * 6];
+    /// let results = solver.solve_batch(&targets, &[0.0; 6], &mut q, 2).unwrap();
+    /// assert!(results.iter().all(|r| r.as_ref().unwrap().success));
+    /// ```
+    pub fn solve_batch(
+        &self,
+        targets: &[Se3],
+        q0: &[f64],
+        q_out: &mut [f64],
+        threads: usize,
+    ) -> Result<Vec<Result<IkResult>>> {
+        let n = self.model.nq();
+        let t = self.tasks.len();
+        if targets.len() % t != 0 {
+            return Err(Error::InvalidArgument(format!(
+                "{} IK targets are not a whole number of problems of {t} tasks",
+                targets.len()
+            )));
+        }
+        let k = targets.len() / t;
+        if q_out.len() != k * n {
+            return Err(Error::InvalidArgument(format!(
+                "the IK output has {} values, {k} problems of {n} joints need {}",
+                q_out.len(),
+                k * n
+            )));
+        }
+        if q0.len() != n && q0.len() != k * n {
+            return Err(Error::InvalidArgument(format!(
+                "q0 has {} values: give {n} (one start for all) or {} ({k} problems of {n} joints)",
+                q0.len(),
+                k * n
+            )));
+        }
+        let threads = if threads == 0 {
+            std::thread::available_parallelism().map_or(1, |p| p.get())
+        } else {
+            threads
+        };
+        let per_thread = k.div_ceil(threads.max(1)).max(1);
+        let mut results: Vec<Result<IkResult>> = Vec::with_capacity(k);
+        results.resize_with(k, || Ok(empty()));
+        let solve_range = |first: usize, q_out: &mut [f64], results: &mut [Result<IkResult>]| {
+            let mut ws = IkWorkspace::new(self);
+            for (i, (q, r)) in q_out.chunks_mut(n).zip(results.iter_mut()).enumerate() {
+                let p = first + i;
+                let start = if q0.len() == n {
+                    q0
+                } else {
+                    &q0[p * n..(p + 1) * n]
+                };
+                *r = self
+                    .solve_from(
+                        &mut ws,
+                        &targets[p * t..(p + 1) * t],
+                        start,
+                        q,
+                        p as u64,
+                        None,
+                    )
+                    .map_err(|e| Error::Batch {
+                        state: p,
+                        source: Box::new(e),
+                    });
+            }
+        };
+        std::thread::scope(|scope| {
+            for (c, (q_chunk, r_chunk)) in q_out
+                .chunks_mut(per_thread * n)
+                .zip(results.chunks_mut(per_thread))
+                .enumerate()
+            {
+                let solve_range = &solve_range;
+                scope.spawn(move || solve_range(c * per_thread, q_chunk, r_chunk));
+            }
+        });
+        Ok(results)
+    }
+
+    /// Solves a path point by point, each point started from the previous point's answer
+    /// (the first from `q0`), so consecutive answers stay on one branch; reports every joint
+    /// that moves more than `jump_threshold` between consecutive points (a restart or a branch
+    /// change). `targets` holds `points × tasks` poses; `q_out` receives `points × nq` values.
+    ///
+    /// # Errors
+    /// As [`solve`](IkSolver::solve), naming the point as [`Error::Batch`];
+    /// [`Error::InvalidArgument`] when the lengths do not fit together or `jump_threshold` is
+    /// not positive.
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// use screwdyn::kinematics::ik::{IkOptions, IkSolver, IkTask, IkWorkspace};
+    /// use screwdyn::spatial::Se3;
+    /// let arm = screwdyn::builtin::planar2();
+    /// let tip = arm.body_frame(1).unwrap();
+    /// let solver = IkSolver::new(&arm, &[IkTask::position(tip)], IkOptions::default()).unwrap();
+    /// let mut ws = IkWorkspace::new(&solver);
+    /// // A straight line from (1.5, 0.5) to (0.5, 1.5).
+    /// let line: Vec<Se3> = (0..=20)
+    ///     .map(|i| Se3::from_translation(Vector3::new(1.5 - 0.05 * i as f64, 0.5 + 0.05 * i as f64, 0.0)))
+    ///     .collect();
+    /// let mut q = vec![0.0; 21 * 2];
+    /// let path = solver.solve_path(&mut ws, &line, &[0.0, 1.0], 0.3, &mut q).unwrap();
+    /// assert!(path.results.iter().all(|r| r.success));
+    /// assert!(path.jumps.is_empty());
+    /// ```
+    pub fn solve_path(
+        &self,
+        ws: &mut IkWorkspace,
+        targets: &[Se3],
+        q0: &[f64],
+        jump_threshold: f64,
+        q_out: &mut [f64],
+    ) -> Result<IkPath> {
+        let n = self.model.nq();
+        let t = self.tasks.len();
+        if jump_threshold.is_nan() || jump_threshold <= 0.0 {
+            return Err(Error::InvalidArgument(format!(
+                "the jump threshold is {jump_threshold}, it must be positive"
+            )));
+        }
+        if targets.len() % t != 0 || q_out.len() != (targets.len() / t) * n {
+            return Err(Error::InvalidArgument(format!(
+                "{} IK targets and an output of {} values do not fit {t} tasks and {n} joints",
+                targets.len(),
+                q_out.len()
+            )));
+        }
+        let points = targets.len() / t;
+        let mut results = Vec::with_capacity(points);
+        let mut jumps = Vec::new();
+        for p in 0..points {
+            let (done, rest) = q_out.split_at_mut(p * n);
+            let start = if p == 0 { q0 } else { &done[(p - 1) * n..] };
+            let result = self
+                .solve_from(
+                    ws,
+                    &targets[p * t..(p + 1) * t],
+                    start,
+                    &mut rest[..n],
+                    0,
+                    None,
+                )
+                .map_err(|e| Error::Batch {
+                    state: p,
+                    source: Box::new(e),
+                })?;
+            if p > 0 {
+                for j in 0..n {
+                    let change = rest[j] - start[j];
+                    if change.abs() > jump_threshold {
+                        jumps.push(IkJump {
+                            point: p,
+                            joint: j,
+                            change,
+                        });
+                    }
+                }
+            }
+            results.push(result);
+        }
+        Ok(IkPath { results, jumps })
+    }
+}
+
+/// A placeholder result, overwritten by every problem.
+fn empty() -> IkResult {
+    IkResult {
+        success: false,
+        iterations: 0,
+        restarts: 0,
+        position_error: f64::NAN,
+        orientation_error: f64::NAN,
+        failure: None,
+    }
+}
