@@ -35,6 +35,7 @@ mod dynamics;
 mod energy;
 mod errors;
 mod identification;
+mod ik;
 mod kinematics;
 mod model;
 mod se3;

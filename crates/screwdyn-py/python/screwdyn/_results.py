@@ -419,3 +419,39 @@ class Identification(BaseParameters):
         rows.append(f"{self.samples} samples, σ = {_num(self.sigma)}, condition number "
                     f"{_num(self.condition_number)}.")
         return "\n".join(rows)
+
+
+class IkResult:
+    """What ``Model.inverse_kinematics`` found: ``q`` ((nq,) or (N, nq)), ``success``,
+    ``iterations``, ``restarts``, ``position_error`` (m), ``orientation_error`` (rad) and
+    ``failure`` (None, "unreachable", "limits" or "budget"): scalars for one target, NumPy
+    arrays (``failure`` a list) for a batch. ``success`` is true only when forward kinematics
+    of ``q`` reaches the target within both tolerances and every joint is within its limits.
+    """
+
+    def __init__(self, data: Dict[str, Any]):
+        batch = bool(data["batch"])
+        self.q: np.ndarray = data["q"]
+        if batch:
+            self.success = np.asarray(data["success"], dtype=bool)
+            self.iterations = np.asarray(data["iterations"], dtype=np.int64)
+            self.restarts = np.asarray(data["restarts"], dtype=np.int64)
+            self.position_error = np.asarray(data["position_error"], dtype=float)
+            self.orientation_error = np.asarray(data["orientation_error"], dtype=float)
+            self.failure = list(data["failure"])
+        else:
+            self.success = bool(data["success"][0])
+            self.iterations = int(data["iterations"][0])
+            self.restarts = int(data["restarts"][0])
+            self.position_error = float(data["position_error"][0])
+            self.orientation_error = float(data["orientation_error"][0])
+            self.failure = data["failure"][0]
+
+    def __repr__(self) -> str:
+        if isinstance(self.success, np.ndarray):
+            return (f"IkResult({self.success.sum()} of {self.success.size} succeeded, "
+                    f"max position_error={self.position_error.max():.3g} m, "
+                    f"max orientation_error={self.orientation_error.max():.3g} rad)")
+        return (f"IkResult(success={self.success}, q={np.array2string(self.q, precision=6)}, "
+                f"position_error={self.position_error:.3g} m, "
+                f"orientation_error={self.orientation_error:.3g} rad, failure={self.failure!r})")

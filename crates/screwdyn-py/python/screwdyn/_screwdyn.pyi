@@ -16,8 +16,8 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 import numpy.typing as npt
 
-from ._results import (BaseParameters, ClosedForm, Identification, LagrangeCoefficients, RneaTrace,
-                       SimResult, TorqueProfile)
+from ._results import (BaseParameters, ClosedForm, Identification, IkResult, LagrangeCoefficients,
+                       RneaTrace, SimResult, TorqueProfile)
 from ._view import View
 
 ArrayLike = npt.ArrayLike
@@ -123,6 +123,17 @@ class Model:
                    out: Optional[FloatArray] = None) -> FloatArray:
         """(4, 4) or (N, 4, 4)."""
     def frame_poses(self, q: ArrayLike, *, threads: Optional[int] = None) -> Dict[str, FloatArray]: ...
+    def inverse_kinematics(self, frame: FrameRef, target: ArrayLike, q0: Optional[ArrayLike] = None, *,
+                           seed: int = 0, threads: Optional[int] = None, position_only: bool = False,
+                           position_tolerance: Optional[float] = None,
+                           orientation_tolerance: Optional[float] = None,
+                           max_iterations: Optional[int] = None,
+                           max_restarts: Optional[int] = None) -> IkResult:
+        """Joint positions putting ``frame`` at ``target`` ((4, 4) or (N, 4, 4), world frame);
+        q0 (nq,) or (N, nq). Scalars for one target, arrays for a batch (GIL released)."""
+    def inverse_kinematics_all(self, frame: FrameRef, target: ArrayLike,
+                               q0: Optional[ArrayLike] = None) -> FloatArray:
+        """Every closed-form solution within the limits, refined and checked: (M, nq), nearest q0 first."""
     def frame_jacobian(self, q: ArrayLike, frame: FrameRef, reference: str = "world", *,
                        threads: Optional[int] = None, out: Optional[FloatArray] = None) -> FloatArray:
         """(6, nq) or (N, 6, nq), angular rows first; reference world | local | world-aligned (or WORLD | LOCAL | LOCAL_WORLD_ALIGNED)."""

@@ -1,0 +1,240 @@
+//! `Model.inverse_kinematics` and `Model.inverse_kinematics_all`: the library's
+//! `kinematics::ik` solver on one `(4, 4)` target or `(N, 4, 4)` stacked ones.
+
+use crate::convert::{self, python_class, ArrayIn, Values};
+use crate::errors::{call_err, guard};
+use crate::model::PyModel;
+use nalgebra::Matrix4;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use screwdyn::kinematics::ik::{
+    default_start, target_from_matrix, IkOptions, IkResult, IkSolver, IkTask, IkWorkspace,
+};
+use screwdyn::spatial::Se3;
+
+/// The targets of an `(4, 4)` or `(N, 4, 4)` array, and whether they were stacked.
+fn targets(target: &ArrayIn<'_>) -> PyResult<(Vec<Se3>, bool)> {
+    let shape = target.shape().to_vec();
+    let stacked = match shape.as_slice() {
+        [4, 4] => false,
+        [_, 4, 4] => true,
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "target must be a (4, 4) homogeneous matrix or an (N, 4, 4) array of them, got shape {shape:?}"
+            )))
+        }
+    };
+    let values = target.values();
+    let poses = values
+        .chunks(16)
+        .enumerate()
+        .map(|(k, m)| {
+            let what = if stacked {
+                format!("target {k}")
+            } else {
+                "target".to_string()
+            };
+            target_from_matrix(&Matrix4::from_row_slice(m), &what).map_err(call_err)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    Ok((poses, stacked))
+}
+
+/// One result as the dict `screwdyn._results.IkResult` is made from.
+fn fill<'py>(d: &Bound<'py, PyDict>, results: &[IkResult]) -> PyResult<()> {
+    let col = |f: fn(&IkResult) -> f64| results.iter().map(f).collect::<Vec<_>>();
+    d.set_item(
+        "success",
+        results.iter().map(|r| r.success).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "iterations",
+        results.iter().map(|r| r.iterations).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "restarts",
+        results.iter().map(|r| r.restarts).collect::<Vec<_>>(),
+    )?;
+    d.set_item("position_error", col(|r| r.position_error))?;
+    d.set_item("orientation_error", col(|r| r.orientation_error))?;
+    let failure: Vec<Option<&str>> = results
+        .iter()
+        .map(|r| r.failure.map(|f| f.name()))
+        .collect();
+    d.set_item("failure", failure)?;
+    Ok(())
+}
+
+impl PyModel {
+    /// The solver of `frame` (full pose, or position only) with the keyword options.
+    #[allow(clippy::too_many_arguments)]
+    fn ik_solver(
+        &self,
+        frame: &Bound<'_, PyAny>,
+        position_only: bool,
+        seed: u64,
+        position_tolerance: Option<f64>,
+        orientation_tolerance: Option<f64>,
+        max_iterations: Option<usize>,
+        max_restarts: Option<usize>,
+    ) -> PyResult<IkSolver> {
+        let f = self.frame(frame)?;
+        let task = if position_only {
+            IkTask::position(f)
+        } else {
+            IkTask::pose(f)
+        };
+        let d = IkOptions::default();
+        let options = IkOptions {
+            seed,
+            position_tolerance: position_tolerance.unwrap_or(d.position_tolerance),
+            orientation_tolerance: orientation_tolerance.unwrap_or(d.orientation_tolerance),
+            max_iterations: max_iterations.unwrap_or(d.max_iterations),
+            max_restarts: max_restarts.unwrap_or(d.max_restarts),
+            ..d
+        };
+        IkSolver::new(&self.model, &[task], options).map_err(call_err)
+    }
+
+    /// `q0` as given (`(nq,)`, or `(N, nq)` for `count` stacked targets), or the default start.
+    fn ik_start(&self, q0: Option<&ArrayIn<'_>>, count: Option<usize>) -> PyResult<Vec<f64>> {
+        let n = self.model.nq();
+        let Some(q0) = q0 else {
+            return Ok(default_start(&self.model));
+        };
+        let shape = q0.shape().to_vec();
+        let fits = match (shape.as_slice(), count) {
+            ([m], _) => *m == n,
+            ([k, m], Some(c)) => *k == c && *m == n,
+            _ => false,
+        };
+        if !fits {
+            let expected = match count {
+                Some(c) => format!("({n},) or ({c}, {n})"),
+                None => format!("({n},)"),
+            };
+            return Err(PyValueError::new_err(format!(
+                "q0 has shape {shape:?}, expected {expected} for the model's {n} joints"
+            )));
+        }
+        Ok(q0.values().into_owned())
+    }
+}
+
+#[pymethods]
+impl PyModel {
+    /// Inverse kinematics: joint positions that put `frame` (name or index) at `target`, a
+    /// `(4, 4)` homogeneous matrix in the world frame, or at each of `(N, 4, 4)` stacked ones.
+    ///
+    /// Levenberg–Marquardt with error-scaled damping on the body-frame pose error, joint
+    /// limits kept at every step, seeded random restarts, started from the closed-form
+    /// solution nearest `q0` on arms that have one (docs/ik.md). `q0`: `(nq,)` for all, or
+    /// `(N, nq)` one per target; default each joint at 0, or at the nearer limit when 0 lies
+    /// outside them. `position_only=True` places the frame's origin only. `seed` makes the
+    /// restarts repeatable; a batch runs on `threads` threads (default: all cores) with the
+    /// GIL released, each answer the same whatever the thread count.
+    ///
+    /// Returns an `IkResult`: `q` (`(nq,)` or `(N, nq)`), `success`, `iterations`,
+    /// `restarts`, `position_error` (m), `orientation_error` (rad) and `failure` (`None`, or
+    /// `"unreachable"`, `"limits"`, `"budget"`), scalars for one target and arrays for a
+    /// batch. `success` is true only when forward kinematics of `q` is within both
+    /// tolerances and every joint within its limits; an unreachable target is not an error.
+    ///
+    /// Raises `ValueError` for a rotation that is not orthonormal, a bottom row that is not
+    /// `(0, 0, 0, 1)`, NaN, a `q0` outside the limits or of the wrong shape, an unknown frame.
+    #[pyo3(signature = (frame, target, q0 = None, *, seed = 0, threads = None,
+        position_only = false, position_tolerance = None, orientation_tolerance = None,
+        max_iterations = None, max_restarts = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn inverse_kinematics<'py>(
+        &self,
+        py: Python<'py>,
+        frame: &Bound<'py, PyAny>,
+        target: ArrayIn<'py>,
+        q0: Option<ArrayIn<'py>>,
+        seed: u64,
+        threads: Option<usize>,
+        position_only: bool,
+        position_tolerance: Option<f64>,
+        orientation_tolerance: Option<f64>,
+        max_iterations: Option<usize>,
+        max_restarts: Option<usize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        guard(|| {
+            let solver = self.ik_solver(
+                frame,
+                position_only,
+                seed,
+                position_tolerance,
+                orientation_tolerance,
+                max_iterations,
+                max_restarts,
+            )?;
+            let (poses, stacked) = targets(&target)?;
+            let n = self.model.nq();
+            let d = PyDict::new(py);
+            if !stacked {
+                let start = self.ik_start(q0.as_ref(), None)?;
+                let mut q = vec![0.0; n];
+                let result = py
+                    .detach(|| {
+                        let mut ws = IkWorkspace::new(&solver);
+                        solver.solve(&mut ws, &poses, &start, &mut q)
+                    })
+                    .map_err(call_err)?;
+                d.set_item("q", convert::vector(py, &q)?)?;
+                fill(&d, &[result])?;
+                d.set_item("batch", false)?;
+            } else {
+                let k = poses.len();
+                let start = self.ik_start(q0.as_ref(), Some(k))?;
+                let mut q = vec![0.0; k * n];
+                let results = py
+                    .detach(|| solver.solve_batch(&poses, &start, &mut q, threads.unwrap_or(0)))
+                    .map_err(call_err)?
+                    .into_iter()
+                    .collect::<screwdyn::Result<Vec<_>>>()
+                    .map_err(call_err)?;
+                d.set_item("q", convert::array(py, q, &[k, n])?)?;
+                fill(&d, &results)?;
+                d.set_item("batch", true)?;
+            }
+            python_class(py, "screwdyn._results", "IkResult")?.call1((d,))
+        })
+    }
+
+    /// Every solution for one `(4, 4)` target: on a 6R arm with a closed form (a spherical
+    /// wrist or three consecutive parallel axes, e.g. the UR5: up to 8), each closed-form
+    /// branch shifted by whole turns into the joint limits, refined and checked by forward
+    /// kinematics; on any other arm the one numerical answer if it succeeds. An `(M, nq)`
+    /// array, nearest `q0` first (`M = 0` when the target is out of reach).
+    #[pyo3(signature = (frame, target, q0 = None))]
+    fn inverse_kinematics_all<'py>(
+        &self,
+        py: Python<'py>,
+        frame: &Bound<'py, PyAny>,
+        target: ArrayIn<'py>,
+        q0: Option<ArrayIn<'py>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        guard(|| {
+            let solver = self.ik_solver(frame, false, 0, None, None, None, None)?;
+            let (poses, stacked) = targets(&target)?;
+            if stacked {
+                return Err(PyValueError::new_err(
+                    "inverse_kinematics_all takes one (4, 4) target; loop over a batch",
+                ));
+            }
+            let start = self.ik_start(q0.as_ref(), None)?;
+            let all = py
+                .detach(|| {
+                    let mut ws = IkWorkspace::new(&solver);
+                    solver.solve_all(&mut ws, &poses[0], &start)
+                })
+                .map_err(call_err)?;
+            let n = self.model.nq();
+            let flat: Vec<f64> = all.iter().flat_map(|s| s.q.iter().copied()).collect();
+            convert::array(py, flat, &[all.len(), n])
+        })
+    }
+}
