@@ -566,7 +566,10 @@ pub struct TorqueProfileArgs {
     /// Sampling step (s).
     #[arg(long, default_value_t = 1e-3)]
     pub dt: f64,
-    /// Refuse profiles with more samples than this (a profile is held in memory).
+    /// Refuse profiles with more samples than this. Without --plot, samples are streamed to
+    /// --output (or to stdout with --format csv) as they are computed, in constant memory;
+    /// with --plot (or for a report alone) they are held, and a profile the machine cannot hold
+    /// is refused up front with the memory it would need.
     #[arg(long, default_value_t = screwdyn::sim::MAX_PROFILE_SAMPLES)]
     pub max_samples: usize,
     /// Write the samples (t, q, v, a, tau, energies) to a .csv or .json file.

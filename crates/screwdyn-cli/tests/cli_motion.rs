@@ -80,6 +80,33 @@ fn time_optimal_output_stays_within_the_limits_by_inverse_dynamics() {
     close(&end, &[1.6, -1.6, 1.8, -1.0, -1.2, 1.0], 1e-12);
     assert!(pick(last, "v").iter().all(|x| x.abs() < 1e-12));
     assert!((last[0] - duration).abs() < 1e-12);
+    // Without speed limits (`inf`) the same path is faster: it is speed-limited almost everywhere.
+    let limited = |vmax: &str| {
+        f(&json(&[
+            "torque-profile",
+            "builtin:ur5",
+            "--trajectory",
+            "time-optimal",
+            "--waypoints",
+            &path,
+            "--vmax",
+            vmax,
+        ])["duration"])
+    };
+    assert!(limited("inf") < 0.9 * limited("3.15"));
+    let free = json(&[
+        "torque-profile",
+        "builtin:ur5",
+        "--trajectory",
+        "time-optimal",
+        "--waypoints",
+        &path,
+        "--amax",
+        "10",
+        "--vmax",
+        "inf",
+    ]);
+    assert!(f(&free["duration"]) <= duration);
 }
 
 #[test]
@@ -131,7 +158,11 @@ fn bad_motion_input_is_one_sentence() {
         &["--waypoints", &good, "--vmax", "0"],
         "velocity limits must be positive",
     );
-    run(&["--waypoints", &good, "--amax", "nan"], "");
+    run(&["--waypoints", &good, "--amax", "nan"], "acceleration limits must be positive (or infinite for none), but joint shoulder_pan_joint has NaN");
+    run(
+        &["--waypoints", &good, "--amax", "1,2"],
+        "--amax has 2 values",
+    );
     // Gravity alone needs more than the shoulder's 150 N·m.
     run(
         &["--waypoints", &good, "--gravity", "0,0,-200"],

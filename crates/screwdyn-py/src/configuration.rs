@@ -51,23 +51,20 @@ impl PyModel {
             Some(n) => Some(count(n)?),
         };
         let rows = count.unwrap_or(1);
-        let mut flat = Vec::with_capacity(rows * nq);
-        let generator = match rng {
-            None => Some(py.import("numpy.random")?.call_method0("default_rng")?),
-            Some(g) if g.hasattr("random")? => Some(g.clone()),
-            Some(_) => None,
-        };
-        if let Some(generator) = generator {
+        // A NumPy generator's uniform numbers mapped onto the ranges, or screwdyn's own from a seed.
+        let from_numpy = |generator: Bound<'py, PyAny>| -> PyResult<Vec<f64>> {
             let u: ArrayIn<'_> = generator.call_method1("random", ((rows, nq),))?.extract()?;
-            for r in convert::contiguous(&u).chunks(nq.max(1)).take(rows) {
-                flat.extend(self.model.configuration_at(r).map_err(call_err)?);
+            let u = convert::contiguous(&u);
+            self.model.configurations_at(&u).map_err(call_err)
+        };
+        let flat = match rng {
+            None => from_numpy(py.import("numpy.random")?.call_method0("default_rng")?)?,
+            Some(g) if g.hasattr("random")? => from_numpy(g.clone())?,
+            Some(seed) => {
+                let mut g = SplitMix64::new(seed_of(seed)?);
+                self.model.random_configurations(&mut g, rows)
             }
-        } else if let Some(seed) = rng {
-            let mut g = SplitMix64::new(seed_of(seed)?);
-            for _ in 0..rows {
-                flat.extend(self.model.random_configuration(&mut g));
-            }
-        }
+        };
         match count {
             None => convert::array(py, flat, &[nq]),
             Some(n) => convert::array(py, flat, &[n, nq]),

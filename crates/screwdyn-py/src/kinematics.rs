@@ -77,8 +77,10 @@ impl PyModel {
 
     /// Geometric Jacobian of a frame, `(6, nq)` angular rows first (`(N, 6, nq)` stacked):
     /// `reference="world"` (the space Jacobian `J^{0,0}`, Pinocchio's WORLD), `"local"` (the body
-    /// Jacobian `J_f^{f,0}`) or `"world-aligned"` (the frame origin's velocity in base axes,
-    /// Pinocchio's LOCAL_WORLD_ALIGNED).
+    /// Jacobian `J_f^{f,0}`, Pinocchio's LOCAL, the Robotics Toolbox's `jacobe`) or
+    /// `"world-aligned"` (the frame origin's velocity in base axes, Pinocchio's
+    /// LOCAL_WORLD_ALIGNED, the Robotics Toolbox's `jacob0`); Pinocchio's names are accepted as
+    /// they are. The frame by name or index.
     #[pyo3(signature = (q, frame, reference = "world", *, threads = None, out = None))]
     fn frame_jacobian<'py>(
         &self,
@@ -134,8 +136,8 @@ impl PyModel {
         })
     }
 
-    /// Twist `(ω, v)` of a frame at `(q, v)` in `reference` (world, local or world-aligned),
-    /// shape `(6,)` or `(N, 6)`.
+    /// Twist `(ω, v)` of a frame at `(q, v)` in `reference` (world, local or world-aligned; or
+    /// Pinocchio's WORLD, LOCAL, LOCAL_WORLD_ALIGNED), shape `(6,)` or `(N, 6)`.
     #[pyo3(signature = (q, v, frame, reference = "world", *, threads = None, out = None))]
     #[allow(clippy::too_many_arguments)]
     fn frame_twist<'py>(
@@ -164,7 +166,8 @@ impl PyModel {
     }
 
     /// Acceleration of a frame at `(q, v, a)`: the derivative of `frame_twist`'s components in
-    /// `reference` (world-aligned: the classical acceleration of the frame origin), `(6,)`.
+    /// `reference` (as in `frame_twist`; world-aligned: the classical acceleration of the frame
+    /// origin), `(6,)`.
     #[pyo3(signature = (q, v, a, frame, reference = "world", *, threads = None, out = None))]
     #[allow(clippy::too_many_arguments)]
     fn frame_acceleration<'py>(
@@ -193,7 +196,7 @@ impl PyModel {
         })
     }
 
-    /// `J̇(q, v) v` of a frame in `reference`: the frame acceleration at zero joint acceleration
+    /// `J̇(q, v) v` of a frame in `reference` (as in `frame_twist`): the frame acceleration at zero joint acceleration
     /// (the drift term of `ẍ = J q̈ + J̇ q̇`), `(6,)`.
     #[pyo3(signature = (q, v, frame, reference = "world", *, threads = None, out = None))]
     #[allow(clippy::too_many_arguments)]

@@ -31,17 +31,6 @@ impl Rng {
     }
 }
 
-fn options() -> IkOptions {
-    let env = |k: &str, d: f64| std::env::var(k).ok().map_or(d, |v| v.parse().unwrap());
-    IkOptions {
-        damping: env("IK_W", 0.1),
-        min_damping: env("IK_LMIN", 1e-9),
-        posture_gain: env("IK_POSTURE", 0.0),
-        max_iterations: env("IK_ITER", 40.0) as usize,
-        ..IkOptions::default()
-    }
-}
-
 fn main() {
     let poses: usize = std::env::args()
         .nth(1)
@@ -55,7 +44,8 @@ fn main() {
         let frame_id = model
             .frame_id(frame)
             .unwrap_or_else(|_| model.body_frame(model.nbodies() - 1).unwrap());
-        let solver = IkSolver::new(&model, &[IkTask::pose(frame_id)], options()).unwrap();
+        let solver =
+            IkSolver::new(&model, &[IkTask::pose(frame_id)], IkOptions::default()).unwrap();
         let mut ws = IkWorkspace::new(&solver);
         let mut kin = Workspace::new(&model);
         let mut rng = Rng(7);
@@ -93,8 +83,6 @@ fn main() {
             assert!(!result.success || confirmed, "a false success on {name}");
             if result.success {
                 verified += 1;
-            } else if std::env::var("IK_SHOW").is_ok() {
-                println!("{:?} {:?}", result, q);
             }
         }
         times.sort_by(f64::total_cmp);

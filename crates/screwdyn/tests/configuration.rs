@@ -147,6 +147,34 @@ fn unit_coordinates_map_onto_the_ranges() {
         .to_string();
     assert_eq!(
         e,
-        "the unit coordinate of joint 5 ('below_one') is 1.2, outside [0, 1]"
+        "the unit coordinate of joint 5 ('below_one') in row 0 is 1.2, outside [0, 1]"
+    );
+}
+
+#[test]
+fn stacked_rows_are_the_single_rows() {
+    let m = chain();
+    let rows = m.random_configurations(&mut SplitMix64::new(9), 3);
+    let mut rng = SplitMix64::new(9);
+    for r in rows.chunks(m.nq()) {
+        assert_eq!(r, &m.random_configuration(&mut rng)[..]);
+    }
+    let u = [0.0, 0.5, 1.0, 0.5, 0.0, 1.0, 0.25];
+    let two: Vec<f64> = u.iter().chain(u.iter()).copied().collect();
+    let q = m.configurations_at(&two).unwrap();
+    let one = m.configuration_at(&u).unwrap();
+    assert_eq!(q[..7], one[..]);
+    assert_eq!(q[7..], one[..]);
+    let e = m.configurations_at(&two[..9]).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "9 unit coordinates do not make rows of 7 (one per joint)"
+    );
+    let mut bad = two.clone();
+    bad[12] = -0.5;
+    let e = m.configurations_at(&bad).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "the unit coordinate of joint 5 ('below_one') in row 1 is -0.5, outside [0, 1]"
     );
 }

@@ -6,7 +6,7 @@ use super::run_files::{
     in_flag_words, joint_series, plot_kind, refuse_onto_inputs, run_file_kind, RunWriter,
 };
 use super::waypoints::read_waypoints;
-use crate::args::{TorqueProfileArgs, TrajectoryArg};
+use crate::args::{Format, TorqueProfileArgs, TrajectoryArg};
 use crate::output::{fmt, resolve, table, Report, Value};
 use crate::plot::{plot_panels, Panel, Series};
 use crate::write::OutputFile;
@@ -40,6 +40,20 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
     let m = load(&a.model, a.gravity.as_deref())?;
     let motion = trajectory(a, &m)?;
     let traj = &motion.trajectory;
+    let format = resolve(a.model.format);
+    // Without a plot nothing needs the samples in memory: they are streamed to --output, or
+    // to stdout with --format csv (and no --output), as they are computed.
+    let to_stdout = a.output.is_none() && format == Format::Csv;
+    if a.plot.is_none() && (a.output.is_some() || to_stdout) {
+        let summary = match (&a.output, output_kind) {
+            (Some(path), Some(kind)) => stream_to_file(a, &m, traj.as_ref(), path, kind)?,
+            _ => return stream_to_stdout(a, &m, traj.as_ref()),
+        };
+        let r = profile_report(a, &m, &summary, &motion);
+        return crate::output::print(&[r], format, false);
+    }
+    // A plot needs every sample: the profile is held, or refused up front with the memory it
+    // would need.
     let p = sim::torque_profile_limited(&m, traj.as_ref(), a.dt, a.max_samples)
         .map_err(in_flag_words)?;
     let rec = &p.samples;
@@ -53,26 +67,101 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
             }
             w.finish()
         })();
-        whole.map_err(|e| match e {
-            screwdyn::Error::Io { message: why, .. } => {
-                CliError::input(format!("cannot write {} ({why})", path.display()))
-            }
-            e => e.into(),
-        })?;
+        whole.map_err(|e| cannot_write(e, path))?;
         file.commit()?;
         crate::write::announce(path);
     }
-    let r = profile_report(a, &m, &p, &motion);
+    let summary = sim::ProfileSummary {
+        samples: rec.len(),
+        peak: p.peak.clone(),
+        peak_time: p.peak_time.clone(),
+        rms: p.rms.clone(),
+        effort_limit: p.effort_limit.clone(),
+        violation_summary: p.violation_summary.clone(),
+    };
+    let r = profile_report(a, &m, &summary, &motion);
     if let Some(path) = &a.plot {
         plot_profile(a, &m, &p, &motion, path)?;
     }
-    crate::output::print(&[r], resolve(a.model.format), false)
+    crate::output::print(&[r], format, false)
+}
+
+/// A write error of the run file as the CLI's sentence naming it.
+fn cannot_write(e: screwdyn::Error, path: &Path) -> CliError {
+    match e {
+        screwdyn::Error::Io { message: why, .. } => {
+            CliError::input(format!("cannot write {} ({why})", path.display()))
+        }
+        e => e.into(),
+    }
+}
+
+/// Streams the profile's samples into `path` (atomically: a temporary file renamed over it
+/// once complete); returns the statistics.
+fn stream_to_file(
+    a: &TorqueProfileArgs,
+    m: &Model,
+    traj: &dyn Trajectory,
+    path: &Path,
+    kind: Format,
+) -> Result<sim::ProfileSummary, CliError> {
+    let file = OutputFile::create(path)?;
+    let mut w = RunWriter::new(kind, Box::new(file.writer()?));
+    let summary =
+        sim::torque_profile_into(m, traj, a.dt, a.max_samples, w.sink()).map_err(|e| match e {
+            screwdyn::Error::Io { .. } => cannot_write(e, path),
+            // A setting's error is worded with its flag (`--dt must be positive …`).
+            e => in_flag_words(e),
+        })?;
+    w.finish().map_err(|e| cannot_write(e, path))?;
+    file.commit()?;
+    crate::write::announce(path);
+    Ok(summary)
+}
+
+/// `--format csv` without `--output`: the samples to stdout as they are computed; a reader
+/// that goes away (`| head`) ends the command quietly.
+fn stream_to_stdout(
+    a: &TorqueProfileArgs,
+    m: &Model,
+    traj: &dyn Trajectory,
+) -> Result<(), CliError> {
+    let mut w = sim::CsvSampleWriter::new(std::io::BufWriter::new(std::io::stdout()));
+    let result =
+        sim::torque_profile_into(m, traj, a.dt, a.max_samples, &mut w).and_then(|_| w.flush());
+    match result {
+        Ok(()) => Ok(()),
+        Err(e) if e.io_kind() == Some(std::io::ErrorKind::BrokenPipe) => Err(CliError::stop()),
+        Err(e) => Err(in_flag_words(e)),
+    }
 }
 
 /// `--name`, required by `--trajectory kind`.
 fn required<'a>(x: &'a Option<String>, name: &str, kind: &str) -> Result<&'a str, CliError> {
     x.as_deref()
         .ok_or_else(|| CliError::input(format!("--{name} is required with --trajectory {kind}")))
+}
+
+/// A time-optimal limit flag: one value for all joints or one per joint, `inf` for none (the
+/// library refuses zero, negative and NaN limits naming the joint).
+fn parse_limit(text: &str, name: &str, m: &Model) -> Result<Vec<f64>, CliError> {
+    let flag = format!("--{name}");
+    let v = text
+        .split(',')
+        .map(|s| {
+            s.trim()
+                .parse::<f64>()
+                .map_err(|_| CliError::input(format!("{flag}: '{}' is not a number", s.trim())))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    match v.len() {
+        1 => Ok(vec![v[0]; m.nq()]),
+        n if n == m.nq() => Ok(v),
+        n => Err(CliError::input(format!(
+            "{flag} has {n} values: give one for all joints or one per joint ({})",
+            m.nq()
+        ))),
+    }
 }
 
 /// Flags that `--trajectory kind` does not use are refused.
@@ -169,10 +258,10 @@ fn trajectory(a: &TorqueProfileArgs, m: &Model) -> Result<Motion, CliError> {
                 .map_err(|e| CliError::input(format!("{}: {e}", file.display())))?;
             let mut limits = TimingLimits::from_model(m);
             if let Some(v) = &a.vmax {
-                limits.velocity = parse_per_joint(v, "vmax", m)?;
+                limits.velocity = parse_limit(v, "vmax", m)?;
             }
             if let Some(v) = &a.amax {
-                limits.acceleration = parse_per_joint(v, "amax", m)?;
+                limits.acceleration = parse_limit(v, "amax", m)?;
             }
             let options = TimeOptimalOptions {
                 grid: a.grid,
@@ -206,11 +295,10 @@ fn trajectory(a: &TorqueProfileArgs, m: &Model) -> Result<Motion, CliError> {
 fn profile_report(
     a: &TorqueProfileArgs,
     m: &Model,
-    p: &sim::TorqueProfile,
+    p: &sim::ProfileSummary,
     motion: &Motion,
 ) -> Report {
     let (duration, what) = (motion.trajectory.duration(), &motion.what);
-    let rec = &p.samples;
     let j = names(m);
     let viol: Vec<(String, Value)> = j
         .iter()
@@ -275,9 +363,8 @@ fn profile_report(
             worst,
         ]);
     }
-    let over: Vec<&str> = p
-        .joints_over_limit()
-        .into_iter()
+    let over: Vec<&str> = (0..j.len())
+        .filter(|&i| p.violation_summary[i].is_some())
         .map(|i| j[i].as_str())
         .collect();
     let verdict = if over.is_empty() {
@@ -290,7 +377,7 @@ fn profile_report(
         a.trajectory.name(),
         m.name(),
         fmt(duration),
-        rec.len(),
+        p.samples,
         a.dt
     ));
     r

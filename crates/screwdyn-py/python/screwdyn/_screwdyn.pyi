@@ -140,7 +140,8 @@ class Model:
     def link_jacobian(self, q: ArrayLike, link: FrameRef, *, threads: Optional[int] = None,
                       out: Optional[FloatArray] = None) -> FloatArray: ...
     def frame_twist(self, q: ArrayLike, v: ArrayLike, frame: FrameRef, reference: str = "world", *,
-                    threads: Optional[int] = None, out: Optional[FloatArray] = None) -> FloatArray: ...
+                    threads: Optional[int] = None, out: Optional[FloatArray] = None) -> FloatArray:
+        """(6,) or (N, 6), (ω, v); reference as in frame_jacobian."""
     def frame_acceleration(self, q: ArrayLike, v: ArrayLike, a: ArrayLike, frame: FrameRef,
                            reference: str = "world", *, threads: Optional[int] = None,
                            out: Optional[FloatArray] = None) -> FloatArray: ...

@@ -126,17 +126,50 @@ impl<T: Real> Model<T> {
     /// ```
     pub fn configuration_at(&self, u: &[T]) -> Result<Vec<T>> {
         self.check_vector(u, "u")?;
-        if let Some(i) = u.iter().position(|&x| !(x >= T::zero() && x <= T::one())) {
+        self.configurations_at(u)
+    }
+
+    /// [`configuration_at`](Self::configuration_at) for stacked rows: `u` holds `N` rows of
+    /// `nq` unit coordinates one after the other; so do the configurations returned.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when `u`'s length is not a multiple of `nq`, or for a value
+    /// outside `[0, 1]` (or NaN), naming its row and joint.
+    ///
+    /// ```
+    /// let m = screwdyn::builtin::planar2();
+    /// let q = m.configurations_at(&[0.5, 0.5, 0.0, 1.0]).unwrap();
+    /// let pi = std::f64::consts::PI;
+    /// assert_eq!(q, vec![0.0, 0.0, -pi, pi]);
+    /// ```
+    pub fn configurations_at(&self, u: &[T]) -> Result<Vec<T>> {
+        let nq = self.nq();
+        if nq == 0 || u.len() % nq != 0 {
+            if u.is_empty() {
+                return Ok(Vec::new());
+            }
             return Err(Error::InvalidArgument(format!(
-                "the unit coordinate of joint {i} ('{}') is {:?}, outside [0, 1]",
-                self.joints[i].name, u[i]
+                "{} unit coordinates do not make rows of {nq} (one per joint)",
+                u.len()
             )));
         }
-        Ok(self
-            .configuration_ranges()
-            .iter()
-            .zip(u)
-            .map(|(&(lo, hi), &x)| lo + x * (hi - lo))
+        if let Some(k) = u.iter().position(|&x| !(x >= T::zero() && x <= T::one())) {
+            return Err(Error::InvalidArgument(format!(
+                "the unit coordinate of joint {} ('{}') in row {} is {:?}, outside [0, 1]",
+                k % nq,
+                self.joints[k % nq].name,
+                k / nq,
+                u[k]
+            )));
+        }
+        let ranges = self.configuration_ranges();
+        // q_i = lo_i + u_i (hi_i − lo_i)
+        Ok(u.iter()
+            .enumerate()
+            .map(|(k, &x)| {
+                let (lo, hi) = ranges[k % nq];
+                lo + x * (hi - lo)
+            })
             .collect())
     }
 
@@ -152,10 +185,32 @@ impl<T: Real> Model<T> {
     /// assert!(q.iter().zip(&ranges).all(|(x, (lo, hi))| lo <= x && x <= hi));
     /// ```
     pub fn random_configuration(&self, rng: &mut SplitMix64) -> Vec<T> {
-        self.configuration_ranges()
-            .iter()
-            .map(|&(lo, hi)| lo + real::<T>(rng.uniform(0.0, 1.0)) * (hi - lo))
-            .collect()
+        self.random_configurations(rng, 1)
+    }
+
+    /// `n` random configurations stacked row after row (`n · nq` values), the rows the same as
+    /// `n` calls of [`random_configuration`](Self::random_configuration).
+    ///
+    /// ```
+    /// use screwdyn::model::SplitMix64;
+    /// let m = screwdyn::builtin::planar2();
+    /// let mut rng = SplitMix64::new(3);
+    /// let rows = m.random_configurations(&mut SplitMix64::new(3), 2);
+    /// assert_eq!(rows[..2], m.random_configuration(&mut rng)[..]);
+    /// assert_eq!(rows[2..], m.random_configuration(&mut rng)[..]);
+    /// ```
+    pub fn random_configurations(&self, rng: &mut SplitMix64, n: usize) -> Vec<T> {
+        let ranges = self.configuration_ranges();
+        let mut q = Vec::with_capacity(n * ranges.len());
+        for _ in 0..n {
+            // q_i = lo_i + u (hi_i − lo_i), u uniform in [0, 1)
+            q.extend(
+                ranges
+                    .iter()
+                    .map(|&(lo, hi)| lo + real::<T>(rng.uniform(0.0, 1.0)) * (hi - lo)),
+            );
+        }
+        q
     }
 }
 

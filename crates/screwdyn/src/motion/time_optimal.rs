@@ -280,11 +280,6 @@ pub fn time_optimal<P: Path>(
     limits.check(model)?;
     check_options(options)?;
     let keep = 1.0 - options.limit_margin;
-    let planned = TimingLimits {
-        velocity: limits.velocity.iter().map(|x| x * keep).collect(),
-        acceleration: limits.acceleration.iter().map(|x| x * keep).collect(),
-        effort: limits.effort.iter().map(|x| x * keep).collect(),
-    };
     let mut dynamics = PathDynamics::new(model, path.nq())?;
     let mut ws = Workspace::new(model);
     let mut constraints = Constraints::default();
@@ -297,7 +292,7 @@ pub fn time_optimal<P: Path>(
             model,
             &path,
             grid,
-            &planned,
+            (limits, keep),
             &mut dynamics,
             &mut constraints,
         )?;
@@ -385,12 +380,12 @@ fn uniform_grid(path: &dyn Path, n: usize) -> Vec<f64> {
         .collect()
 }
 
-/// The timing on a uniform grid of `n` intervals.
+/// The timing on a uniform grid of `n` intervals within `keep` times the limits.
 fn time_on_grid(
     model: &Model,
     path: &dyn Path,
     n: usize,
-    limits: &TimingLimits,
+    limits: (&TimingLimits, f64),
     dynamics: &mut PathDynamics,
     constraints: &mut Constraints,
 ) -> Result<Timing> {
@@ -423,13 +418,14 @@ fn fmt_s(s: f64) -> String {
 }
 
 /// The rows `α u + β x ≤ γ` of every grid point (acceleration and torque, both signs) and the
-/// speed bounds `x ≤ min_j (vmax_j / |q'_j|)²`; refuses points outside the position limits or
-/// where `|c_j(s)| > τmax_j` (the robot could not be held there).
+/// speed bounds `x ≤ min_j (vmax_j / |q'_j|)²`, within `keep` times the limits; refuses points
+/// outside the position limits or where `|c_j(s)| > keep τmax_j` (the robot could not be held
+/// there).
 fn fill_constraints(
     model: &Model,
     path: &dyn Path,
     s: &[f64],
-    limits: &TimingLimits,
+    (limits, keep): (&TimingLimits, f64),
     dynamics: &mut PathDynamics,
     c: &mut Constraints,
 ) -> Result<()> {
@@ -451,21 +447,22 @@ fn fill_constraints(
                     p.q[j]
                 )));
             }
-            let effort = limits.effort[j];
+            let effort = limits.effort[j] * keep;
             if p.c[j].abs() > effort {
                 return Err(Error::InvalidArgument(format!(
-                    "gravity alone needs {:.3} at joint {} at s = {}, more than its effort limit {effort}: the robot cannot be held there",
+                    "gravity alone needs {:.3} at joint {} at s = {}, more than its effort limit {} allows: the robot cannot be held there",
                     p.c[j].abs(),
                     names[j],
-                    fmt_s(si)
+                    fmt_s(si),
+                    limits.effort[j]
                 )));
             }
             // x ≤ (vmax / |q'|)²
             if p.dq[j] != 0.0 {
-                x_max = x_max.min((limits.velocity[j] / p.dq[j]).powi(2));
+                x_max = x_max.min((keep * limits.velocity[j] / p.dq[j]).powi(2));
             }
             // ±(q' u + q'' x) ≤ amax,  ±(a u + b x + c) ≤ τmax
-            let amax = limits.acceleration[j];
+            let amax = keep * limits.acceleration[j];
             c.rows.push([p.dq[j], p.ddq[j], amax]);
             c.rows.push([-p.dq[j], -p.ddq[j], amax]);
             c.rows.push([p.a[j], p.b[j], effort - p.c[j]]);

@@ -34,8 +34,8 @@ pub use integrate::{AccelFn, Integrator, Stepper};
 pub use limit_events::{LimitEvent, LimitEventKind, LimitSide, LimitWatch};
 pub use options::SimOptions;
 pub use profile::{
-    torque_profile, torque_profile_limited, TorqueProfile, Violation, ViolationSummary,
-    MAX_PROFILE_SAMPLES,
+    torque_profile, torque_profile_into, torque_profile_limited, ProfileSummary, TorqueProfile,
+    Violation, ViolationSummary, MAX_PROFILE_SAMPLES,
 };
 pub use record::{
     sample_columns, CsvSampleWriter, JsonSampleWriter, Recording, Sample, SampleSink,

@@ -95,13 +95,72 @@ pub fn torque_profile(
 /// [`torque_profile`] with at most `max_samples` samples.
 ///
 /// # Errors
-/// As [`torque_profile`], with `max_samples` as the bound.
+/// As [`torque_profile`], with `max_samples` as the bound; [`Error::InvalidArgument`] naming
+/// the memory the samples would need when the machine cannot hold them (see
+/// [`Recording::reserve`]).
 pub fn torque_profile_limited(
     model: &Model,
     trajectory: &dyn Trajectory,
     dt: f64,
     max_samples: usize,
 ) -> Result<TorqueProfile> {
+    let wanted = profile_samples(model, trajectory, dt, max_samples)?;
+    let mut rec = Recording::new(
+        model.joint_names().into_iter().map(String::from).collect(),
+        vec![],
+    );
+    rec.reserve(wanted)?;
+    let s = torque_profile_into(model, trajectory, dt, max_samples, &mut rec)?;
+    // Every sample over a limit, from the recorded torques.
+    let mut violations = Vec::new();
+    for (t, tau) in rec.t.iter().zip(&rec.tau) {
+        for (i, x) in tau.iter().enumerate() {
+            if x.abs() > s.effort_limit[i] {
+                violations.push(Violation {
+                    joint: i,
+                    t: *t,
+                    tau: *x,
+                    limit: s.effort_limit[i],
+                });
+            }
+        }
+    }
+    Ok(TorqueProfile {
+        samples: rec,
+        peak: s.peak,
+        peak_time: s.peak_time,
+        rms: s.rms,
+        effort_limit: s.effort_limit,
+        violations,
+        violation_summary: s.violation_summary,
+    })
+}
+
+/// What [`torque_profile_into`] keeps of a profile: the statistics per joint, not the samples.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProfileSummary {
+    /// The number of samples sent to the sink.
+    pub samples: usize,
+    /// `max |τ_i|` per joint.
+    pub peak: Vec<f64>,
+    /// The time of that peak (the first, on ties), per joint.
+    pub peak_time: Vec<f64>,
+    /// `√(mean τ_i²)` per joint.
+    pub rms: Vec<f64>,
+    /// Effort limit per joint (∞ if none).
+    pub effort_limit: Vec<f64>,
+    /// Per joint: the samples over the limit summarised (`None` where the joint stays within).
+    pub violation_summary: Vec<Option<ViolationSummary>>,
+}
+
+/// The number of samples of a profile of `trajectory` every `dt` (end included), checked
+/// against `max_samples`.
+fn profile_samples(
+    model: &Model,
+    trajectory: &dyn Trajectory,
+    dt: f64,
+    max_samples: usize,
+) -> Result<usize> {
     if trajectory.nq() != model.nq() {
         return Err(Error::InvalidArgument(format!(
             "the trajectory has {} joints, the model has {}",
@@ -117,25 +176,50 @@ pub fn torque_profile_limited(
             trajectory.duration()
         )));
     }
-    let steps = wanted as usize - 1;
+    Ok(wanted as usize)
+}
+
+/// The torque profile of [`torque_profile_limited`], each sample sent to `sink` as soon as it
+/// is computed and nothing else kept but the statistics: memory does not depend on the number
+/// of samples, so a profile of any length can be written to a file (or stdout) as it goes.
+/// When it fails part-way (a sink that cannot write), every sample before has reached the
+/// sink.
+///
+/// # Errors
+/// As [`torque_profile`], with `max_samples` as the bound; any error of the sink.
+///
+/// ```
+/// use screwdyn::sim::{torque_profile, torque_profile_into, CsvSampleWriter, Trapezoid};
+/// let m = screwdyn::builtin::planar2();
+/// let traj = Trapezoid::new(&[0.0, 0.0], &[1.0, 0.5], &[1.0, 1.0], &[2.0, 2.0], true).unwrap();
+/// let mut csv = CsvSampleWriter::new(Vec::new());
+/// let s = torque_profile_into(&m, &traj, 0.01, 1000, &mut csv).unwrap();
+/// let text = String::from_utf8(csv.into_inner()).unwrap();
+/// assert_eq!(text.lines().count(), 1 + s.samples);
+/// assert_eq!(s.peak, torque_profile(&m, &traj, 0.01).unwrap().peak);
+/// ```
+pub fn torque_profile_into(
+    model: &Model,
+    trajectory: &dyn Trajectory,
+    dt: f64,
+    max_samples: usize,
+    sink: &mut dyn SampleSink,
+) -> Result<ProfileSummary> {
+    let wanted = profile_samples(model, trajectory, dt, max_samples)?;
+    let steps = wanted - 1;
     let n = model.nq();
     let mut ws = Workspace::new(model);
-    let (mut q, mut v, mut a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let mut rec = Recording::new(
-        model.joint_names().into_iter().map(String::from).collect(),
-        vec![],
-    );
-    rec.reserve(wanted as usize)?;
+    let (mut q, mut v, mut a, mut tau) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let joints: Vec<String> = model.joint_names().into_iter().map(String::from).collect();
+    sink.begin(&joints, &[])?;
     let effort_limit: Vec<f64> = model.joints().iter().map(|j| j.limits.effort).collect();
     let (mut peak, mut peak_time, mut sumsq) = (vec![0.0_f64; n], vec![0.0; n], vec![0.0; n]);
-    let mut violations = Vec::new();
     let mut summary: Vec<Option<ViolationSummary>> = vec![None; n];
     for k in 0..=steps {
         let t = (k as f64 * dt).min(trajectory.duration());
         trajectory.sample(t, &mut q, &mut v, &mut a)?;
-        let tau = inverse_dynamics(model, &mut ws, &q, &v, &a, None)?
-            .as_slice()
-            .to_vec();
+        // τ = M(q) q̈ + C(q, q̇) q̇ + g(q) by RNEA.
+        tau.copy_from_slice(inverse_dynamics(model, &mut ws, &q, &v, &a, None)?.as_slice());
         for i in 0..n {
             let mag = tau[i].abs();
             if mag > peak[i] {
@@ -143,12 +227,6 @@ pub fn torque_profile_limited(
             }
             sumsq[i] += tau[i] * tau[i];
             if mag > effort_limit[i] {
-                violations.push(Violation {
-                    joint: i,
-                    t,
-                    tau: tau[i],
-                    limit: effort_limit[i],
-                });
                 let s = summary[i].get_or_insert(ViolationSummary {
                     count: 0,
                     first_time: t,
@@ -160,7 +238,7 @@ pub fn torque_profile_limited(
         }
         let ke = kinetic_energy(model, &mut ws, &q, &v)?;
         let pe = potential_energy(model, &mut ws, &q)?;
-        rec.push(&Sample {
+        sink.push(&Sample {
             t,
             q: &q,
             v: &v,
@@ -171,14 +249,13 @@ pub fn torque_profile_limited(
             poses: &[],
         })?;
     }
-    let count = (steps + 1) as f64;
-    Ok(TorqueProfile {
-        samples: rec,
+    let count = wanted as f64;
+    Ok(ProfileSummary {
+        samples: wanted,
         peak,
         peak_time,
         rms: sumsq.iter().map(|s| (s / count).sqrt()).collect(),
         effort_limit,
-        violations,
         violation_summary: summary,
     })
 }

@@ -74,8 +74,11 @@ struct Search {
 /// `Δθ = (Jᵀ W² J + λ I)⁻¹ Jᵀ W² e`, `λ = w E + λ_min`, `E = ½ eᵀ W² e`: near the target the
 /// damping vanishes and the step is Gauss–Newton's, quadratically convergent; far from it, or
 /// near a singularity, the damping shortens the step. `IKinBody` is the undamped `Δθ = J_b⁺ V_b`.
-/// For a redundant arm the step carries a secondary objective `d = −k ∇h` in the null space of
-/// the tasks: `Δθ = d + (Jᵀ W² J + λ I)⁻¹ Jᵀ W (W e − W J d)`.
+/// For a redundant arm with a secondary objective ([`IkOptions::posture_gain`],
+/// [`IkOptions::limit_gain`]), once the tasks are met within their tolerances each step also
+/// carries `d = −k ∇h` in the null space of the tasks,
+/// `Δθ = d + (Jᵀ W² J + λ I)⁻¹ Jᵀ W (W e − W J d)`, until `d` falls below `10⁻⁶`; the latest
+/// `q` that meets the tasks is kept.
 ///
 /// **Limits.** After each step every joint is put back within its limits (`θ_j` clamped to
 /// `[lower, upper]`); a continuous joint (no limits) is wrapped to within `π` of its `q0`.
@@ -90,7 +93,9 @@ struct Search {
 /// unbounded translation) by a generator seeded with [`IkOptions::seed`].
 ///
 /// **Result.** The best `q` of all attempts is returned and checked by forward kinematics
-/// (see [`IkResult`]).
+/// (see [`IkResult`]). When no attempt met the tasks, that `q` is first polished by a monotone
+/// descent (a step that raises the error is refused and the damping multiplied by 4, until no
+/// step lowers it), so that the errors reported are those of the nearest pose.
 ///
 /// ```
 /// use screwdyn::kinematics::ik::{IkOptions, IkSolver, IkTask, IkWorkspace};
