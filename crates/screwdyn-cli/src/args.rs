@@ -56,11 +56,11 @@ pub enum Command {
     /// Forward dynamics q̈ = M⁻¹ (τ − C q̇ − g + Σ Jᵀ W_ext).
     #[command(visible_alias = "aba")]
     ForwardDynamics(ForwardDynamicsArgs),
-    /// The seeds' closed form: the stacked A, L, S, 𝔍, J and M, C, g (small robots).
+    /// The stacked closed form: A, L, S, 𝔍, J and M, C, g (small robots).
     ClosedForm(ClosedFormArgs),
-    /// Seed 004's Lagrangian coefficients D_ij, D_ijk, D_i and the effective inertias.
+    /// The Lagrangian coefficients D_ij, D_ijk, D_i and the effective inertias.
     Lagrange(LagrangeArgs),
-    /// The RNEA iterations step by step in the seeds' notation (H, V, V̇ out; W, τ back).
+    /// The RNEA iterations step by step in the notation of docs/notation.md (H, V, V̇ out; W, τ back).
     Explain(ExplainArgs),
     /// Simulates the robot under a controller; writes the run (CSV/JSON) and plots it.
     Simulate(Box<SimulateArgs>),
@@ -74,7 +74,7 @@ pub enum Command {
     /// LaTeX, JSON or code (C, Python, Rust, MATLAB).
     Symbolic(Box<SymbolicArgs>),
     /// Inertia tensor of a shape (box, cylinder, sphere, rod, point) about a point, in turned
-    /// axes (seed 003: parallel-axis theorem).
+    /// axes (the parallel-axis theorem).
     Inertia(InertiaArgs),
     /// Analytical derivatives of inverse and forward dynamics at (q, q̇, q̈): ∂τ/∂q, ∂τ/∂q̇,
     /// ∂q̈/∂q, ∂q̈/∂q̇ and ∂q̈/∂τ = M⁻¹ (forward dynamics at τ = ID(q, q̇, q̈)).
@@ -379,19 +379,19 @@ pub struct ExplainArgs {
     pub a: Option<String>,
     #[command(flatten)]
     pub wrenches: WrenchArgs,
-    /// lie-group (the seeds' twist/wrench trace), or the classic vector Newton–Euler table per
-    /// link: craig (seed 003) or luh-walker-paul (seed 004).
+    /// lie-group (the twist/wrench trace), or the classic vector Newton–Euler table per
+    /// link: craig (Craig, *Introduction to Robotics*) or luh-walker-paul.
     #[arg(long, value_enum, default_value = "lie-group")]
     pub style: ExplainStyle,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ExplainStyle {
-    /// The seeds' Lie-group RNEA: H, V, V̇ out; W, τ back.
+    /// The Lie-group RNEA: H, V, V̇ out; W, τ back.
     LieGroup,
-    /// Craig's iterative Newton–Euler (seed 003): ω, ω̇, v̇, v̇_C, F, N out; f, n, τ in.
+    /// Craig's iterative Newton–Euler (*Introduction to Robotics*): ω, ω̇, v̇, v̇_C, F, N out; f, n, τ in.
     Craig,
-    /// Luh, Walker & Paul's recursive algorithm (seed 004), same quantities.
+    /// Luh, Walker & Paul's recursive algorithm, same quantities.
     LuhWalkerPaul,
 }
 
@@ -615,7 +615,7 @@ pub enum Format {
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ReferenceArg {
-    /// Spatial twist in the base frame (the seeds' J^{0,0}).
+    /// Spatial twist in the base frame (the J^{0,0}).
     World,
     /// Body twist in the frame itself (J^{f,0}).
     Local,
@@ -648,7 +648,7 @@ pub struct BenchArgs {
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SymbolicFormat {
-    /// Unicode text like the lecture notes (θ, θ̇, c₁₂ with a legend).
+    /// Unicode text as written by hand (θ, θ̇, c₁₂ with a legend).
     Text,
     /// LaTeX (an aligned block).
     Latex,
@@ -683,8 +683,8 @@ pub struct SymbolicArgs {
     /// The Jacobian's reference.
     #[arg(long, value_enum, default_value = "local")]
     pub reference: ReferenceArg,
-    /// Which C: seed (seed 000's literal closed form) or christoffel.
-    #[arg(long, default_value = "seed")]
+    /// Which C: closed-form (the stacked closed form's own factorisation) or christoffel.
+    #[arg(long, default_value = "closed-form")]
     pub coriolis_form: String,
     /// Text/LaTeX grouping: inertial (m2 (L1² + …)), config ((m1 + m2) L1² + …) or none.
     #[arg(long, default_value = "inertial")]
@@ -744,13 +744,13 @@ pub struct ClosedFormArgs {
     pub a: Option<String>,
 }
 
-/// `lagrange`: numeric `D_ij`, `D_ijk`, `D_i` at `--q`, or with `--steps` seed 004's symbolic
+/// `lagrange`: numeric `D_ij`, `D_ijk`, `D_i` at `--q`, or with `--steps` the symbolic
 /// steps.
 #[derive(Args, Debug)]
 pub struct LagrangeArgs {
     #[command(flatten)]
     pub qa: QArgs,
-    /// Print seed 004's symbolic steps ∂L/∂θ̇, d/dt(∂L/∂θ̇), ∂L/∂θ and τ instead of numbers.
+    /// Print the symbolic steps ∂L/∂θ̇, d/dt(∂L/∂θ̇), ∂L/∂θ and τ instead of numbers.
     #[arg(long)]
     pub steps: bool,
     /// With --steps: the parameters kept as symbols (as in `symbolic --symbols`).

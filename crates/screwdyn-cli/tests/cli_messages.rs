@@ -232,3 +232,41 @@ fn screwdyn_alone_starts_like_help() {
         assert!(text.contains(&format!("  {command} ")), "{command}: {text}");
     }
 }
+
+#[test]
+fn the_readme_lists_every_command_and_its_examples_name_real_files() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../../");
+    let readme = std::fs::read_to_string(format!("{root}README.md")).unwrap();
+    let help = ok(&["--help"]);
+    let commands: Vec<&str> = help
+        .lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|c| *c != "help")
+        .collect();
+    assert!(commands.len() > 20, "{help}");
+    for c in &commands {
+        assert!(
+            readme.contains(&format!("| [`{c}`](docs/cli.md#")),
+            "the README's command table misses '{c}'"
+        );
+    }
+    // Installing needs the lock file's versions.
+    assert!(readme.contains("cargo install --locked --path crates/screwdyn-cli"));
+    // Every model file a README command line names is in the repository.
+    for line in readme
+        .lines()
+        .filter(|l| l.starts_with("screwdyn ") || l.starts_with("$ screwdyn "))
+    {
+        for word in line.split_whitespace().filter(|w| w.starts_with("models/")) {
+            assert!(
+                std::path::Path::new(&format!("{root}{word}")).exists(),
+                "{word} in: {line}"
+            );
+        }
+    }
+    // The README speaks of equations and references, not of documents the reader lacks.
+    assert!(!readme.to_lowercase().contains("seed 00"));
+}

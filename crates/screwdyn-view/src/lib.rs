@@ -10,7 +10,7 @@
 //! and Collada meshes, see [`visual`] and [`mesh`]); a model without visuals (DH, PoE, TOML,
 //! built-ins) is drawn as a skeleton built from its screw axes (see [`scene`]). Every pose
 //! on the page is computed here, by the library's forward kinematics
-//! `H_i^0 = H_{λ(i)}^0 H_i^{λ(i)}(0) e^{[S_i] q_i}` (seed 000); the page's JavaScript only
+//! `H_i^0 = H_{λ(i)}^0 H_i^{λ(i)}(0) e^{[S_i] q_i}` (Lynch & Park, *Modern Robotics*); the page's JavaScript only
 //! multiplies matrices it is given.
 //!
 //! The page embeds its data as base64 little-endian `float32` arrays. Two caps keep it small:

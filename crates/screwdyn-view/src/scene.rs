@@ -58,7 +58,7 @@ const COM: [f32; 4] = [0.2, 0.7, 0.3, 1.0];
 const STAND_IN: [f32; 4] = [1.0, 0.3, 0.8, 0.6];
 
 /// `r` of joint `i` in body `i`'s frame: the point of the screw axis `S = (ω, v)` nearest the
-/// body origin, `r = ω × v / |ω|²` (seed 001, `v = −ω × r + h ω`); the body origin for a
+/// body origin, `r = ω × v / |ω|²` (Lynch & Park, *Modern Robotics*, `v = −ω × r + h ω`); the body origin for a
 /// prismatic joint.
 ///
 /// ```

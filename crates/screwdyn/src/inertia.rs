@@ -1,14 +1,14 @@
 //! Inertia tensors of common shapes, the parallel-axis theorem both ways, rotation and
-//! combination of inertias (seed 003, "Mass Distribution"). The physical-consistency check of
+//! combination of inertias (Craig, *Introduction to Robotics*). The physical-consistency check of
 //! an inertia is [`SpatialInertia::check_physical`].
 //!
 //! Tensors are 3×3 rotational inertias `ᴬI = [Ixx −Ixy −Ixz; −Ixy Iyy −Iyz; −Ixz −Iyz Izz]`
-//! (seed 003's sign convention: products of inertia enter negated), in kg·m².
+//! (the sign convention: products of inertia enter negated), in kg·m².
 //!
 //! ```
 //! use nalgebra::Vector3;
 //! use screwdyn::inertia;
-//! // Seed 003: a box of mass m and sides w (x), l (y), h (z) about its corner …
+//! // Craig, *Introduction to Robotics*: a box of mass m and sides w (x), l (y), h (z) about its corner …
 //! let (m, w, l, h) = (2.0, 0.3, 0.2, 0.1);
 //! let corner = inertia::box_about_corner(m, w, l, h).unwrap();
 //! // … and about its centre of mass, by the parallel-axis theorem backwards.
@@ -33,7 +33,7 @@ fn check<T: Real>(what: &str, values: &[(&str, T)]) -> Result<()> {
 }
 
 /// A solid box of mass `m` and sides `w` (along x), `l` (y), `h` (z), about its centre of mass:
-/// `diag(m(l² + h²)/12, m(w² + h²)/12, m(w² + l²)/12)` (seed 003).
+/// `diag(m(l² + h²)/12, m(w² + h²)/12, m(w² + l²)/12)` (Craig, *Introduction to Robotics*).
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] when a dimension or the mass is negative or not finite.
@@ -51,7 +51,7 @@ pub fn cuboid<T: Real>(m: T, w: T, l: T, h: T) -> Result<Matrix3<T>> {
 }
 
 /// The same box about the corner at the origin, the body filling `[0,w]×[0,l]×[0,h]`
-/// (seed 003's worked example): `Ixx = m(l² + h²)/3`, `Ixy = m w l / 4` (entered negated), ….
+/// (the worked example): `Ixx = m(l² + h²)/3`, `Ixy = m w l / 4` (entered negated), ….
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] when a dimension or the mass is negative or not finite.
@@ -81,7 +81,7 @@ pub fn box_about_corner<T: Real>(m: T, w: T, l: T, h: T) -> Result<Matrix3<T>> {
 }
 
 /// A solid cylinder of mass `m`, radius `r` and height `h`, axis along z, about its centre of
-/// mass: `Ixx = Iyy = m(3r² + h²)/12`, `Izz = m r²/2` (seed 003, tutorial question 1).
+/// mass: `Ixx = Iyy = m(3r² + h²)/12`, `Izz = m r²/2` (Craig, *Introduction to Robotics*, tutorial question 1).
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] when a dimension or the mass is negative or not finite.
@@ -148,7 +148,7 @@ pub fn thin_rod<T: Real>(m: T, length: T) -> Result<Matrix3<T>> {
     Ok(Matrix3::from_diagonal(&Vector3::new(a, a, T::zero())))
 }
 
-/// Parallel-axis theorem (seed 003): `ᴬI = ᶜI + m(P_Cᵀ P_C 1 − P_C P_Cᵀ)`, the inertia about a
+/// Parallel-axis theorem (Craig, *Introduction to Robotics*): `ᴬI = ᶜI + m(P_Cᵀ P_C 1 − P_C P_Cᵀ)`, the inertia about a
 /// frame `{A}` in which the centre of mass sits at `p_c` (axes parallel to the CoM frame's).
 ///
 /// ```
@@ -162,7 +162,7 @@ pub fn parallel_axis<T: Real>(i_com: &Matrix3<T>, m: T, p_c: &Vector3<T>) -> Mat
     i_com + parallel_axis_term(m, p_c)
 }
 
-/// The parallel-axis theorem backwards (seed 003): `ᶜI = ᴬI − m(P_Cᵀ P_C 1 − P_C P_Cᵀ)`.
+/// The parallel-axis theorem backwards (Craig, *Introduction to Robotics*): `ᶜI = ᴬI − m(P_Cᵀ P_C 1 − P_C P_Cᵀ)`.
 pub fn parallel_axis_to_com<T: Real>(i_a: &Matrix3<T>, m: T, p_c: &Vector3<T>) -> Matrix3<T> {
     i_a - parallel_axis_term(m, p_c)
 }
@@ -310,12 +310,12 @@ impl Shape {
     /// The inertia about a point and in turned axes: the output frame has its origin at
     /// `about` (in the shape's frame, whose origin is the centre of mass) and axes
     /// `R = rotation` relative to the shape's, so `I = Rᵀ (ᶜI + m(pᵀp 1 − p pᵀ)) R` with `p = −about`
-    /// the centre of mass seen from the new origin (seed 003's parallel-axis theorem).
+    /// the centre of mass seen from the new origin (the parallel-axis theorem).
     ///
     /// ```
     /// use nalgebra::{Matrix3, Vector3};
     /// use screwdyn::inertia::{box_about_corner, Shape};
-    /// // Seed 003: the box about its corner.
+    /// // Craig, *Introduction to Robotics*: the box about its corner.
     /// let b = Shape::Box { w: 1.0, l: 2.0, h: 3.0 };
     /// let i = b.inertia_about(12.0, &Vector3::new(-0.5, -1.0, -1.5), &Matrix3::identity()).unwrap();
     /// assert!((i - box_about_corner(12.0, 1.0, 2.0, 3.0).unwrap()).amax() < 1e-12);

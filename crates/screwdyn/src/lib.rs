@@ -1,7 +1,8 @@
 //! # screwdyn
 //!
 //! Kinematics, dynamics and simulation of robot manipulators in the screw-theory / Lie-group
-//! formulation of the lecture notes the project grew from (seeds 000–004): twists and wrenches
+//! formulation of Lynch & Park's *Modern Robotics* and Featherstone's *Rigid Body Dynamics
+//! Algorithms*: twists and wrenches
 //! angular first, `Ad` and `ad`, product of exponentials, the recursive Newton–Euler algorithm
 //! and the closed-form `M(θ) = Sᵀ Lᵀ 𝔍 L S`.
 //!

@@ -12,7 +12,7 @@ use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3};
 /// quantity it holds after the algorithm that writes it (results such as `tau` or
 /// `mass_matrix`, and the intermediate quantities of ABA, CRBA and the Coriolis matrix).
 ///
-/// Field names follow the seeds' notation: `pose_in_parent[i] = H_i^{λ(i)}(q)`,
+/// Field names follow the notation of docs/notation.md: `pose_in_parent[i] = H_i^{λ(i)}(q)`,
 /// `pose_in_world[i] = H_i^0(q)`, `twist[i] = V_i^{i,0}`, `twist_dot[i] = V̇_i^{i,0}`,
 /// `wrench[i] = W_{λ(i)}^{i,i}`.
 ///
@@ -75,7 +75,7 @@ pub struct Workspace<T: Real = f64> {
     pub articulated_joint_force: DVector<T>,
     /// Forward dynamics by CRBA: the Cholesky factor of `M` (lower triangle).
     pub cholesky: DMatrix<T>,
-    /// Forward dynamics: the bias `b = C q̇ + g − Σ Jᵀ W_ext` (seed 004 §6.4).
+    /// Forward dynamics: the bias `b = C q̇ + g − Σ Jᵀ W_ext`.
     pub bias: DVector<T>,
 
     /// Coriolis matrix: the time derivative `ṡ_j = ad_{V_j^{0,0}} s_j` of each joint's screw in

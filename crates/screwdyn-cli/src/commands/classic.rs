@@ -1,5 +1,5 @@
 //! `explain --style craig|luh-walker-paul`: the classic vector Newton–Euler table per link
-//! (seeds 003/004), computed by `screwdyn::dynamics::classic_newton_euler`.
+//! (Craig, *Introduction to Robotics*), computed by `screwdyn::dynamics::classic_newton_euler`.
 
 use super::inputs::{load, names};
 use super::states::run_states;
@@ -31,19 +31,19 @@ pub fn explain_classic(a: &ExplainArgs) -> Result<(), CliError> {
     if !a.wrenches.wrench.is_empty() || !a.wrenches.tip_wrench.is_empty() {
         return Err(CliError::input(
             "--wrench and --tip-wrench work with the lie-group style only (the classic table \
-             starts from f = n = 0 beyond the last link, as seeds 003/004 do)",
+             starts from f = n = 0 beyond the last link, as Craig's *Introduction to Robotics* does)",
         ));
     }
     let m = load(&a.common.model, a.common.gravity.as_deref())?;
     let j = names(&m);
     let (title, vc) = match a.style {
         ExplainStyle::LuhWalkerPaul => (
-            "Luh–Walker–Paul recursive Newton–Euler (seed 004), each link's vectors referred to \
+            "Luh–Walker–Paul recursive Newton–Euler, each link's vectors referred to \
              its own coordinates",
             "v̇_C (ā)",
         ),
         _ => (
-            "Craig's iterative Newton–Euler (seed 003): outward ω, ω̇, v̇, v̇_C, F, N; inward f, n, τ; \
+            "Craig's iterative Newton–Euler (*Introduction to Robotics*): outward ω, ω̇, v̇, v̇_C, F, N; inward f, n, τ; \
              vectors in the link frames",
             "v̇_C",
         ),

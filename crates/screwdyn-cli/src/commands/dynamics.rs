@@ -1,5 +1,5 @@
-//! Inverse and forward dynamics, the matrices of the equations of motion, energies, the seeds'
-//! closed form and seed 004's Lagrangian coefficients.
+//! Inverse and forward dynamics, the matrices of the equations of motion, energies, the stacked
+//! closed form and the Lagrangian coefficients.
 
 use super::inputs::{external_wrenches, load, names};
 use super::states::run_states;
@@ -149,7 +149,7 @@ fn stacked_labels(m: &Model) -> Labels {
         .collect()
 }
 
-/// `closed-form`: the seeds' `A`, `L`, `S`, `𝔍`, `J`, `M`, `C`, `g` at one state.
+/// `closed-form`: the `A`, `L`, `S`, `𝔍`, `J`, `M`, `C`, `g` at one state.
 pub fn closed_form(args: &ClosedFormArgs) -> Result<(), CliError> {
     let a = &args.qv;
     let m = load(&a.common.model, a.common.gravity.as_deref())?;
@@ -184,7 +184,7 @@ pub fn closed_form(args: &ClosedFormArgs) -> Result<(), CliError> {
             .add("W", stacked(&w))
             .add("tau", Value::joints(&j, tau.as_slice()));
         let mut t = String::from(
-            "The seeds' closed form (seeds 000/001): V = L S θ̇, J = L S,\n\
+            "The stacked closed form (Lynch & Park, *Modern Robotics*): V = L S θ̇, J = L S,\n\
              M = Sᵀ Lᵀ 𝔍 L S, C = Sᵀ Lᵀ [−𝔍 L ad_{Sθ̇} A − ad_{LSθ̇}ᵀ 𝔍] L S, g = Sᵀ Lᵀ 𝔍 L V̇_base.\n\n",
         );
         for (key, title) in [
@@ -194,7 +194,10 @@ pub fn closed_form(args: &ClosedFormArgs) -> Result<(), CliError> {
             ("inertia", "𝔍 = blkdiag(𝔍^{i,i})"),
             ("J", "J = L S"),
             ("mass_matrix", "M(θ)"),
-            ("coriolis_matrix", "C(θ, θ̇) (the seeds' literal form)"),
+            (
+                "coriolis_matrix",
+                "C(θ, θ̇) (the closed form's own factorisation)",
+            ),
             ("gravity_torque", "g(θ)"),
             ("ad_S_qdot", "ad_{Sθ̇} = blkdiag(ad_{S_i θ̇_i})"),
             ("V", "V = L S θ̇ (stacked body twists)"),
@@ -230,7 +233,7 @@ pub fn closed_form(args: &ClosedFormArgs) -> Result<(), CliError> {
     })
 }
 
-/// `lagrange`: seed 004's `D_ij`, `D_ijk`, `D_i` and the effective inertias.
+/// `lagrange`: the `D_ij`, `D_ijk`, `D_i` and the effective inertias.
 pub fn lagrange(args: &LagrangeArgs) -> Result<(), CliError> {
     if args.steps {
         return lagrange_steps(args);
@@ -265,7 +268,7 @@ pub fn lagrange(args: &LagrangeArgs) -> Result<(), CliError> {
     })
 }
 
-/// `lagrange --steps`: seed 004's symbolic Euler–Lagrange steps (text, or ASCII in JSON).
+/// `lagrange --steps`: the symbolic Euler–Lagrange steps (text, or ASCII in JSON).
 fn lagrange_steps(args: &LagrangeArgs) -> Result<(), CliError> {
     use screwdyn::symbolic::{lagrange_steps, Collect, Options, Style};
     let a = &args.qa;

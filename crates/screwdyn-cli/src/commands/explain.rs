@@ -1,4 +1,4 @@
-//! `explain`: the recursive Newton–Euler iterations of seeds 000/002, step by step
+//! `explain`: the recursive Newton–Euler iterations of Lynch & Park's *Modern Robotics*, step by step
 //! ([`screwdyn::dynamics::rnea_trace`]), printed so that a student can check a homework line by
 //! line:
 //!
@@ -8,7 +8,7 @@
 //!   with `V_0 = 0` and `V̇_0 = (0, −g)` (gravity as a base acceleration);
 //! - backward, `i = n … 1`: `W_{λ(i)}^{i,i} = 𝔍^{i,i} V̇_i − ad_{V_i}ᵀ(𝔍^{i,i} V_i)
 //!   − W_ext^{i,i} + Σ_children Ad_{H_i^c}ᵀ W_i^{c,c}`, `τ_i = (S_i^{i,λ(i)})ᵀ W_{λ(i)}^{i,i}`
-//!   (seed 000's external wrench on link `i`, from `--wrench` and `--tip-wrench`).
+//!   (the external wrench on link `i`, from `--wrench` and `--tip-wrench`).
 
 use super::inputs::{external_wrenches, load, names};
 use super::kinematics::TWIST_ROWS;
@@ -38,14 +38,14 @@ fn pose_lines(h: &Se3, indent: &str) -> String {
         .collect()
 }
 
-/// The narrative of a [`RneaTrace`] in the seeds' notation (1-based body indices, the base is
+/// The narrative of a [`RneaTrace`] in the notation of docs/notation.md (1-based body indices, the base is
 /// 0).
 pub fn narrative(m: &Model, it: &RneaTrace) -> String {
     let idx = |i: usize| i + 1;
     let par = |i: usize| m.parents()[i].map_or(0, |p| p + 1);
     let mut t = String::new();
     t.push_str(
-        "Recursive Newton–Euler algorithm (seeds 000/002), twists (ω | v), wrenches (m | f).\n",
+        "Recursive Newton–Euler algorithm (Lynch & Park, *Modern Robotics*), twists (ω | v), wrenches (m | f).\n",
     );
     t.push_str(&format!(
         "Base: V_0^{{0,0}} = 0, V̇_0^{{0,0}} = (0, −g) = {}  (gravity as a base acceleration)\n\n",

@@ -1,4 +1,4 @@
-//! `inertia`: the inertia tensor of a shape about a point, in turned axes (seed 003's box about
+//! `inertia`: the inertia tensor of a shape about a point, in turned axes (the box about
 //! its corner, the cylinder about its end). The formulas are the library's
 //! [`screwdyn::inertia::Shape`].
 

@@ -22,7 +22,7 @@ use crate::model::Model;
 /// 2. backward: `U_i = 𝔍ᴬ_i s_i`, `D_i = s_iᵀ U_i + I_a,i` (armature), `u_i = τ_i − s_iᵀ pᴬ_i`; the parent
 ///    receives `𝔍ᴬ_i − U_i U_iᵀ / D_i` and `pᴬ_i + 𝔍ᴬ_i c_i + (U_i / D_i)(u_i − U_iᵀ c_i)`;
 /// 3. forward: `V̇'_i = V̇_λ + c_i`, `q̈_i = u_i / D_i − (U_i / D_i)ᵀ V̇'_i`,
-///    `V̇_i = V̇'_i + s_i q̈_i`, with `V̇_base = (0, −g)` (seed 000).
+///    `V̇_i = V̇'_i + s_i q̈_i`, with `V̇_base = (0, −g)` (Lynch & Park, *Modern Robotics*).
 ///
 /// [`dynamics::aba`]: crate::dynamics::aba
 #[inline(always)]

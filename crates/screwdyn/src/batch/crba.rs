@@ -16,7 +16,7 @@ use crate::model::Model;
 /// Forward: kinematics `H_i^0 = H_λ^0 H_i^λ(q_i)`, base-frame screws `s_i = Ad_{H_i^0} S_i`
 /// and body inertias `Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i}`. Backward, from the leaves: the composite
 /// `𝔍ᶜ_i` (its body's inertia plus its children's composites) is whole when body `i` is
-/// reached, so `M_ki = s_kᵀ 𝔍ᶜ_i s_i` for every `k` supporting `i` (seed 000's
+/// reached, so `M_ki = s_kᵀ 𝔍ᶜ_i s_i` for every `k` supporting `i` (Lynch & Park, *Modern Robotics*
 /// `M = Sᵀ Lᵀ 𝔍 L S`), plus the armature `I_a,i` on the diagonal, then `𝔍ᶜ_i` is added to
 /// its parent's.
 #[inline(always)]

@@ -1,4 +1,4 @@
-//! A joint's screw for the batch kernels: `H_i^{λ(i)}(q) = H_i^{λ(i)}(0) e^{[S]q}` (seed 000,
+//! A joint's screw for the batch kernels: `H_i^{λ(i)}(q) = H_i^{λ(i)}(0) e^{[S]q}` (Lynch & Park, *Modern Robotics*,
 //! forward iterations) and the products with `S` the algorithms need, on lanes.
 //!
 //! Two shapes: the joints of most arms, which turn about a coordinate axis of their frame
@@ -6,7 +6,7 @@
 //! rotation, one entry of `S`), and every other screw, whose pose is written once, when the
 //! batch workspace is made, as `R(q) = R₀ + sin(|ω|q) R₁ + cos(|ω|q) R₂` and
 //! `p(q) = p₀ + q p₁ + sin(|ω|q) p₂ + cos(|ω|q) p₃` (Rodrigues' formula and the screw's
-//! translation `(1 q + (1 − cos)[ω]/|ω|² + (|ω|q − sin)[ω]²/|ω|³) v` of seed 001, multiplied
+//! translation `(1 q + (1 − cos)[ω]/|ω|² + (|ω|q − sin)[ω]²/|ω|³) v` of Lynch & Park's *Modern Robotics*, multiplied
 //! out with the home pose).
 
 use super::lanes::Lanes;

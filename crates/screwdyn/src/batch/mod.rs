@@ -81,7 +81,7 @@ use crate::model::Model;
 use driver::{run, Algorithm};
 
 /// Inverse dynamics `τ = M(q) q̈ + C(q, q̇) q̇ + g(q)` of every state by the recursive
-/// Newton–Euler algorithm (as [`dynamics::rnea`](crate::dynamics::rnea), seeds 000–002):
+/// Newton–Euler algorithm (as [`dynamics::rnea`](crate::dynamics::rnea), Lynch & Park, *Modern Robotics*):
 /// `tau` is `(N, nq)`, row-major.
 ///
 /// # Errors
@@ -96,7 +96,7 @@ use driver::{run, Algorithm};
 /// let zero = [0.0; 2];
 /// batch::rnea(&m, &mut ws, Rows::Stacked(&[0.0; 4]), Rows::Same(&zero), Rows::Same(&zero), &mut tau)
 ///     .unwrap();
-/// // Seed 003: g = [3g, g] at q = 0, for both states.
+/// // Craig, *Introduction to Robotics*: g = [3g, g] at q = 0, for both states.
 /// assert!((tau[2] - 3.0 * 9.81).abs() < 1e-12 && (tau[3] - 9.81).abs() < 1e-12);
 /// ```
 pub fn rnea(
@@ -148,7 +148,7 @@ pub fn gravity_torque(
 /// let mut h = [0.0; 2];
 /// batch::nonlinear_effects(&m, &mut ws, Rows::Same(&[0.0, 0.4]), Rows::Same(&[1.5, 0.0]), &mut h)
 ///     .unwrap();
-/// // Seed 003: the centrifugal torque at joint 2 is m2 L1 L2 s2 θ̇1².
+/// // Craig, *Introduction to Robotics*: the centrifugal torque at joint 2 is m2 L1 L2 s2 θ̇1².
 /// assert!((h[1] - 0.4_f64.sin() * 1.5 * 1.5).abs() < 1e-12);
 /// ```
 pub fn nonlinear_effects(
@@ -175,7 +175,7 @@ pub fn nonlinear_effects(
 /// let mut ws = BatchWorkspace::new(&m);
 /// let mut mm = [0.0; 4];
 /// batch::crba(&m, &mut ws, Rows::Same(&[0.0, 0.0]), &mut mm).unwrap();
-/// // Seed 004: D11 = 5, D12 = D21 = 2, D22 = 1 at θ2 = 0 (all masses and lengths 1).
+/// // By hand: D11 = 5, D12 = D21 = 2, D22 = 1 at θ2 = 0 (all masses and lengths 1).
 /// assert!((mm[0] - 5.0).abs() < 1e-12 && (mm[1] - 2.0).abs() < 1e-12 && (mm[3] - 1.0).abs() < 1e-12);
 /// ```
 pub fn crba(

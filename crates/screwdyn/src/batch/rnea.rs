@@ -11,10 +11,10 @@ use crate::model::Model;
 
 /// `τ = M(q) q̈ + C(q, q̇) q̇ + g(q)` for the states in `b.q`, `b.v`, `b.a`; writes `b.out[..n]`.
 ///
-/// Forward pass (seed 002): `V_i = Ad_{H_λ^i} V_λ + S_i q̇_i`,
+/// Forward pass (Lynch & Park, *Modern Robotics*): `V_i = Ad_{H_λ^i} V_λ + S_i q̇_i`,
 /// `V̇_i = Ad_{H_λ^i} V̇_λ − ad_{S_i q̇_i}(Ad_{H_λ^i} V_λ) + S_i q̈_i`, and
-/// `W_i = 𝔍_i V̇_i − ad_{V_i}ᵀ 𝔍_i V_i`, with gravity as the base acceleration `(0, −g)` (seed 000).
-/// Backward pass (seed 000): `W_λ += Ad_{H_λ^i}ᵀ W_i`, `τ_i = S_iᵀ W_i + I_a,i q̈_i` (armature).
+/// `W_i = 𝔍_i V̇_i − ad_{V_i}ᵀ 𝔍_i V_i`, with gravity as the base acceleration `(0, −g)` (Lynch & Park, *Modern Robotics*).
+/// Backward pass (Lynch & Park, *Modern Robotics*): `W_λ += Ad_{H_λ^i}ᵀ W_i`, `τ_i = S_iᵀ W_i + I_a,i q̈_i` (armature).
 #[inline(always)]
 pub(super) fn rnea<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut Buffers<L>) {
     let n = model.nbodies();

@@ -1,4 +1,4 @@
-//! The seeds' spatial operators on [`Lanes`]: poses, twists and wrenches of `L` states at once,
+//! The spatial operators on [`Lanes`]: poses, twists and wrenches of `L` states at once,
 //! each operation the lane-wise copy of its scalar counterpart in [`crate::spatial`].
 //!
 //! Vectors are arrays of lanes (`V3 = [Lanes; 3]`, `V6 = [Lanes; 6]`, angular part first);

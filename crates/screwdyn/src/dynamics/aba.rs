@@ -1,4 +1,4 @@
-//! Forward dynamics by Featherstone's articulated-body algorithm (O(n)), in the seeds' notation.
+//! Forward dynamics by Featherstone's articulated-body algorithm (O(n)), in the notation of docs/notation.md.
 
 use super::cholesky::singular_threshold;
 use super::inputs::checked_poses;
@@ -12,7 +12,7 @@ use crate::workspace::Workspace;
 use nalgebra::DVector;
 
 /// Forward dynamics `q̈ = M⁻¹(τ − C q̇ − g)` by the articulated-body algorithm (Featherstone),
-/// written with the seeds' operators and every spatial quantity in the base frame {0}
+/// written with the operators and every spatial quantity in the base frame {0}
 /// (`s_i = Ad_{H_i^0} S_i`, `𝔍_i^0 = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i}`, twists `V_i^0 = Ad_{H_i^0} V_i`),
 /// so that nothing is carried from child to parent frame:
 ///
@@ -22,7 +22,7 @@ use nalgebra::DVector;
 ///    [`Joint::armature`](crate::model::Joint::armature)), `u_i = τ_i − s_iᵀ pᴬ_i`; the parent
 ///    receives `𝔍ᴬ_i − U_i U_iᵀ / D_i` and `pᴬ_i + 𝔍ᵃ_i c_i + U_i u_i / D_i`;
 /// 3. forward: `V̇'_i = V̇_λ + c_i`, `q̈_i = u_i / D_i − (U_i / D_i)ᵀ V̇'_i`,
-///    `V̇_i = V̇'_i + s_i q̈_i`, with `V̇_base = (0, −g)` (seed 000).
+///    `V̇_i = V̇'_i + s_i q̈_i`, with `V̇_base = (0, −g)` (Lynch & Park, *Modern Robotics*).
 ///
 /// Writes `ws.qdd`, and `ws.screw_in_world`, `ws.twist_in_world`, `ws.twist_dot_in_world`
 /// (`V̇_i^0`, the base-frame spatial acceleration) and the articulated quantities, all in the

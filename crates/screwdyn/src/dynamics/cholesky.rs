@@ -1,6 +1,6 @@
 //! Cholesky factorisation `M = L Lᵀ` of the symmetric positive-definite mass matrix, in place
 //! and allocation-free, and the two triangular solves: forward dynamics by CRBA and Walker–Orin
-//! (seed 004 §6.4, "solve `H q̈ = τ − b`") and `M⁻¹`.
+//! and `M⁻¹`.
 
 use crate::error::Error;
 use crate::model::Model;

@@ -1,10 +1,10 @@
-//! The classic vector Newton–Euler recursion (Craig's "iterative Newton–Euler" of seed 003, Luh,
-//! Walker & Paul's recursive algorithm of seed 004): angular velocity `ω`, angular acceleration
+//! The classic vector Newton–Euler recursion (Craig's "iterative Newton–Euler" of *Introduction to Robotics*, Luh,
+//! Walker & Paul's recursive algorithm): angular velocity `ω`, angular acceleration
 //! `ω̇`, the classical linear acceleration `v̇` of the frame origin and `v̇_C` of the centre of
 //! mass, Newton's `F = m v̇_C` and Euler's `N = ᶜI ω̇ + ω × ᶜI ω`, then the inward forces `f`,
 //! moments `n` and the joint torque `τ` — every vector in the link's own frame.
 //!
-//! How it differs from the Lie-group recursion of seeds 000–002 ([`rnea`](super::rnea)): the
+//! How it differs from the Lie-group recursion of Lynch & Park's *Modern Robotics* ([`rnea`](super::rnea)): the
 //! twist derivative `V̇ = (ω̇, v̇_body)` is the derivative of the *body* twist, whose linear part
 //! is not the acceleration of any material point: the classical acceleration of the frame origin
 //! is `v̇ = v̇_body + ω × v` (`v` the origin's velocity in the frame). The forces agree:
@@ -41,7 +41,7 @@ pub struct ClassicLink {
     pub tau: f64,
 }
 
-/// The classic vector Newton–Euler recursion (seed 003's outward and inward iterations, seed
+/// The classic vector Newton–Euler recursion (the outward and inward iterations, seed
 /// 004's Luh–Walker–Paul algorithm) on any model, in the links' frames. For joint `i` with screw
 /// axis `S_i = (ŝ, v_s)` in frame `i` (`ŝ = ẑ`, `v_s = 0` for Craig's revolute joint; `ŝ = 0`,
 /// `v_s = ẑ` for a prismatic one), `R = R_i^{λ}`, `p` the origin of `i` in `λ`:
@@ -58,10 +58,10 @@ pub struct ClassicLink {
 ///
 /// ```
 /// use screwdyn::{builtin, dynamics::classic_newton_euler};
-/// // Seed 003's two-link arm at rest, horizontal: τ = [(m1 + m2) g L1 + m2 g L2, m2 g L2].
+/// // The two-link arm at rest, horizontal: τ = [(m1 + m2) g L1 + m2 g L2, m2 g L2].
 /// let t = classic_newton_euler(&builtin::planar2(), &[0.0, 0.0], &[0.0, 0.0], &[0.0, 0.0]).unwrap();
 /// assert!((t[0].tau - 3.0 * 9.81).abs() < 1e-12 && (t[1].tau - 9.81).abs() < 1e-12);
-/// // ¹v̇_C1 = (g s1, g c1, 0) at θ1 = 0 (seed 003).
+/// // ¹v̇_C1 = (g s1, g c1, 0) at θ1 = 0 (Craig, *Introduction to Robotics*).
 /// assert!((t[0].v_dot_com.y - 9.81).abs() < 1e-12);
 /// ```
 ///

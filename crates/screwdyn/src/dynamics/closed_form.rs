@@ -1,4 +1,4 @@
-//! The seeds' closed form of the manipulator dynamics (seeds 000/001), built from stacked block
+//! The stacked closed form of the manipulator dynamics (Lynch & Park, *Modern Robotics*), built from stacked block
 //! matrices exactly as the lecture writes them. A teaching and reference implementation: it
 //! allocates and costs O(n³); the recursive algorithms are tested against it.
 
@@ -11,7 +11,7 @@ use crate::scalar::Real;
 use crate::spatial::{ad_matrix, hat, Se3, Twist};
 use nalgebra::{DMatrix, DVector, Matrix6};
 
-/// Every matrix of the seeds' closed form at one state `(θ, θ̇)`; see [`closed_form`].
+/// Every matrix of the stacked closed form at one state `(θ, θ̇)`; see [`closed_form`].
 ///
 /// Blocks are 6×6 and indexed by body: block `(i, j)` occupies rows `6i..6i+6` and columns
 /// `6j..6j+6`.
@@ -31,19 +31,19 @@ pub struct ClosedForm<T: Real = f64> {
     pub v: DVector<T>,
     /// `ad_V = blkdiag(ad_{V_i})`.
     pub ad_v: DMatrix<T>,
-    /// `J = L S`: block row `i` is the body Jacobian `J_i^{i,0}` of link `i` (seed 000).
+    /// `J = L S`: block row `i` is the body Jacobian `J_i^{i,0}` of link `i` (Lynch & Park, *Modern Robotics*).
     pub j: DMatrix<T>,
-    /// `J̇ = −L ad_{Sθ̇} A J` (the derivative of `J` along the motion; seed 001's `L Ȧ J`).
+    /// `J̇ = −L ad_{Sθ̇} A J` (the derivative of `J` along the motion; the `L Ȧ J`).
     pub j_dot: DMatrix<T>,
     /// `V̇_base`: block `i` is `Ad_{H_0^i} V̇_g` for the bodies attached to the base, with
-    /// `V̇_g = (0, −g⁰)` (seed 000, gravity by the equivalence principle).
+    /// `V̇_g = (0, −g⁰)` (Lynch & Park, *Modern Robotics*, gravity by the equivalence principle).
     pub vdot_base: DVector<T>,
     /// `I_a = diag(I_a,1, …, I_a,n)`: the joints' armatures (rotor inertias reflected to the
     /// joints, [`Joint::armature`](crate::model::Joint::armature)).
     pub armature: DMatrix<T>,
     /// `M = Jᵀ 𝔍 J + I_a = Sᵀ Lᵀ 𝔍 L S + I_a`.
     pub m: DMatrix<T>,
-    /// The seeds' `C = Sᵀ Lᵀ [−𝔍 L ad_{Sθ̇} A − ad_{L S θ̇}ᵀ 𝔍] L S`, literally.
+    /// The `C = Sᵀ Lᵀ [−𝔍 L ad_{Sθ̇} A − ad_{L S θ̇}ᵀ 𝔍] L S`, literally.
     pub c: DMatrix<T>,
     /// The Christoffel-consistent factorisation of the same `C θ̇`:
     /// `C♯ = Jᵀ 𝔍 (J̇ + ad_V J) + ½ Jᵀ [−ad_Vᵀ 𝔍 − 𝔍 ad_V + (𝔍V)⊼] J`, where `(h)⊼ X = −ad_Xᵀ h`.
@@ -82,9 +82,9 @@ pub(crate) fn bar_matrix<T: Real>(h: &Twist<T>) -> Matrix6<T> {
     m
 }
 
-/// Builds the seeds' closed form at `(θ, θ̇)`: `A`, `L`, `S`, `𝔍`, `ad_{Sθ̇}`, `V`, `ad_V`, `J`,
-/// `M`, `C`, `g` (seed 000, "General n-link manipulator dynamics" and "Adding Gravity";
-/// seed 001, "Dynamic Equations in Closed Form"). `τ = M θ̈ + C θ̇ + g − Jᵀ W_ext`.
+/// Builds the stacked closed form at `(θ, θ̇)`: `A`, `L`, `S`, `𝔍`, `ad_{Sθ̇}`, `V`, `ad_V`, `J`,
+/// `M`, `C`, `g` (Lynch & Park, *Modern Robotics*, "General n-link manipulator dynamics" and "Adding Gravity";
+/// Lynch & Park, *Modern Robotics*, "Dynamic Equations in Closed Form"). `τ = M θ̈ + C θ̇ + g − Jᵀ W_ext`.
 ///
 /// # Errors
 /// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a bad `q` or `v`.
@@ -93,7 +93,7 @@ pub(crate) fn bar_matrix<T: Real>(h: &Twist<T>) -> Matrix6<T> {
 /// use screwdyn::{builtin, dynamics::closed_form};
 /// let m = builtin::planar2();
 /// let cf = closed_form(&m, &[0.0, std::f64::consts::FRAC_PI_2], &[0.0, 0.0]).unwrap();
-/// // Seed 004's table at θ2 = 90°: D11 = 3, D21 = 1, D22 = 1.
+/// // The table at θ2 = 90°: D11 = 3, D21 = 1, D22 = 1.
 /// assert!((cf.m[(0, 0)] - 3.0).abs() < 1e-12 && (cf.m[(1, 0)] - 1.0).abs() < 1e-12);
 /// // L(θ) has identity diagonal blocks and Ad_{H_1^2} below (print it with `println!("{}", cf.l)`).
 /// assert_eq!(cf.l[(0, 0)], 1.0);
@@ -190,7 +190,7 @@ pub fn closed_form<T: Real>(model: &Model<T>, q: &[T], v: &[T]) -> Result<Closed
 }
 
 impl<T: Real> ClosedForm<T> {
-    /// `W_ext`: the external wrenches stacked in body frames (seed 000).
+    /// `W_ext`: the external wrenches stacked in body frames (Lynch & Park, *Modern Robotics*).
     ///
     /// # Errors
     /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `fext` was made for another model.
@@ -210,7 +210,7 @@ impl<T: Real> ClosedForm<T> {
         Ok(w)
     }
 
-    /// `τ = M θ̈ + C θ̇ + g − Jᵀ W_ext` (seed 000; `M` includes the armatures), with the velocity `θ̇` the form was built at.
+    /// `τ = M θ̈ + C θ̇ + g − Jᵀ W_ext` (Lynch & Park, *Modern Robotics*; `M` includes the armatures), with the velocity `θ̇` the form was built at.
     ///
     /// # Errors
     /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `qdd` does not have one value per joint or `fext` was made for another model; [`Error::NonFinite`](crate::Error::NonFinite) for NaN/∞ in `qdd`.
@@ -244,7 +244,7 @@ impl<T: Real> ClosedForm<T> {
         Ok(tau)
     }
 
-    /// The stacked recursion of seed 000 at acceleration `θ̈`:
+    /// The stacked recursion of Lynch & Park's *Modern Robotics* at acceleration `θ̈`:
     /// `V̇ = L S θ̈ − L ad_{Sθ̇} A V + L V̇_base` (gravity through `V̇_base`),
     /// `W = Lᵀ 𝔍 V̇ − Lᵀ ad_Vᵀ 𝔍 V` and `τ = Sᵀ W + I_a θ̈` (the armatures'
     /// torque, which no body's wrench carries). Returns `(V̇, W, τ)`.

@@ -10,10 +10,10 @@ use crate::workspace::Workspace;
 use nalgebra::DMatrix;
 
 /// The Coriolis matrix `C(q, q̇)` with `C q̇` the velocity-product torques of RNEA and
-/// `C_ij = Σ_k Γ_ijk q̇_k` (Christoffel symbols of the first kind, seed 004's `D_ijk`), so that
+/// `C_ij = Σ_k Γ_ijk q̇_k` (Christoffel symbols of the first kind, the `D_ijk`), so that
 /// `Ṁ − 2C` is skew-symmetric. Returns `ws.coriolis_matrix`.
 ///
-/// The seeds' closed form `C = Jᵀ 𝔍 J̇ − Jᵀ ad_Vᵀ 𝔍 J` (seed 001) has the right product `C q̇`
+/// The stacked closed form `C = Jᵀ 𝔍 J̇ − Jᵀ ad_Vᵀ 𝔍 J` (Lynch & Park, *Modern Robotics*) has the right product `C q̇`
 /// but in general **not** a skew-symmetric `Ṁ − 2C` (the tests show it on random trees). With
 /// `Ψ = J̇ + ad_V J` (the base-frame rate of the Jacobian columns, written in the link frames) it
 /// reads `C = Jᵀ 𝔍 Ψ + Jᵀ(−𝔍 ad_V − ad_Vᵀ 𝔍) J`; this function replaces the per-body term by
@@ -36,7 +36,7 @@ use nalgebra::DMatrix;
 /// let (q2, qd1, qd2) = (0.7_f64, 0.3, -1.2);
 /// let c = coriolis_matrix(&m, &mut ws, &[0.1, q2], &[qd1, qd2]).unwrap();
 /// let cv = c * nalgebra::DVector::from_vec(vec![qd1, qd2]);
-/// // Seed 003: [−m2L1L2 s2 θ̇2² − 2 m2L1L2 s2 θ̇1θ̇2, m2L1L2 s2 θ̇1²].
+/// // Craig, *Introduction to Robotics*: [−m2L1L2 s2 θ̇2² − 2 m2L1L2 s2 θ̇1θ̇2, m2L1L2 s2 θ̇1²].
 /// assert!((cv[0] - (-q2.sin() * qd2 * qd2 - 2.0 * q2.sin() * qd1 * qd2)).abs() < 1e-12);
 /// assert!((cv[1] - q2.sin() * qd1 * qd1).abs() < 1e-12);
 /// ```

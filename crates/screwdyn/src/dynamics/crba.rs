@@ -11,8 +11,8 @@ use nalgebra::DMatrix;
 
 /// The mass matrix `M(q)` by the composite-rigid-body algorithm: composite inertias
 /// `𝔍ᶜ_i = 𝔍_i + Σ_children 𝔍ᶜ_c` (backward), then `M_ij = S_iᵀ 𝔍ᶜ_j S_j` for every `i`
-/// supporting `j`, walking up the tree. Equal to the seeds' `M = Sᵀ Lᵀ 𝔍 L S` (seed 000) and to
-/// seed 001's `Σ_i J_iᵀ 𝔍^{i,i} J_i`.
+/// supporting `j`, walking up the tree. Equal to the `M = Sᵀ Lᵀ 𝔍 L S` (Lynch & Park, *Modern Robotics*) and to
+/// the `Σ_i J_iᵀ 𝔍^{i,i} J_i`.
 ///
 /// Everything is written in the base frame {0}: `𝔍ᶜ_i` is summed from the bodies' inertias
 /// `Ad_{H_0^i}ᵀ 𝔍^{i,i} Ad_{H_0^i}`, and `S_i` is the space-Jacobian column
@@ -30,7 +30,7 @@ use nalgebra::DMatrix;
 /// let m = builtin::planar2();
 /// let mut ws = Workspace::new(&m);
 /// let mm = crba(&m, &mut ws, &[0.0, 0.0]).unwrap();
-/// // Seed 004: D11 = 5, D12 = 2, D22 = 1 at θ2 = 0 (all masses and lengths 1).
+/// // By hand: D11 = 5, D12 = 2, D22 = 1 at θ2 = 0 (all masses and lengths 1).
 /// assert!((mm[(0, 0)] - 5.0).abs() < 1e-12 && (mm[(0, 1)] - 2.0).abs() < 1e-12);
 /// ```
 pub fn crba<'w, T: Real>(

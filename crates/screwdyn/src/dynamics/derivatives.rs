@@ -1,4 +1,4 @@
-//! Analytical first-order derivatives of inverse and forward dynamics, written with the seeds'
+//! Analytical first-order derivatives of inverse and forward dynamics, written with the
 //! operators in the base frame {0} (twists angular first, `ad`, `ad*`).
 //!
 //! # Notation
@@ -8,10 +8,10 @@
 //! - `s_i = Ad_{H_i^0} S_i^{i,λ(i)}`: joint `i`'s screw axis (a column of the space Jacobian);
 //! - `V_i = V_{λ(i)} + s_i q̇_i`: body `i`'s twist `Ad_{H_i^0} V_i^{i,0}`;
 //! - `ṡ_i = ad_{V_i} s_i = ad_{V_{λ(i)}} s_i`: the time derivative of `s_i`;
-//! - `A_i = A_{λ(i)} + s_i q̈_i + ṡ_i q̇_i` with `A_base = (0, −g)` (seed 000's base
+//! - `A_i = A_{λ(i)} + s_i q̈_i + ṡ_i q̇_i` with `A_base = (0, −g)` (the base
 //!   acceleration): `d/dt V_i + gravity`, equal to `Ad_{H_i^0} V̇_i^{i,0}`;
 //! - `𝔍_i = Ad_{H_0^i}ᵀ 𝔍^{i,i} Ad_{H_0^i}`: body `i`'s spatial inertia;
-//! - `W_i = 𝔍_i A_i − ad_{V_i}ᵀ 𝔍_i V_i − W_ext,i`: the Newton–Euler wrench of seed 000's
+//! - `W_i = 𝔍_i A_i − ad_{V_i}ᵀ 𝔍_i V_i − W_ext,i`: the Newton–Euler wrench of Lynch & Park's *Modern Robotics*
 //!   backward pass, written in {0}, and `F_i = Σ_{k ⪰ i} W_k` (the subtree of `i`), so that
 //!   `τ_i = s_iᵀ F_i`.
 //!
@@ -83,7 +83,7 @@ use crate::workspace::Workspace;
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 /// The partial derivatives `∂τ/∂q` and `∂τ/∂q̇` of inverse dynamics
-/// `τ = M(q) q̈ + C(q, q̇) q̇ + g(q) − Σ_i J_iᵀ W_ext,i` (seed 000's RNEA with gravity and
+/// `τ = M(q) q̈ + C(q, q̇) q̇ + g(q) − Σ_i J_iᵀ W_ext,i` (the RNEA with gravity and
 /// external wrenches), analytically (module docs give the equations). Writes `ws.dtau_dq`,
 /// `ws.dtau_dv`, `ws.mass_matrix` (`= ∂τ/∂q̈`, both triangles) and `ws.tau` (`τ` itself), and
 /// leaves `ws.screw_in_world`, `ws.twist_in_world` (`V_i` in {0}), `ws.twist_dot_in_world`

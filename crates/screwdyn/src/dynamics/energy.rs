@@ -1,4 +1,4 @@
-//! Kinetic, potential and total energy, mechanical power and the centre of mass (seeds 001, 004).
+//! Kinetic, potential and total energy, mechanical power and the centre of mass (Lynch & Park, *Modern Robotics*).
 
 use super::crba::crba;
 use crate::error::{Error, Result};
@@ -8,7 +8,7 @@ use crate::scalar::{real, Real};
 use crate::workspace::Workspace;
 use nalgebra::Vector3;
 
-/// Kinetic energy as the sum over links, `E_kin = ½ Σ_i V_iᵀ 𝔍^{i,i} V_i` (seed 001), plus the
+/// Kinetic energy as the sum over links, `E_kin = ½ Σ_i V_iᵀ 𝔍^{i,i} V_i` (Lynch & Park, *Modern Robotics*), plus the
 /// rotors' `½ Σ_i I_a,i q̇_i²` (each joint's armature, [`Joint::armature`](crate::model::Joint::armature)),
 /// so that it equals `½ q̇ᵀ M(q) q̇`.
 ///
@@ -50,7 +50,7 @@ pub(crate) fn kinetic_energy_given_twists<T: Real>(
         })
 }
 
-/// Kinetic energy from the mass matrix, `½ q̇ᵀ M(q) q̇` (seed 001, seed 003).
+/// Kinetic energy from the mass matrix, `½ q̇ᵀ M(q) q̇` (Lynch & Park, *Modern Robotics*, Craig, *Introduction to Robotics*).
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
@@ -80,7 +80,7 @@ pub fn kinetic_energy_mass_matrix<T: Real>(
     Ok(e * real(0.5))
 }
 
-/// Potential energy of gravity, `P = −Σ_i m_i g⁰ · p_{c,i}⁰` (seed 004: `P = m g l sin θ` terms),
+/// Potential energy of gravity, `P = −Σ_i m_i g⁰ · p_{c,i}⁰` (by hand: `P = m g l sin θ` terms),
 /// zero with every centre of mass at the base origin.
 ///
 /// # Errors
@@ -91,7 +91,7 @@ pub fn kinetic_energy_mass_matrix<T: Real>(
 /// let m = builtin::planar2();
 /// let mut ws = Workspace::new(&m);
 /// let (q1, q2) = (0.4_f64, 0.5_f64);
-/// // Seed 004: P = (m1 + m2) g l1 sin θ1 + m2 g l2 sin(θ1 + θ2).
+/// // By hand: P = (m1 + m2) g l1 sin θ1 + m2 g l2 sin(θ1 + θ2).
 /// let p = potential_energy(&m, &mut ws, &[q1, q2]).unwrap();
 /// assert!((p - 9.81 * (2.0 * q1.sin() + (q1 + q2).sin())).abs() < 1e-12);
 /// ```
@@ -128,7 +128,7 @@ pub fn total_energy<T: Real>(
     Ok(k + p)
 }
 
-/// Mechanical power delivered by the joints, `τ · q̇` (seed 001: `Wᵀ V = τ q̇`); with no gravity
+/// Mechanical power delivered by the joints, `τ · q̇` (Lynch & Park, *Modern Robotics*: `Wᵀ V = τ q̇`); with no gravity
 /// it equals `dE_kin/dt`.
 ///
 /// # Errors

@@ -1,5 +1,5 @@
-//! Forward dynamics three ways: ABA, CRBA + Cholesky, and the Walker–Orin simulator method of
-//! seed 004 §6.4.
+//! Forward dynamics three ways: ABA, CRBA + Cholesky, and the Walker–Orin simulator method
+//! (Walker & Orin, 1982)
 
 use super::aba::articulated_body;
 use super::cholesky::{cholesky_in_place, cholesky_solve_in_place, singular_error};
@@ -22,7 +22,7 @@ pub enum ForwardMethod {
     Aba,
     /// `M` by CRBA, `b` by RNEA, then a Cholesky solve, O(n³).
     Crba,
-    /// Seed 004 §6.4 (Walker–Orin): `b` by RNEA with `q̈ = 0`, `M` column by column by RNEA with
+    /// Walker & Orin's method: `b` by RNEA with `q̈ = 0`, `M` column by column by RNEA with
     /// `q̈ = e_j` and no velocity, gravity or external wrench, then solve `M q̈ = τ − b`.
     WalkerOrin,
 }
@@ -44,7 +44,7 @@ impl std::str::FromStr for ForwardMethod {
 }
 
 /// Forward dynamics `q̈ = M(q)⁻¹ (τ − C(q, q̇) q̇ − g(q) + Σ J_iᵀ W_ext,i)` by the chosen method
-/// (all three agree to round-off), with optional external wrenches (seed 004 §6.4:
+/// (all three agree to round-off), with optional external wrenches (Walker–Orin's
 /// `b = C q̇ + G + Kᵀ f_ext`). Returns `ws.qdd`.
 ///
 /// Naming rule of the library: the functions named after the quantity
@@ -141,7 +141,7 @@ pub fn forward_dynamics_crba<'w, T: Real>(
     Ok(&ws.qdd)
 }
 
-/// Seed 004 §6.4, the Walker–Orin simulator: ① `b` = SUB1(q, q̇, q̈ = 0, f_ext) (RNEA);
+/// Walker & Orin's simulator: ① `b` = SUB1(q, q̇, q̈ = 0, f_ext) (RNEA);
 /// ② column `j` of `H(q)` = SUB2(q, q̈ = e_j) (RNEA without velocity, gravity or external
 /// wrenches); ③ solve `H q̈ = τ − b`. Returns `ws.qdd` (and leaves `M` in `ws.mass_matrix`).
 ///

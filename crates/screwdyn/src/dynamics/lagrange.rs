@@ -1,4 +1,4 @@
-//! Seed 004's Lagrangian coefficients: `D_ij` (inertia), `D_ijk` (centripetal and Coriolis,
+//! The Lagrangian coefficients: `D_ij` (inertia), `D_ijk` (centripetal and Coriolis,
 //! Christoffel symbols of the first kind) and `D_i` (gravity), and effective inertias.
 
 use super::crba::crba;
@@ -11,7 +11,7 @@ use crate::spatial::{ad, ad_matrix, Twist};
 use crate::workspace::Workspace;
 use nalgebra::{DMatrix, DVector, Matrix6};
 
-/// The coefficients of seed 004's Lagrangian form
+/// The coefficients of the Lagrangian form
 /// `τ_i = Σ_j D_ij q̈_j + Σ_j Σ_k D_ijk q̇_j q̇_k + D_i`.
 #[derive(Clone, Debug)]
 pub struct LagrangeCoefficients<T: Real = f64> {
@@ -32,7 +32,7 @@ impl<T: Real> LagrangeCoefficients<T> {
     /// ```
     /// use screwdyn::{builtin, dynamics::lagrange_coefficients};
     /// let c = lagrange_coefficients(&builtin::planar2(), &[0.0, 0.5]).unwrap();
-    /// // Seed 004: D_112 = −m2 L1 L2 s2 (all ones here).
+    /// // By hand: D_112 = −m2 L1 L2 s2 (all ones here).
     /// assert!((c.d(0, 0, 1).unwrap() + 0.5_f64.sin()).abs() < 1e-12);
     /// assert!(c.d(0, 0, 2).is_err());
     /// ```
@@ -68,7 +68,7 @@ pub(crate) fn check_size<T: Real>(model: &Model<T>, limit: usize, what: &str) ->
 /// `s_j = Ad_{H_j^0} S_j`, with `∂s_j/∂q_k = ad_{s_k} s_j` when joint `k` strictly supports
 /// joint `j` (zero otherwise), and the base-frame inertia of body `i` has
 /// `∂𝔍_i/∂q_k = −(ad_{s_k}ᵀ 𝔍_i + 𝔍_i ad_{s_k})` when `k` supports `i`; differentiate
-/// `M = Σ_i J_iᵀ 𝔍_i J_i` (seed 001) term by term. O(n⁴); allocates.
+/// `M = Σ_i J_iᵀ 𝔍_i J_i` (Lynch & Park, *Modern Robotics*) term by term. O(n⁴); allocates.
 ///
 /// # Errors
 /// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a bad `q`.
@@ -78,7 +78,7 @@ pub(crate) fn check_size<T: Real>(model: &Model<T>, limit: usize, what: &str) ->
 /// let m = builtin::planar2();
 /// let q2 = 0.6_f64;
 /// let dm = mass_matrix_derivatives(&m, &[0.2, q2]).unwrap();
-/// // ∂M11/∂θ2 = −2 m2 l1 l2 sin θ2 (seed 004: D11 = … + 2 m2 l1 l2 cos θ2).
+/// // ∂M11/∂θ2 = −2 m2 l1 l2 sin θ2 (by hand: D11 = … + 2 m2 l1 l2 cos θ2).
 /// assert!((dm[1][(0, 0)] + 2.0 * q2.sin()).abs() < 1e-12);
 /// ```
 pub fn mass_matrix_derivatives<T: Real>(model: &Model<T>, q: &[T]) -> Result<Vec<DMatrix<T>>> {
@@ -130,7 +130,7 @@ pub fn mass_matrix_derivatives<T: Real>(model: &Model<T>, q: &[T]) -> Result<Vec
     Ok(out)
 }
 
-/// Seed 004's `D_ij`, `D_ijk` and `D_i` at `q`, with `D_ijk` the Christoffel symbols of the
+/// The `D_ij`, `D_ijk` and `D_i` at `q`, with `D_ijk` the Christoffel symbols of the
 /// first kind from the analytic `∂M/∂q` of [`mass_matrix_derivatives`].
 ///
 /// # Errors
@@ -141,7 +141,7 @@ pub fn mass_matrix_derivatives<T: Real>(model: &Model<T>, q: &[T]) -> Result<Vec
 /// let m = builtin::planar2(); // m1 = m2 = l1 = l2 = 1
 /// let q2 = 0.8_f64;
 /// let d = lagrange_coefficients(&m, &[0.3, q2]).unwrap();
-/// // Seed 004: D122 = D112 = −m2 l1 l2 sin θ2, D211 = m2 l1 l2 sin θ2, D111 = D222 = 0.
+/// // By hand: D122 = D112 = −m2 l1 l2 sin θ2, D211 = m2 l1 l2 sin θ2, D111 = D222 = 0.
 /// assert!((d.d(0, 1, 1).unwrap() + q2.sin()).abs() < 1e-12);
 /// assert!((d.d(0, 0, 1).unwrap() + q2.sin()).abs() < 1e-12);
 /// assert!((d.d(1, 0, 0).unwrap() - q2.sin()).abs() < 1e-12);
@@ -168,7 +168,7 @@ pub fn lagrange_coefficients<T: Real>(
 
 /// The inertia felt at joint `joint` when the joints marked `free` are free (`τ = 0`) and the
 /// others are locked (`q̈ = 0`), at rest without gravity: the Schur complement
-/// `M_ii − M_iF M_FF⁻¹ M_Fi` (seed 004: `D11 − D12²/D22` for the two-joint arm). `free[joint]`
+/// `M_ii − M_iF M_FF⁻¹ M_Fi` (by hand: `D11 − D12²/D22` for the two-joint arm). `free[joint]`
 /// is ignored. Allocates.
 ///
 /// # Errors
@@ -179,7 +179,7 @@ pub fn lagrange_coefficients<T: Real>(
 /// let m = builtin::planar2();
 /// let mut ws = Workspace::new(&m);
 /// let q = [0.0, std::f64::consts::FRAC_PI_2];
-/// // Seed 004's table at θ2 = 90°: 3 with joint 2 locked, 2 with joint 2 free.
+/// // The table at θ2 = 90°: 3 with joint 2 locked, 2 with joint 2 free.
 /// assert!((effective_inertia(&m, &mut ws, &q, 0, &[false, false]).unwrap() - 3.0).abs() < 1e-12);
 /// assert!((effective_inertia(&m, &mut ws, &q, 0, &[false, true]).unwrap() - 2.0).abs() < 1e-12);
 /// ```
@@ -219,7 +219,7 @@ pub fn effective_inertia<T: Real>(
     Ok(mii - mfi.dot(&x))
 }
 
-/// Effective inertia at `joint` with every other joint locked: `D_ii` (seed 004, case ①).
+/// Effective inertia at `joint` with every other joint locked: `D_ii` (case ①).
 ///
 /// # Errors
 /// As [`effective_inertia`].
@@ -234,7 +234,7 @@ pub fn effective_inertia_locked<T: Real>(
 }
 
 /// Effective inertia at `joint` with every other joint free: `1 / (M⁻¹)_ii`, the Schur
-/// complement of seed 004's case ② (`D11 − D12²/D22` for two joints).
+/// complement of the case ② (`D11 − D12²/D22` for two joints).
 ///
 /// # Errors
 /// As [`effective_inertia`].

@@ -1,4 +1,4 @@
-//! Dynamics: inverse dynamics (RNEA), the seeds' closed form, mass matrix, Coriolis, gravity,
+//! Dynamics: inverse dynamics (RNEA), the stacked closed form, mass matrix, Coriolis, gravity,
 //! forward dynamics, energies and Lagrangian coefficients.
 //!
 //! Every per-call algorithm reads a [`Model`](crate::Model), writes into a

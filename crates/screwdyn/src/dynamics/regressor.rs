@@ -21,7 +21,7 @@ pub const PARAMETER_NAMES: [&str; PARAMETERS_PER_BODY] = [
 
 /// The ten standard inertial parameters of one body, all in the body frame:
 /// `π = (m, m c_x, m c_y, m c_z, I_xx, I_xy, I_yy, I_xz, I_yz, I_zz)` with `I = I_c − m [c]²`
-/// the rotational inertia about the body frame origin (seed 003's parallel-axis theorem). The
+/// the rotational inertia about the body frame origin (the parallel-axis theorem). The
 /// spatial inertia `𝔍 = [I  m[c]; −m[c]  m 1]` is linear in them.
 ///
 /// ```
@@ -152,8 +152,8 @@ fn inertia_action<T: Real>(w: &Vector3<T>) -> nalgebra::Matrix3x6<T> {
 /// frame origin); entries of bodies that joint `i` does not support are zero.
 ///
 /// Body `k`'s wrench in its frame is `W_k = Φ(V_k, V̇_k) π_k` (twists and accelerations of
-/// seed 002's forward pass, gravity as the base acceleration of seed 000), and
-/// `τ_i = Σ_{k ⪰ i} (Ad_{H_k^0}⁻¹ s_i)ᵀ W_k` (seed 000's backward pass), so
+/// the forward pass, gravity as the base acceleration of Lynch & Park's *Modern Robotics*), and
+/// `τ_i = Σ_{k ⪰ i} (Ad_{H_k^0}⁻¹ s_i)ᵀ W_k` (the backward pass), so
 /// `Y_{i, k} = (Ad_{H_k^0}⁻¹ s_i)ᵀ Φ(V_k, V̇_k)` with `s_i = Ad_{H_i^0} S_i`.
 ///
 /// The joints' armatures are a known term, not parameters: inverse dynamics is

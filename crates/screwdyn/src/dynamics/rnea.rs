@@ -1,5 +1,5 @@
-//! Inverse dynamics by the recursive Newton–Euler algorithm in the seeds' Lie-group form
-//! (seeds 000–002), with gravity as a base acceleration and external wrenches.
+//! Inverse dynamics by the recursive Newton–Euler algorithm in the Lie-group form
+//! (Lynch & Park, *Modern Robotics*), with gravity as a base acceleration and external wrenches.
 
 use super::inputs::checked_poses;
 use super::wrenches::ExternalWrenches;
@@ -11,7 +11,7 @@ use crate::spatial::{ad_transpose, twist, Twist};
 use crate::workspace::Workspace;
 use nalgebra::{DVector, Vector3};
 
-/// `V̇_base = (0, −g⁰)`: the base frame accelerating upwards stands in for gravity (seed 000,
+/// `V̇_base = (0, −g⁰)`: the base frame accelerating upwards stands in for gravity (Lynch & Park, *Modern Robotics*,
 /// "Einstein's equivalence principle").
 #[inline]
 pub fn base_acceleration<T: Real>(model: &Model<T>) -> Twist<T> {
@@ -28,7 +28,7 @@ pub(crate) fn rnea_passes<T: Real>(
     base: &Twist<T>,
     fext: Option<&ExternalWrenches<T>>,
 ) {
-    // Forward pass (seed 002):
+    // Forward pass (Lynch & Park, *Modern Robotics*):
     //   V_i = Ad_{H_λ^i} V_λ + S_i q̇_i,  V̇_i = Ad_{H_λ^i} V̇_λ − ad_{S_i q̇_i}(Ad_{H_λ^i} V_λ) + S_i q̈_i
     // and the Newton–Euler equation of each body W_i = 𝔍_i V̇_i − ad_{V_i}ᵀ 𝔍_i V_i − W_ext,i.
     let n = model.nbodies();
@@ -58,7 +58,7 @@ pub(crate) fn rnea_passes<T: Real>(
         ws.twist_dot[i] = vdi;
         ws.wrench[i] = w;
     }
-    // Backward pass (seed 000): W_λ += Ad_{H_λ^i}ᵀ W_i, τ_i = S_iᵀ W_i + I_a,i q̈_i (the
+    // Backward pass (Lynch & Park, *Modern Robotics*): W_λ += Ad_{H_λ^i}ᵀ W_i, τ_i = S_iᵀ W_i + I_a,i q̈_i (the
     // armature, the rotor inertia reflected to joint i, accelerates with the joint alone).
     let joints = model.joints();
     for i in (0..n).rev() {
@@ -71,7 +71,7 @@ pub(crate) fn rnea_passes<T: Real>(
 }
 
 /// Inverse dynamics `τ = M(q) q̈ + C(q, q̇) q̇ + g(q)` by the recursive Newton–Euler algorithm
-/// (seeds 001/002; gravity as the base acceleration `(0, −g)` of seed 000). Trees are handled:
+/// (Lynch & Park, *Modern Robotics*; gravity as the base acceleration `(0, −g)` of Lynch & Park's *Modern Robotics*). Trees are handled:
 /// the backward pass sums `Ad_{H_λ^i}ᵀ W_i` over all children. Returns `ws.tau`.
 ///
 /// Forward pass: `V_i = Ad_{H_{λ(i)}^i} V_{λ(i)} + S_i q̇_i`,
@@ -87,7 +87,7 @@ pub(crate) fn rnea_passes<T: Real>(
 /// let m = builtin::planar2(); // point masses, gravity −9.81 ŷ
 /// let mut ws = Workspace::new(&m);
 /// let tau = rnea(&m, &mut ws, &[0.0, 0.0], &[0.0, 0.0], &[0.0, 0.0]).unwrap();
-/// // Seed 003: g = [m2 g L2 c12 + (m1 + m2) g L1 c1, m2 g L2 c12] = [3g, g] at q = 0.
+/// // Craig, *Introduction to Robotics*: g = [m2 g L2 c12 + (m1 + m2) g L1 c1, m2 g L2 c12] = [3g, g] at q = 0.
 /// assert!((tau[0] - 3.0 * 9.81).abs() < 1e-12 && (tau[1] - 9.81).abs() < 1e-12);
 /// ```
 pub fn rnea<'w, T: Real>(
@@ -101,7 +101,7 @@ pub fn rnea<'w, T: Real>(
 }
 
 /// [`rnea`] with external wrenches: `τ = M q̈ + C q̇ + g − Σ_i J_iᵀ W_ext,i (+ J_eᵀ W_tip)`
-/// (seed 000, "Adding External Wrenches"). Returns `ws.tau`.
+/// (Lynch & Park, *Modern Robotics*). Returns `ws.tau`.
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
@@ -138,7 +138,7 @@ pub fn inverse_dynamics<'w, T: Real>(
     Ok(&ws.tau)
 }
 
-/// Gravity torques `g(q)`: RNEA with `q̇ = q̈ = 0` (seed 000,
+/// Gravity torques `g(q)`: RNEA with `q̇ = q̈ = 0` (Lynch & Park, *Modern Robotics*,
 /// `g(θ) = Sᵀ Lᵀ 𝔍 L V̇_base`). Returns `ws.gravity_torque`.
 ///
 /// # Errors
@@ -181,7 +181,7 @@ pub fn gravity_torque<'w, T: Real>(
 /// let mut ws = Workspace::new(&m);
 /// let (q2, qd1) = (0.4_f64, 1.5_f64);
 /// let h = nonlinear_effects(&m, &mut ws, &[0.0, q2], &[qd1, 0.0]).unwrap();
-/// // Seed 003: the centrifugal torque at joint 2 is m2 L1 L2 s2 θ̇1².
+/// // Craig, *Introduction to Robotics*: the centrifugal torque at joint 2 is m2 L1 L2 s2 θ̇1².
 /// assert!((h[1] - q2.sin() * qd1 * qd1).abs() < 1e-12);
 /// ```
 pub fn nonlinear_effects<'w, T: Real>(

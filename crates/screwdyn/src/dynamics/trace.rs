@@ -1,6 +1,6 @@
-//! The recursive Newton–Euler iterations of seeds 000/002 written out step by step, for a
+//! The recursive Newton–Euler iterations of Lynch & Park's *Modern Robotics* written out step by step, for a
 //! student who checks a homework line by line: every intermediate quantity of one
-//! [`inverse_dynamics`] call, in the seeds' notation.
+//! [`inverse_dynamics`] call, in the notation of docs/notation.md.
 
 use super::rnea::{base_acceleration, inverse_dynamics};
 use super::wrenches::ExternalWrenches;
@@ -9,7 +9,7 @@ use crate::model::Model;
 use crate::spatial::{ad_transpose, Se3, Twist, Wrench};
 use crate::workspace::Workspace;
 
-/// Forward iteration `i` (seed 002): the joint transform and the twist recursion.
+/// Forward iteration `i` (Lynch & Park, *Modern Robotics*): the joint transform and the twist recursion.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ForwardStep {
     /// `θ_i`, `θ̇_i`, `θ̈_i`.
@@ -30,7 +30,7 @@ pub struct ForwardStep {
     pub twist_dot: Twist,
 }
 
-/// Backward iteration `i` (seed 000): the wrench balance of body `i` and its joint torque.
+/// Backward iteration `i` (Lynch & Park, *Modern Robotics*): the wrench balance of body `i` and its joint torque.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BackwardStep {
     /// `𝔍^{i,i} V̇_i − ad_{V_i}ᵀ(𝔍^{i,i} V_i)`: the body's own Newton–Euler wrench.
@@ -46,7 +46,7 @@ pub struct BackwardStep {
 }
 
 /// Every intermediate quantity of one RNEA run (see [`rnea_trace`]); body indices are 0-based
-/// (the seeds' body `i` is index `i − 1`, the base is `None` in [`Model::parents`]).
+/// (the body `i` is index `i − 1`, the base is `None` in [`Model::parents`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RneaTrace {
     /// `V̇_0^{0,0} = (0, −g)`: gravity as a base acceleration.
@@ -59,7 +59,7 @@ pub struct RneaTrace {
     pub tau: Vec<f64>,
 }
 
-/// Runs [`inverse_dynamics`] and reads out every step of seeds 000/002's recursion:
+/// Runs [`inverse_dynamics`] and reads out every step of the recursion:
 ///
 /// - forward, `i = 1 … n`: `H_i^{λ(i)}(θ_i) = H_i^{λ(i)}(0) e^{S̃_i θ_i}`,
 ///   `V_i = Ad_{H_{λ(i)}^i} V_{λ(i)} + S_i θ̇_i`,

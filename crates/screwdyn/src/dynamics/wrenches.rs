@@ -1,4 +1,4 @@
-//! External wrenches on the links and a tip wrench at any frame (seed 000, "Adding External
+//! External wrenches on the links and a tip wrench at any frame (Lynch & Park, *Modern Robotics*, "Adding External
 //! Wrenches" and "Adding End-effector wrench").
 
 use crate::error::{Error, Result};
@@ -9,7 +9,7 @@ use crate::workspace::Workspace;
 
 /// External wrenches acting on the bodies, collected before an algorithm call.
 ///
-/// Seed 000 adds `W_ext^{i,i}` (the wrench of the environment **on** link `i`, in frame `i`) to
+/// Lynch & Park, *Modern Robotics* adds `W_ext^{i,i}` (the wrench of the environment **on** link `i`, in frame `i`) to
 /// the backward pass, `W = Lᵀ 𝔍 V̇ − Lᵀ ad_Vᵀ 𝔍 V − Lᵀ W_ext`, so that
 /// `τ = M q̈ + C q̇ + g − Σ_i J_i^{i,0ᵀ} W_ext^{i,i}`. A wrench may also be given in the base
 /// frame (moment about the base origin), and a **tip wrench** `W_tip^{e,e}` — the wrench that
@@ -198,7 +198,7 @@ impl<T: Real> ExternalWrenches<T> {
     }
 
     /// Adds a tip wrench `W_tip^{e,e}`: the wrench that frame `frame` applies to the environment,
-    /// written in that frame (seed 000: `τ = M q̈ + C q̇ + J_eᵀ W_tip`). A frame on the fixed base
+    /// written in that frame (Lynch & Park, *Modern Robotics*: `τ = M q̈ + C q̇ + J_eᵀ W_tip`). A frame on the fixed base
     /// is rejected.
     ///
     /// # Errors

@@ -1,9 +1,8 @@
 //! Built-in robots, available as `builtin:<name>` wherever a model path is accepted.
 //!
-//! - `planar2`: the two-link planar arm of seeds 000/003/004 — point masses `m1 = m2 = 1` kg at
+//! - `planar2`: the classic two-link planar arm — point masses `m1 = m2 = 1` kg at
 //!   the link ends, `L1 = L2 = 1` m, both joints about `z`, gravity `(0, −9.81, 0)` (along −y of
-//!   the base, as in seed 003's example). Link frames sit at the link ends (the CoMs), as in the
-//!   seed's MATLAB model.
+//!   the base, as in the example). Link frames sit at the link ends (the CoMs).
 //! - `pendulum`: a simple pendulum, point mass 1 kg on a 1 m massless rod, joint about `z`,
 //!   gravity `(0, −9.81, 0)`; at `q = 0` the mass hangs straight down.
 //! - `ur5`: Universal Robots UR5 from its published standard-DH table, masses and CoMs
@@ -103,7 +102,7 @@ pub fn load(name: &str) -> Result<Model> {
     }
 }
 
-/// The seed's two-link planar arm with given lengths and point masses.
+/// The two-link planar arm with given lengths and point masses.
 ///
 /// ```
 /// let m = screwdyn::builtin::planar2_with(0.5, 0.3, 2.0, 1.0);

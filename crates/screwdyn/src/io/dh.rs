@@ -1,9 +1,9 @@
-//! Denavit–Hartenberg tables in TOML: standard DH (`format = "dh"`, seed 004) and modified DH
-//! (`format = "modified-dh"`, Craig, seed 003).
+//! Denavit–Hartenberg tables in TOML: standard DH (`format = "dh"`) and modified DH
+//! (`format = "modified-dh"`, Craig, Craig, *Introduction to Robotics*).
 //!
-//! **Standard DH** (seed 004): link frame `{i}` in `{i−1}` is
+//! **Standard DH**: link frame `{i}` in `{i−1}` is
 //! `A_i^{i−1} = Rot_z(θ_i) Trans_z(d_i) Trans_x(a_i) Rot_x(α_i)`; joint `i` turns `θ_i` (R) or
-//! slides `d_i` (P) about/along `z_{i−1}`. In the seeds' notation the screw is written in the
+//! slides `d_i` (P) about/along `z_{i−1}`. In the notation of docs/notation.md the screw is written in the
 //! parent frame at home, `S = (ẑ, 0)` (R) or `(0, ẑ)` (P), and the home pose is
 //! `H_i^{i−1}(0) = Rot_z(θ_offset) Trans_z(d) Trans_x(a) Rot_x(α)`.
 //!
@@ -29,7 +29,7 @@
 //! ```
 //! use screwdyn::io::{dh::parse_dh, LoadOptions};
 //! use screwdyn::{kinematics::forward_kinematics, Workspace};
-//! // The two-link planar arm as a standard DH table (seed 004): a1 = a2 = 1.
+//! // The two-link planar arm as a standard DH table: a1 = a2 = 1.
 //! let text = r#"
 //! format = "dh"
 //! [[row]]
@@ -118,14 +118,14 @@ fn trans(x: f64, y: f64, z: f64) -> Se3 {
     Se3::from_translation(Vector3::new(x, y, z))
 }
 
-/// `A_i^{i−1} = Rot_z(θ) Trans_z(d) Trans_x(a) Rot_x(α)` (standard DH, seed 004).
+/// `A_i^{i−1} = Rot_z(θ) Trans_z(d) Trans_x(a) Rot_x(α)` (standard DH).
 pub fn standard_dh_transform(a: f64, alpha: f64, d: f64, theta: f64) -> Se3 {
     rot_z(theta)
         .compose(&trans(a, 0.0, d))
         .compose(&rot_x(alpha))
 }
 
-/// `Rot_x(α_{i−1}) Trans_x(a_{i−1}) Rot_z(θ_i) Trans_z(d_i)` (modified DH, Craig, seed 003).
+/// `Rot_x(α_{i−1}) Trans_x(a_{i−1}) Rot_z(θ_i) Trans_z(d_i)` (modified DH, Craig, Craig, *Introduction to Robotics*).
 pub fn modified_dh_transform(a_prev: f64, alpha_prev: f64, d: f64, theta: f64) -> Se3 {
     rot_x(alpha_prev)
         .compose(&trans(a_prev, 0.0, 0.0))

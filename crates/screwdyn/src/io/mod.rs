@@ -7,7 +7,7 @@
 //! - **DH tables** (`.toml` with `format = "dh"` or `format = "modified-dh"`): [`dh`];
 //! - **product of exponentials**, Modern Robotics style (`format = "poe"`): [`poe`], also as
 //!   the API [`poe::from_poe`];
-//! - **native TOML** (`format = "screwdyn"`), the seeds' `H_i^{λ(i)}(0)`, `S_i`, `𝔍^{i,i}`
+//! - **native TOML** (`format = "screwdyn"`), the `H_i^{λ(i)}(0)`, `S_i`, `𝔍^{i,i}`
 //!   written directly: [`native`];
 //! - **built-in robots**: `builtin:<name>` (see [`builtin`]).
 //!

@@ -1,7 +1,7 @@
-//! The native TOML format (`format = "screwdyn"`): the seeds' quantities written directly.
+//! The native TOML format (`format = "screwdyn"`): the quantities written directly.
 //!
 //! Per body: its `parent`, the home pose `H_i^{λ(i)}(0)` (`home`), the screw axis
-//! `S_i` (`screw_in_parent = S_i^{λ(i),λ(i)}`, seed 000's `S_0_0_1`, or
+//! `S_i` (`screw_in_parent = S_i^{λ(i),λ(i)}`, the `S_0_0_1`, or
 //! `screw_in_child = S_i^{i,λ(i)}`), the joint kind and limits, and the inertia `𝔍^{i,i}`.
 //!
 //! | key | meaning |
@@ -28,7 +28,7 @@
 //!
 //! ```
 //! use screwdyn::io::{native::parse_native, LoadOptions};
-//! // Seed 000's two-link arm: H_0_1_home, S_0_0_1, I_1 = point mass...
+//! // The two-link arm: H_0_1_home, S_0_0_1, I_1 = point mass...
 //! let text = r#"
 //! format = "screwdyn"
 //! gravity = [0, -9.81, 0]

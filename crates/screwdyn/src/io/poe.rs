@@ -1,10 +1,10 @@
-//! Product of exponentials in the Modern Robotics style, as seed 000's MATLAB uses it: the
+//! Product of exponentials in the Modern Robotics style, as the MATLAB uses it: the
 //! end-effector home pose `M`, the screw axes `Slist` in the space frame, `Mlist` (link `i`'s
 //! frame — at its CoM — relative to link `i−1`'s, at home) and `Glist` (6×6 spatial inertias in
 //! those frames, angular first).
 //!
 //! Mapping to the [`Model`]: link `i`'s home pose in space is `M_i = M_{01} ⋯ M_{i−1,i}`; its
-//! joint's screw in the child frame is `S_i^{i,i−1} = Ad_{M_i⁻¹} S_i` (seed 001, body vs space
+//! joint's screw in the child frame is `S_i^{i,i−1} = Ad_{M_i⁻¹} S_i` (Lynch & Park, *Modern Robotics*, body vs space
 //! screws); `H_i^{i−1}(0) = M_{i−1,i}`; `𝔍^{i,i} = G_i`. `M` becomes the extra frame `ee` on the
 //! last link, placed at `M_n⁻¹ M`. The joint kind follows from the screw: `ω = 0` prismatic,
 //! pitch `ω·v = 0` revolute, otherwise helical. `Mlist` may have `n` or `n + 1` entries (the last

@@ -1,5 +1,5 @@
 //! Forward kinematics: the recursion `H_i^0 = H_{λ(i)}^0 H_i^{λ(i)}(q_i)` and the spatial
-//! product-of-exponentials formula (seed 001).
+//! product-of-exponentials formula (Lynch & Park, *Modern Robotics*).
 
 use crate::error::Result;
 use crate::model::{Frame, Model};
@@ -8,7 +8,7 @@ use crate::spatial::Se3;
 use crate::workspace::Workspace;
 
 /// Poses of all bodies by the recursion `H_i^{λ(i)}(q_i) = H_i^{λ(i)}(0) e^{[S_i^{i,λ(i)}] q_i}`,
-/// `H_i^0 = H_{λ(i)}^0 H_i^{λ(i)}` (seed 000, forward iterations). Writes `ws.pose_in_parent`
+/// `H_i^0 = H_{λ(i)}^0 H_i^{λ(i)}` (Lynch & Park, *Modern Robotics*, forward iterations). Writes `ws.pose_in_parent`
 /// and `ws.pose_in_world`.
 ///
 /// # Errors
@@ -84,7 +84,7 @@ pub(crate) fn frame_pose_unchecked<T: Real>(ws: &Workspace<T>, f: &Frame<T>) -> 
     }
 }
 
-/// Poses of all bodies by the spatial product-of-exponentials formula (seed 001):
+/// Poses of all bodies by the spatial product-of-exponentials formula (Lynch & Park, *Modern Robotics*):
 /// `H_i^0(q) = e^{[S_1^{0}] q_1} ⋯ e^{[S_i^{0}] q_i} H_i^0(0)`, the product running over the
 /// joints supporting body `i`, with `S_j^0 = Ad_{H_j^0(0)} S_j^{j,λ(j)}` the screw axes in the
 /// base frame at home. An independent formula, used to check the recursion; it allocates.

@@ -1,4 +1,4 @@
-//! Geometric Jacobians (seed 001): the space Jacobian `J_e^{0,0}`, body Jacobians `J_i^{i,0}`,
+//! Geometric Jacobians (Lynch & Park, *Modern Robotics*): the space Jacobian `J_e^{0,0}`, body Jacobians `J_i^{i,0}`,
 //! and frame Jacobians in the world, local and world-aligned conventions.
 
 use super::forward::{forward_kinematics, frame_pose_unchecked};
@@ -12,7 +12,7 @@ use nalgebra::Matrix6xX;
 /// In which frame a frame's twist (and so its Jacobian) is written.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Reference {
-    /// The spatial twist `V_f^{0,0}` in the base frame {0} (seed 001's space Jacobian
+    /// The spatial twist `V_f^{0,0}` in the base frame {0} (the space Jacobian
     /// `J^{0,0}`; Pinocchio's `WORLD`).
     #[default]
     World,
@@ -41,7 +41,7 @@ impl std::str::FromStr for Reference {
 
 /// Forward kinematics plus every joint's screw axis in the base frame,
 /// `ws.screw_in_world[j] = Ad_{H_j^0} S_j^{j,λ(j)}` — the columns of the space Jacobian
-/// (seed 001: `J_i^0 = Ad_{e^{[S_1]q_1}⋯e^{[S_{i-1}]q_{i-1}}} S_i^0`).
+/// (Lynch & Park, *Modern Robotics*: `J_i^0 = Ad_{e^{[S_1]q_1}⋯e^{[S_{i-1}]q_{i-1}}} S_i^0`).
 ///
 /// # Errors
 /// As [`forward_kinematics`].
@@ -117,8 +117,8 @@ pub fn frame_jacobian<T: Real>(
     Ok(())
 }
 
-/// Seed 001's geometric body Jacobian of link `i`, `J_i^{i,0}(q) = Ad_{H_0^i} J_i^{0,0}(q)`: the
-/// `i`-th block row of the seeds' `J(θ) = L(θ) S`. Needs [`compute_joint_jacobians`] first.
+/// The geometric body Jacobian of link `i`, `J_i^{i,0}(q) = Ad_{H_0^i} J_i^{0,0}(q)`: the
+/// `i`-th block row of the `J(θ) = L(θ) S`. Needs [`compute_joint_jacobians`] first.
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] when the model has no body `body`, `out` does not have `nq`

@@ -1,4 +1,4 @@
-//! Kinematics (seed 001): poses of bodies and frames, Jacobians, twists and accelerations.
+//! Kinematics (Lynch & Park, *Modern Robotics*): poses of bodies and frames, Jacobians, twists and accelerations.
 //!
 //! ```
 //! use nalgebra::Matrix6xX;

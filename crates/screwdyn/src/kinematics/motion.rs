@@ -1,4 +1,4 @@
-//! Body twists and accelerations by the forward recursion of seeds 000/002, and `J̇ q̇`.
+//! Body twists and accelerations by the forward recursion of Lynch & Park's *Modern Robotics*, and `J̇ q̇`.
 
 use super::forward::forward_kinematics;
 use super::jacobian::{frame_acceleration, Reference};
@@ -9,7 +9,7 @@ use crate::spatial::Twist;
 use crate::workspace::Workspace;
 
 /// Forward kinematics and body twists: `V_i^{i,0} = Ad_{H_{λ(i)}^i} V_{λ(i)} + S_i q̇_i`
-/// (seed 001, parent-child twist relation). Writes `ws.twist`.
+/// (Lynch & Park, *Modern Robotics*, parent-child twist relation). Writes `ws.twist`.
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
@@ -42,7 +42,7 @@ pub fn forward_velocity<T: Real>(
 
 /// Forward kinematics, twists and accelerations of every body with the base at rest:
 /// `V̇_i = Ad_{H_{λ(i)}^i} V̇_{λ(i)} − ad_{S_i q̇_i}(Ad_{H_{λ(i)}^i} V_{λ(i)}) + S_i q̈_i`
-/// (seed 002, "Analytic expression of V̇"). Writes `ws.twist` and `ws.twist_dot`.
+/// (Lynch & Park, *Modern Robotics*). Writes `ws.twist` and `ws.twist_dot`.
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.

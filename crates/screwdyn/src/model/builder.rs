@@ -1,4 +1,4 @@
-//! [`ModelBuilder`]: declare links by name the way seed 000's MATLAB does
+//! [`ModelBuilder`]: declare links by name the way the MATLAB does
 //! (`H_0_1_home`, `S_0_0_1`, `I_1`), then `build()` an immutable [`Model`].
 
 use super::findings::{PhysicalFinding, Problem};
@@ -76,7 +76,7 @@ impl<T: Real> JointSpec<T> {
     pub fn fixed(name: &str) -> Self {
         Self::new(name, SpecKind::Fixed)
     }
-    /// The screw axis written in the parent frame at home, `S_c^{p,p}` (seed 000's `S_0_0_1`);
+    /// The screw axis written in the parent frame at home, `S_c^{p,p}` (the `S_0_0_1`);
     /// converted to the child frame as `S_c^{c,p} = Ad_{H_c^p(0)⁻¹} S_c^{p,p}`.
     pub fn screw_in_parent(mut self, s: Twist<T>) -> Self {
         self.screw = Some((s, AxisFrame::Parent));
@@ -148,7 +148,7 @@ struct FrameDecl<T: Real> {
 /// Builds a [`Model`] from links declared by name, in any order that names existing parents
 /// or not (the tree is resolved at `build`).
 ///
-/// Seed 000's two-link arm, line by line:
+/// The two-link arm, line by line:
 /// ```
 /// use nalgebra::{Matrix3, Vector3, Vector6};
 /// use screwdyn::model::{JointSpec, ModelBuilder};

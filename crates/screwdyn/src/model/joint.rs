@@ -3,7 +3,7 @@
 use crate::scalar::Real;
 use crate::spatial::{Se3, Twist};
 
-/// The kind of a moving joint. Every joint moves by its screw axis (seed 001, "Modeling Ideal
+/// The kind of a moving joint. Every joint moves by its screw axis (Lynch & Park, *Modern Robotics*, "Modeling Ideal
 /// Joints"); the kind says how to read it and which limits apply.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum JointKind<T: Real = f64> {
@@ -102,7 +102,7 @@ pub struct Joint<T: Real = f64> {
 }
 
 impl<T: Real> Joint<T> {
-    /// `H_i^{λ(i)}(q) = H_i^{λ(i)}(0) e^{[S_i^{i,λ(i)}] q}` (seed 000, forward iterations).
+    /// `H_i^{λ(i)}(q) = H_i^{λ(i)}(0) e^{[S_i^{i,λ(i)}] q}` (Lynch & Park, *Modern Robotics*, forward iterations).
     #[inline]
     pub fn pose_in_parent(&self, q: T) -> Se3<T> {
         self.home.compose(&Se3::exp_screw(&self.screw, q))

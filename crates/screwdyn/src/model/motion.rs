@@ -115,7 +115,7 @@ impl<T: Real> JointMotion<T> {
     }
 
     /// `H(0) e^{[S]q}`: the pose of the child in the parent given its home pose `home`
-    /// (seed 000, forward iterations), composed without forming `e^{[S]q}` for axis joints.
+    /// (Lynch & Park, *Modern Robotics*, forward iterations), composed without forming `e^{[S]q}` for axis joints.
     // Always inlined, so that the CPU-specific clones of forward kinematics compile it too.
     #[inline(always)]
     pub fn pose_in_parent(&self, home: &Se3<T>, q: T) -> Se3<T> {
@@ -172,7 +172,7 @@ impl<T: Real> JointMotion<T> {
         }
     }
 
-    /// `ad_{S x} V`: the Lie bracket `[S x, V]` (seed 002's velocity-product term).
+    /// `ad_{S x} V`: the Lie bracket `[S x, V]` (the velocity-product term).
     #[inline]
     pub fn ad_scaled(&self, x: T, v: &Twist<T>) -> Twist<T> {
         match *self {

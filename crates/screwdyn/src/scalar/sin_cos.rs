@@ -1,5 +1,5 @@
 //! `(sin θ, cos θ)` of a joint angle, the one transcendental call of every joint transform
-//! `e^{[S]θ}` (seed 000's product of exponentials).
+//! `e^{[S]θ}` (the product of exponentials).
 //!
 //! Why not `f64::sin_cos`: on the 2-core x86-64 machine the benchmarks run on, glibc's `sincos`
 //! costs 25–55 ns per call (a call through the PLT, then its general argument reduction), which

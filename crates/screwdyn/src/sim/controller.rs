@@ -140,7 +140,7 @@ impl Controller for TorqueSeries {
 }
 
 /// PD control to a fixed target with gravity compensation:
-/// `τ = K_p (q_d − q) − K_d q̇ + g(q)` (seed 000's `g(θ)`, from the controller's own model).
+/// `τ = K_p (q_d − q) − K_d q̇ + g(q)` (the `g(θ)`, from the controller's own model).
 #[derive(Clone, Debug)]
 pub struct PdGravity {
     model: Model,
@@ -166,7 +166,7 @@ impl PdGravity {
     /// use screwdyn::{builtin, sim::PdGravity};
     /// let m = builtin::planar2();
     /// let (kp, kd) = PdGravity::default_gains(&m, &[0.0, 0.0]).unwrap();
-    /// // Seed 004: M_11 = 5, M_22 = 1 at θ2 = 0 (unit masses and lengths).
+    /// // By hand: M_11 = 5, M_22 = 1 at θ2 = 0 (unit masses and lengths).
     /// assert_eq!((kp, kd), (vec![500.0, 100.0], vec![100.0, 20.0]));
     /// ```
     pub fn default_gains(model: &Model, target: &[f64]) -> Result<(Vec<f64>, Vec<f64>)> {

@@ -1,5 +1,5 @@
 //! Time integration of `q̈ = f(t, q, q̇)`: semi-implicit (symplectic) Euler, classic
-//! Runge–Kutta 4 (seed 004 §6.4: "Integrating q̈ to find q̇ and q (Runge-Kutta)"), and adaptive
+//! Runge–Kutta 4 (by hand: "Integrating q̈ to find q̇ and q (Runge-Kutta)"), and adaptive
 //! Dormand–Prince 5(4).
 
 use crate::error::{Error, Result};

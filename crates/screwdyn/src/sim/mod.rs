@@ -1,4 +1,4 @@
-//! Simulation (seed 004 §6.4, "Dynamic Simulator"): integrators, trajectories, controllers,
+//! Simulation: integrators, trajectories, controllers,
 //! joint effects, disturbances, recording and torque profiles.
 //!
 //! ```

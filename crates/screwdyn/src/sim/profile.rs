@@ -1,5 +1,5 @@
 //! Torque profiles: inverse dynamics along a trajectory, peak and RMS torque per joint and
-//! every sample over the joint's effort limit — seed 003's question "how much torque is needed
+//! every sample over the joint's effort limit — the question "how much torque is needed
 //! to accelerate the manipulator from rest to constant velocity, and then back to stop?".
 
 use super::record::{Recording, Sample, SampleSink};
@@ -68,7 +68,7 @@ impl TorqueProfile {
 /// allocated; [`torque_profile_limited`] sets another bound.
 pub const MAX_PROFILE_SAMPLES: usize = 10_000_000;
 
-/// Inverse dynamics (RNEA with gravity, seed 000) at every `dt` along `trajectory`, end
+/// Inverse dynamics (RNEA with gravity, Lynch & Park, *Modern Robotics*) at every `dt` along `trajectory`, end
 /// included, with peak, RMS and effort-limit statistics per joint — at most
 /// [`MAX_PROFILE_SAMPLES`] samples.
 ///

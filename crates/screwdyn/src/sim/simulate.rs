@@ -1,4 +1,4 @@
-//! The dynamic simulator of seed 004 §6.4: forward dynamics (ABA by default, or CRBA, or
+//! The dynamic simulator: forward dynamics (ABA by default, or CRBA, or
 //! Walker–Orin) integrated in time, under a controller, joint effects and disturbances.
 
 use super::controller::Controller;
@@ -211,7 +211,7 @@ pub fn step_plan(duration: f64, dt: f64) -> (usize, f64) {
     (n, duration - (n - 1) as f64 * dt)
 }
 
-/// Simulates `model` (seed 004 §6.4) and sends each recorded sample to `sink` as soon as it is
+/// Simulates `model` and sends each recorded sample to `sink` as soon as it is
 /// recorded, so a run of any length needs constant memory: the state at `t = 0`, then every
 /// `opts.record_every` steps and at the end. The run ends exactly at `opts.duration` (a last,
 /// shorter step where `dt` does not divide it, see [`step_plan`]). When the run fails part-way

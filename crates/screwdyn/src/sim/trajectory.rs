@@ -1,4 +1,4 @@
-//! Joint-space trajectories: trapezoidal velocity profiles (seed 003's "from rest to constant
+//! Joint-space trajectories: trapezoidal velocity profiles (the "from rest to constant
 //! velocity, and then back to stop"), quintic polynomials, and piecewise quintics through
 //! waypoints.
 

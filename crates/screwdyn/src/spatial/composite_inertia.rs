@@ -1,5 +1,5 @@
 //! Composite spatial inertia: a spatial inertia stored by the quantities it is linear in, so
-//! that the inertias of several bodies add exactly (the composite bodies of the CRBA, seed 001's
+//! that the inertias of several bodies add exactly (the composite bodies of the CRBA, Lynch & Park, *Modern Robotics*
 //! `M = Σ_i J_iᵀ 𝔍_i J_i` summed over subtrees).
 
 use super::inertia::SpatialInertia;

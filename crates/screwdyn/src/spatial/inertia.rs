@@ -1,6 +1,6 @@
 //! The 6×6 spatial inertia `𝔍` of a rigid body, stored by its ten parameters.
 //!
-//! Seed 001 (kinetic energy `E = ½ Vᵀ 𝔍 V`) and seed 000 (`I_1 = [0 0; 0 m₁I]` for a point mass
+//! Lynch & Park, *Modern Robotics* (kinetic energy `E = ½ Vᵀ 𝔍 V`) and Lynch & Park, *Modern Robotics* (`I_1 = [0 0; 0 m₁I]` for a point mass
 //! at the frame origin). With mass `m`, centre of mass `c` and rotational inertia `I_c` about the
 //! CoM (axes of the body frame), the angular-first spatial inertia about the frame origin is
 //!
@@ -8,7 +8,7 @@
 //! 𝔍 = [ I_c − m[c][c]   m[c] ]
 //!     [ −m[c]           m·I  ]
 //! ```
-//! whose upper-left block is the parallel-axis theorem of seed 003.
+//! whose upper-left block is the parallel-axis theorem of Craig's *Introduction to Robotics*.
 
 use super::se3::Se3;
 use super::twist::{ang, lin, twist, Twist, Wrench};
@@ -56,7 +56,7 @@ use nalgebra::{Matrix3, Matrix6, Vector3};
 /// ```
 /// use nalgebra::{Matrix3, Vector3, Vector6};
 /// use screwdyn::spatial::SpatialInertia;
-/// // A point mass m = 2 at the frame origin: seed 000's I = [0 0; 0 m I].
+/// // A point mass m = 2 at the frame origin: the I = [0 0; 0 m I].
 /// let i = SpatialInertia::point_mass(2.0_f64, Vector3::zeros());
 /// let j = i.matrix();
 /// assert_eq!(j[(3, 3)], 2.0);
@@ -101,7 +101,7 @@ impl<T: Real> SpatialInertia<T> {
     }
 
     /// From mass, centre of mass and rotational inertia about the frame origin, using the
-    /// parallel-axis theorem backwards (seed 003: `ᶜI = ᴬI − m(cᵀc I − c cᵀ)`).
+    /// parallel-axis theorem backwards (Craig, *Introduction to Robotics*: `ᶜI = ᴬI − m(cᵀc I − c cᵀ)`).
     pub fn from_inertia_about_origin(mass: T, com: Vector3<T>, inertia_origin: Matrix3<T>) -> Self {
         SpatialInertia::new(mass, com, inertia_origin - parallel_axis_term(mass, &com))
     }
@@ -111,7 +111,7 @@ impl<T: Real> SpatialInertia<T> {
         SpatialInertia::new(mass, at, Matrix3::zeros())
     }
 
-    /// `ᴬI = ᶜI + m(cᵀc I − c cᵀ)`: rotational inertia about the frame origin (seed 003,
+    /// `ᴬI = ᶜI + m(cᵀc I − c cᵀ)`: rotational inertia about the frame origin (Craig, *Introduction to Robotics*,
     /// parallel-axis theorem).
     pub fn inertia_about_origin(&self) -> Matrix3<T> {
         self.inertia_com + parallel_axis_term(self.mass, &self.com)
@@ -119,7 +119,7 @@ impl<T: Real> SpatialInertia<T> {
 
     /// The 6×6 matrix `𝔍` (angular first) about the frame origin:
     /// `[I_c − m[c][c]  m[c]; −m[c]  m·1]`, with `−m[c][c] = m (cᵀc 1 − c cᵀ)` (the
-    /// parallel-axis theorem of seed 003), written out entry by entry.
+    /// parallel-axis theorem of Craig's *Introduction to Robotics*), written out entry by entry.
     #[inline]
     pub fn matrix(&self) -> Matrix6<T> {
         let (m, c, i) = (self.mass, &self.com, &self.inertia_com);
@@ -190,7 +190,7 @@ impl<T: Real> SpatialInertia<T> {
         twist(l, p)
     }
 
-    /// `½ Vᵀ 𝔍 V` (seed 001).
+    /// `½ Vᵀ 𝔍 V` (Lynch & Park, *Modern Robotics*).
     pub fn kinetic_energy(&self, v: &Twist<T>) -> T {
         self.apply(v).dot(v) * real(0.5)
     }
@@ -320,7 +320,7 @@ impl SpatialInertia<f64> {
     }
 }
 
-/// `m (cᵀc I − c cᵀ)`, the parallel-axis term of seed 003.
+/// `m (cᵀc I − c cᵀ)`, the parallel-axis term of Craig's *Introduction to Robotics*.
 pub fn parallel_axis_term<T: Real>(mass: T, c: &Vector3<T>) -> Matrix3<T> {
     (Matrix3::identity() * c.dot(c) - c * c.transpose()) * mass
 }
@@ -330,7 +330,7 @@ mod tests {
     use super::*;
 
     /// `transformed(h).matrix()` equals the change of frame `Ad_{H⁻¹}ᵀ 𝔍 Ad_{H⁻¹}` done with 6×6
-    /// adjoint matrices (seed 001), for a body with an off-diagonal inertia and offset CoM.
+    /// adjoint matrices (Lynch & Park, *Modern Robotics*), for a body with an off-diagonal inertia and offset CoM.
     #[test]
     fn change_of_frame_matches_the_adjoint_sandwich() {
         let body = SpatialInertia::new(

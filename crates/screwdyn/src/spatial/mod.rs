@@ -1,4 +1,4 @@
-//! Spatial algebra in the seeds' notation: `SE(3)`, `so(3)`/`se(3)`, twists and wrenches
+//! Spatial algebra in the notation of docs/notation.md: `SE(3)`, `so(3)`/`se(3)`, twists and wrenches
 //! (angular first), `Ad`, `ad`, exponential and logarithm, and the spatial inertia `𝔍`.
 //!
 //! ```

@@ -1,15 +1,15 @@
 //! Homogeneous transforms `H ∈ SE(3)`, their adjoint actions on twists and wrenches, and the
 //! exponential and logarithm of SE(3).
 //!
-//! Notation (seeds 000–002): `H_c^p` is the pose of frame `c` in frame `p`; it maps coordinates
+//! Notation (Lynch & Park, *Modern Robotics*): `H_c^p` is the pose of frame `c` in frame `p`; it maps coordinates
 //! in `c` to coordinates in `p`. `Ad_{H_c^p}` maps a twist written in `c` to the same twist written
 //! in `p`; `Ad_{H_c^p}ᵀ` maps a wrench written in `p` to the same wrench written in `c`.
 //! Twists are angular first, `V = (ω, v)`; wrenches moment first, `W = (m, f)`.
 //!
 //! [`Se3`] stores a rotation matrix and a translation and applies every operator to vectors
 //! directly, never forming a 6×6 matrix in a hot path. nalgebra's `IsometryMatrix3` stores the
-//! same two parts; we keep our own small type so that the seeds' operators (`Ad`, `Adᵀ`, their
-//! inverses) are methods with the seeds' names.
+//! same two parts; we keep our own small type so that the operators (`Ad`, `Adᵀ`, their
+//! inverses) are methods with the names.
 
 use super::so3::{exp_so3, hat, log_so3, one_minus_cos_over_sq, phi_minus_sin_over_cube};
 use super::twist::{ang, lin, Twist, Wrench};
@@ -189,7 +189,7 @@ impl<T: Real> Se3<T> {
     }
 
     /// `Ad_H V = (R ω, p × Rω + R v)`: a twist given in the moving frame, written in the
-    /// reference frame (seed 001: `V^{p} = Ad_{H_c^p} V^{c}`).
+    /// reference frame (Lynch & Park, *Modern Robotics*: `V^{p} = Ad_{H_c^p} V^{c}`).
     #[inline]
     pub fn act_twist(&self, v: &Twist<T>) -> Twist<T> {
         let w = self.rotation * ang(v);
@@ -198,7 +198,7 @@ impl<T: Real> Se3<T> {
     }
 
     /// `Ad_{H⁻¹} V = (Rᵀ ω, Rᵀ (v − p × ω))`: a twist given in the reference frame, written in
-    /// the moving frame (seed 000: `Ad_{H_{i-1}^i} V_{i-1}` with `H = H_i^{i-1}`).
+    /// the moving frame (Lynch & Park, *Modern Robotics*: `Ad_{H_{i-1}^i} V_{i-1}` with `H = H_i^{i-1}`).
     #[inline]
     pub fn inv_act_twist(&self, v: &Twist<T>) -> Twist<T> {
         let w0 = ang(v);
@@ -222,7 +222,7 @@ impl<T: Real> Se3<T> {
     }
 
     /// `Ad_{H⁻¹}ᵀ W = (R m + p × R f, R f)`: a wrench given in the moving frame, written in the
-    /// reference frame (seed 000 backward pass: `Ad_{H_i^{i+1}}ᵀ W_i^{i+1,i+1}` with
+    /// reference frame (Lynch & Park, *Modern Robotics* backward pass: `Ad_{H_i^{i+1}}ᵀ W_i^{i+1,i+1}` with
     /// `H = H_{i+1}^i`).
     #[inline]
     pub fn inv_act_transpose_wrench(&self, w: &Wrench<T>) -> Wrench<T> {
@@ -249,7 +249,7 @@ impl<T: Real> Se3<T> {
         m
     }
 
-    /// `e^{[ξ]}` for a twist `ξ = (φ, ρ)` (seed 001, "Exponential map `se(3) → SE(3)`"):
+    /// `e^{[ξ]}` for a twist `ξ = (φ, ρ)` (Lynch & Park, *Modern Robotics*):
     /// `R = e^{[φ]}`, `p = (I + B[φ] + C[φ]²) ρ` with `B = (1 − cos|φ|)/|φ|²`,
     /// `C = (|φ| − sin|φ|)/|φ|³`, series-expanded near zero.
     ///
@@ -272,7 +272,7 @@ impl<T: Real> Se3<T> {
         Se3::new(exp_so3(&phi), p)
     }
 
-    /// `e^{[S]θ}`: the displacement of a joint with screw axis `S` by `θ` (seed 001:
+    /// `e^{[S]θ}`: the displacement of a joint with screw axis `S` by `θ` (Lynch & Park, *Modern Robotics*:
     /// `H_c^p(θ) = H_c^p(0) e^{[S_c^{c,p}]θ}`).
     #[inline]
     pub fn exp_screw(screw: &Twist<T>, theta: T) -> Self {

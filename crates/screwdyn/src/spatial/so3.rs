@@ -1,6 +1,6 @@
 //! Rotations: the hat/vee maps of so(3), and the exponential and logarithm of SO(3).
 //!
-//! Seed 001 ("Exponential Coordinates of R.B. Motion"): a rotation by angle `θ` about the unit
+//! Lynch & Park, *Modern Robotics* ("Exponential Coordinates of R.B. Motion"): a rotation by angle `θ` about the unit
 //! axis `n̂` is `R = e^{[n̂]θ}`; `exp_so3` takes the exponential coordinates `ω = n̂θ` directly.
 
 use crate::scalar::{real, Real};
@@ -75,7 +75,7 @@ pub(crate) fn phi_minus_sin_over_cube<T: Real>(phi: T) -> T {
     }
 }
 
-/// `e^{[ω]}`: the rotation by angle `|ω|` about `ω/|ω|` (Rodrigues' formula, seed 001).
+/// `e^{[ω]}`: the rotation by angle `|ω|` about `ω/|ω|` (Rodrigues' formula, Lynch & Park, *Modern Robotics*).
 ///
 /// ```
 /// use nalgebra::Vector3;

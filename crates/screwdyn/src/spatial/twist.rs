@@ -1,6 +1,6 @@
 //! Twists, wrenches and screws as angular-first 6-vectors, and the Lie bracket `ad`.
 //!
-//! Seed 001: a twist is `V = (ω, v) ∈ R⁶`, a wrench `W = (m, f) ∈ (R⁶)*`, and `Wᵀ V` is power.
+//! Lynch & Park, *Modern Robotics*: a twist is `V = (ω, v) ∈ R⁶`, a wrench `W = (m, f) ∈ (R⁶)*`, and `Wᵀ V` is power.
 //! A joint's screw axis `S` is a unit twist: revolute `S = (n̂, −n̂ × r)`, prismatic `S = (0, n̂)`,
 //! helical `S = (n̂, −n̂ × r + h n̂)` with pitch `h`.
 
@@ -39,7 +39,7 @@ pub fn twist<T: Real>(a: Vector3<T>, l: Vector3<T>) -> Vector6<T> {
 }
 
 /// The screw axis of a revolute joint about unit axis `n` through the point `r`:
-/// `S = (n̂, −n̂ × r)` (seed 001, "Modeling Ideal Joints").
+/// `S = (n̂, −n̂ × r)` (Lynch & Park, *Modern Robotics*).
 ///
 /// ```
 /// use nalgebra::Vector3;
@@ -62,7 +62,7 @@ pub fn helical_screw<T: Real>(n: Vector3<T>, r: Vector3<T>, pitch: T) -> Twist<T
 }
 
 /// `ad_V X = (ω × ω_x, v × ω_x + ω × v_x)`: the Lie bracket `[V, X]` of se(3) applied to a
-/// twist (seed 002: `V̇_c = Ad V̇_p − ad_{S q̇}(Ad V_p) + S q̈`).
+/// twist (Lynch & Park, *Modern Robotics*: `V̇_c = Ad V̇_p − ad_{S q̇}(Ad V_p) + S q̈`).
 ///
 /// ```
 /// use nalgebra::Vector6;
@@ -77,7 +77,7 @@ pub fn ad<T: Real>(v: &Twist<T>, x: &Twist<T>) -> Twist<T> {
 }
 
 /// `ad_Vᵀ W = (−ω × m − v × f, −ω × f)`, the transpose of `ad_V` applied to a wrench
-/// (seed 000 backward pass: `W = 𝔍 V̇ − ad_Vᵀ 𝔍 V`).
+/// (Lynch & Park, *Modern Robotics* backward pass: `W = 𝔍 V̇ − ad_Vᵀ 𝔍 V`).
 ///
 /// ```
 /// use nalgebra::Vector6;

@@ -81,7 +81,7 @@ fn graph_vars(g: &Graph, n: usize, table: &ParamTable) -> Vars<Sx> {
     }
 }
 
-/// Builds `quantity` as an expression graph by running the seeds' recursions on graph values
+/// Builds `quantity` as an expression graph by running the recursions on graph values
 /// (nothing is expanded; `C` in the Christoffel form goes through the polynomial form of `M`).
 ///
 /// ```
@@ -151,7 +151,7 @@ fn build(
                 }
             };
             let form = match options.coriolis {
-                CoriolisForm::Seed => "seed 000's closed form",
+                CoriolisForm::Seed => "the closed form",
                 CoriolisForm::Christoffel => "Christoffel form",
             };
             (c, n, n, format!("C(q, v), n×n ({form})"))

@@ -1,6 +1,6 @@
 //! An expression graph with hash-consing: the representation code generation works on.
 //!
-//! Running the seeds' recursion (RNEA, `Jᵀ𝔍J`, …) on [`Sx`] values records every operation once:
+//! Running the recursion (RNEA, `Jᵀ𝔍J`, …) on [`Sx`] values records every operation once:
 //! an operation on operands already seen returns the existing node (common-subexpression
 //! elimination by construction), constants fold, and `0`/`±1` operands vanish — so a joint axis
 //! along `z` or a `cos(π/2) = 0` from a DH twist costs nothing in the generated code. Nothing is

@@ -1,4 +1,4 @@
-//! Seed 004's Lagrangian steps in symbols: `L = K − P`, `∂L/∂θ̇_i`, `d/dt(∂L/∂θ̇_i)`, `∂L/∂θ_i`
+//! The Lagrangian steps in symbols: `L = K − P`, `∂L/∂θ̇_i`, `d/dt(∂L/∂θ̇_i)`, `∂L/∂θ_i`
 //! and `τ_i = d/dt(∂L/∂θ̇_i) − ∂L/∂θ_i`.
 
 use super::params::ParamTable;
@@ -7,7 +7,7 @@ use super::{derive, Options, Poly, Quantity, Var};
 use crate::error::Result;
 use crate::model::Model;
 
-/// The intermediate expressions of the Euler–Lagrange equations (seed 004).
+/// The intermediate expressions of the Euler–Lagrange equations.
 #[derive(Clone, Debug)]
 pub struct LagrangeSteps {
     /// Model name.
@@ -30,7 +30,7 @@ pub struct LagrangeSteps {
     pub tau: Vec<Poly>,
 }
 
-/// Derives seed 004's steps from the symbolic energies: `L = K − P`, then `∂L/∂θ̇_i`, its time
+/// Derives the steps from the symbolic energies: `L = K − P`, then `∂L/∂θ̇_i`, its time
 /// derivative along the motion (`Σ_j ∂/∂θ_j θ̇_j + ∂/∂θ̇_j θ̈_j`), `∂L/∂θ_i` and `τ_i`.
 ///
 /// ```
@@ -77,7 +77,7 @@ impl LagrangeSteps {
         let d = if ascii { "d" } else { "∂" };
         let (th, thd) = if ascii { ("q", "qd") } else { ("θ", "θ̇") };
         let mut out = format!(
-            "# Euler–Lagrange steps (seed 004) for {}: L = K − P, τ_i = d/dt(∂L/∂θ̇_i) − ∂L/∂θ_i\n",
+            "# Euler–Lagrange steps for {}: L = K − P, τ_i = d/dt(∂L/∂θ̇_i) − ∂L/∂θ_i\n",
             self.model
         );
         let syms: Vec<String> = self

@@ -1,6 +1,6 @@
-//! The seeds' mechanics written once over any [`Ring`]: joint transforms
+//! The mechanics written once over any [`Ring`]: joint transforms
 //! `H_i^{λ(i)}(θ_i) = H_i^{λ(i)}(0) e^{[S_i] θ_i}`, body Jacobians `J = L S`, `M = Jᵀ 𝔍 J`, the
-//! literal closed-form `C` of seed 000, the RNEA of seeds 000–002 (`τ`, `g`), energies, frame
+//! literal closed-form `C` of Lynch & Park's *Modern Robotics*, the RNEA of Lynch & Park's *Modern Robotics* (`τ`, `g`), energies, frame
 //! poses and Jacobians.
 
 use super::params::{clean, ParamKind, ParamTable};
@@ -198,7 +198,7 @@ impl<R: Ring> SymRobot<R> {
         out
     }
 
-    /// The body Jacobians `J_k^{k,0}` (block rows of the seeds' `J = L S`): column `j` is
+    /// The body Jacobians `J_k^{k,0}` (block rows of the `J = L S`): column `j` is
     /// `Ad_{H_j^k} S_j` when joint `j` supports body `k`, `None` otherwise.
     pub fn body_jacobians(&self) -> Vec<Vec<Option<Tw<R>>>> {
         let mut out: Vec<Vec<Option<Tw<R>>>> = Vec::with_capacity(self.n);
@@ -216,8 +216,8 @@ impl<R: Ring> SymRobot<R> {
         out
     }
 
-    /// `M(θ) = Sᵀ Lᵀ 𝔍 L S + I_a = Σ_k J_kᵀ 𝔍_k J_k + diag(I_a,i)` (seed 000, and the
-    /// joints' armatures), row-major.
+    /// `M(θ) = Sᵀ Lᵀ 𝔍 L S + I_a = Σ_k J_kᵀ 𝔍_k J_k + diag(I_a,i)` (Lynch & Park, *Modern
+    /// Robotics*, and the joints' armatures), row-major.
     pub fn mass_matrix(&self) -> Vec<R> {
         let n = self.n;
         let jac = self.body_jacobians();
@@ -245,7 +245,7 @@ impl<R: Ring> SymRobot<R> {
         m
     }
 
-    /// The seeds' literal `C(θ, θ̇) = Sᵀ Lᵀ [−𝔍 L ad_{Sθ̇} A − ad_Vᵀ 𝔍] L S` (seed 000), row-major:
+    /// The literal `C(θ, θ̇) = Sᵀ Lᵀ [−𝔍 L ad_{Sθ̇} A − ad_Vᵀ 𝔍] L S` (Lynch & Park, *Modern Robotics*), row-major:
     /// with `J = L S`, `Y = L ad_{Sθ̇} A J` (block `k`: `Y_k = Ad_{H_λ^k} Y_λ + ad_{S_k θ̇_k}
     /// Ad_{H_λ^k} J_λ`) and `V_k = J_k θ̇`, `C = −Σ_k J_kᵀ (𝔍_k Y_k + ad_{V_k}ᵀ 𝔍_k J_k)`.
     pub fn coriolis_seed(&self, qd: &[R]) -> Vec<R> {
@@ -298,7 +298,7 @@ impl<R: Ring> SymRobot<R> {
         c
     }
 
-    /// The RNEA of seeds 000–002 with the given inertias: forward pass
+    /// The RNEA of Lynch & Park's *Modern Robotics* with the given inertias: forward pass
     /// `V_i = Ad V_λ + S_i θ̇_i`, `V̇_i = Ad V̇_λ − ad_{S_i θ̇_i}(Ad V_λ) + S_i θ̈_i` from
     /// `V̇_0 = (0, −g⁰)` (or `0` without gravity), backward pass
     /// `W_i = 𝔍_i V̇_i − ad_{V_i}ᵀ 𝔍_i V_i + Σ Ad_{H_i^c}ᵀ W_c`, `τ_i = S_iᵀ W_i`.
@@ -362,7 +362,7 @@ impl<R: Ring> SymRobot<R> {
         tau
     }
 
-    /// `g(θ)`: the RNEA at rest (seed 000's `Sᵀ Lᵀ 𝔍 L V̇_base`).
+    /// `g(θ)`: the RNEA at rest (the `Sᵀ Lᵀ 𝔍 L V̇_base`).
     pub fn gravity_torque(&self) -> Vec<R> {
         self.rnea_with(&self.inertia, None, None, true)
     }
@@ -407,7 +407,8 @@ impl<R: Ring> SymRobot<R> {
         y
     }
 
-    /// Kinetic energy `½ Σ_k V_kᵀ 𝔍_k V_k + ½ Σ_i I_a,i θ̇_i²` (seed 001, and the rotors).
+    /// Kinetic energy `½ Σ_k V_kᵀ 𝔍_k V_k + ½ Σ_i I_a,i θ̇_i²` (Lynch & Park, *Modern Robotics*,
+    /// and the rotors).
     pub fn kinetic_energy(&self, qd: &[R]) -> R {
         let mut v: Vec<Tw<R>> = Vec::with_capacity(self.n);
         let mut e = R::zero();

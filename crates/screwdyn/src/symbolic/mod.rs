@@ -1,7 +1,7 @@
 //! Symbolic equations of motion and code generation (issue 14).
 //!
-//! The seeds derive `M(θ)`, `C(θ, θ̇)` and `g(θ)` by hand (seeds 003/004) or with MATLAB's `syms`
-//! (seed 000). This module produces them — and `τ(θ, θ̇, θ̈)`, `H_e^0(θ)`, Jacobians, energies
+//! Textbooks derive `M(θ)`, `C(θ, θ̇)` and `g(θ)` by hand (Craig, *Introduction to Robotics*) or
+//! with MATLAB's `syms` (Lynch & Park, *Modern Robotics*). This module produces them — and `τ(θ, θ̇, θ̈)`, `H_e^0(θ)`, Jacobians, energies
 //! and the regressor `Y` — as expressions in the joint variables, with any of the robot's
 //! parameters kept as symbols ([`ParamTable::select`]), and writes them as text, LaTeX, JSON or
 //! code (C, Python, Rust, MATLAB).
@@ -36,7 +36,7 @@
 //! let model = builtin::planar2();
 //! let opts = Options { symbols: "all".into(), ..Options::default() };
 //! let d = derive(&model, Quantity::MassMatrix, &opts).unwrap();
-//! // Seed 003: M22 = m2 L2².
+//! // Craig, *Introduction to Robotics*: M22 = m2 L2².
 //! assert_eq!(d.entry_text(0, 1, 1), "m2 L2²");
 //! ```
 
@@ -135,11 +135,11 @@ impl Quantity {
 /// Which factorisation of the velocity terms `C θ̇` to give as `C`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum CoriolisForm {
-    /// Seed 000's literal `C = Sᵀ Lᵀ [−𝔍 L ad_{Sθ̇} A − ad_Vᵀ 𝔍] L S`.
+    /// The stacked closed form's own `C = Sᵀ Lᵀ [−𝔍 L ad_{Sθ̇} A − ad_Vᵀ 𝔍] L S`.
     #[default]
     Seed,
     /// Christoffel symbols of the first kind, `C_ij = Σ_k ½(∂M_ij/∂θ_k + ∂M_ik/∂θ_j −
-    /// ∂M_jk/∂θ_i) θ̇_k` (seed 004's `D_ijk`), for which `Ṁ − 2C` is skew-symmetric.
+    /// ∂M_jk/∂θ_i) θ̇_k` (the Euler–Lagrange `D_ijk`), for which `Ṁ − 2C` is skew-symmetric.
     Christoffel,
 }
 
@@ -152,7 +152,7 @@ impl std::str::FromStr for CoriolisForm {
             _ => Err(crate::Error::UnknownChoice {
                 what: "Coriolis form",
                 got: s.into(),
-                expected: "seed or christoffel",
+                expected: "closed-form or christoffel",
             }),
         }
     }
@@ -319,7 +319,7 @@ pub(crate) fn check_model(model: &Model) -> Result<()> {
 /// use screwdyn::{builtin, symbolic::{derive, Options, Quantity}};
 /// let opts = Options { symbols: "all".into(), ..Options::default() };
 /// let g = derive(&builtin::planar2(), Quantity::Gravity, &opts).unwrap();
-/// // Seed 003: G2 = m2 g L2 c12.
+/// // Craig, *Introduction to Robotics*: G2 = m2 g L2 c12.
 /// assert_eq!(g.entry_text(0, 1, 0), "m2 g L2 c₁₂");
 /// ```
 ///

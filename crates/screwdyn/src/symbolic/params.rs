@@ -95,7 +95,7 @@ fn standard_dh_shape(model: &Model, i: usize) -> bool {
 
 impl ParamTable {
     /// The parameters of `model`, all numeric. The built-in two-link arm (`planar2`) uses the
-    /// seeds' names `m1, m2, L1, L2, g`; other models `m_<link>`, `cx_<link>`,
+    /// textbook names `m1, m2, L1, L2, g`; other models `m_<link>`, `cx_<link>`,
     /// `Ixx_<link>`, …, `g`, and `a_<i>`, `d_<i>` (standard-DH joints) or `px_<i>`, `py_<i>`,
     /// `pz_<i>` (joint `i`'s home offset, 1-based), and `Ia_<i>` (joint `i`'s armature, 1-based).
     pub fn new(model: &Model) -> Self {

@@ -4,7 +4,7 @@
 //!
 //! Every joint transform of a revolute joint is linear in `(cos θ_i, sin θ_i)`, a prismatic or
 //! helical joint adds `θ_j`, and the dynamics multiply and add such entries: every quantity of the
-//! seeds is a polynomial in these variables. With `sin θ_i` kept to degree ≤ 1 the representation
+//! equations of motion is a polynomial in these variables. With `sin θ_i` kept to degree ≤ 1 the representation
 //! is unique (the monomials `c^a` and `c^a s` of one angle are linearly independent functions), so
 //! two expressions are equal exactly when their canonical forms are equal — the symbolic equality
 //! the tests use.

@@ -30,7 +30,7 @@ pub enum Collect {
     /// Group on the inertial parameters: `m1 L1² + m2 (L1² + 2 L1 L2 c₂ + L2²)`.
     #[default]
     Inertial,
-    /// Group on everything else (the seeds' 003/004 layout):
+    /// Group on everything else (the 003/004 layout):
     /// `(m1 + m2) L1² + 2 m2 L1 L2 c₂ + m2 L2²`.
     Config,
     /// No grouping: one term after the other.

@@ -1,4 +1,4 @@
-//! The arithmetic the symbolic mechanics is written over, and the seeds' spatial algebra
+//! The arithmetic the symbolic mechanics is written over, and the spatial algebra
 //! (`Ad`, `ad`, `adᵀ`, poses, spatial inertia) on 3-vectors of any [`Ring`].
 //!
 //! One implementation of the mechanics serves three rings: [`Poly`] (the canonical form, for
@@ -263,7 +263,7 @@ impl<R: Ring> Tw<R> {
     pub fn dot(&self, o: &Self) -> R {
         self.w.dot(&o.w).add(&self.v.dot(&o.v))
     }
-    /// `ad_V X = (ω × ω_x, ω × v_x + v × ω_x)` (seed 000).
+    /// `ad_V X = (ω × ω_x, ω × v_x + v × ω_x)` (Lynch & Park, *Modern Robotics*).
     pub fn ad(&self, x: &Self) -> Self {
         Tw {
             w: self.w.cross(&x.w),
@@ -291,7 +291,7 @@ impl<R: Ring> Tw<R> {
 }
 
 /// A spatial inertia by its ten parameters about the body-frame origin — `m`, the first moment
-/// `h = m c` and the rotational inertia `I_o = I_c + m (cᵀc 1 − c cᵀ)` (seed 003's parallel-axis
+/// `h = m c` and the rotational inertia `I_o = I_c + m (cᵀc 1 − c cᵀ)` (the parallel-axis
 /// theorem) — so that `𝔍 = [I_o [h]; −[h] m·1]` is linear in them.
 #[derive(Clone, Debug)]
 pub struct Inertia<R> {
