@@ -672,10 +672,9 @@ pub struct SymbolicArgs {
     /// mass-matrix, coriolis, gravity, torque, fk, jacobian, energy or regressor.
     #[arg(long, default_value = "mass-matrix")]
     pub quantity: String,
-    /// Parameters kept as symbols: all, groups (mass, com, inertia, gravity, lengths,
-    /// armature) or names
-    /// (m_link2, a_2, Ixx_link1, g, … — planar2: m1, m2, L1, L2, g), comma-separated. Groups take
-    /// the non-zero parameters only. Default: none (all numeric).
+    /// Parameters kept as symbols: all, groups (mass, com, inertia, gravity, lengths, armature)
+    /// or names (m_link2, a_2, Ixx_link1, g, … — planar2: m1, m2, L1, L2, g), comma-separated.
+    /// Groups take the non-zero parameters only. Default: none (all numeric).
     #[arg(long, default_value = "")]
     pub symbols: String,
     /// The frame of fk and jacobian (default: the last body's frame).
