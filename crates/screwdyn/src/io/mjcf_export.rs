@@ -14,6 +14,7 @@
 //! `<option gravity>`. Velocity limits (MuJoCo has none) are left out.
 
 use crate::error::{Error, Result};
+use crate::io::xml_text::{xml_comment, xml_escape};
 use crate::model::{FrameKind, Joint, JointKind, Model};
 use crate::spatial::{ang, lin, Se3, SpatialInertia};
 use nalgebra::{Rotation3, UnitQuaternion, Vector3};
@@ -52,36 +53,6 @@ fn placement(h: &Se3) -> String {
         );
     }
     s
-}
-
-/// `s` as the text of a double-quoted XML attribute.
-fn xml_escape(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\t' => out.push_str("&#9;"),
-            '\n' => out.push_str("&#10;"),
-            '\r' => out.push_str("&#13;"),
-            c => out.push(c),
-        }
-    }
-    out
-}
-
-/// `s` inside an XML comment (no `--`, no line breaks).
-fn xml_comment(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        if c == '-' && out.ends_with('-') {
-            out.push(' ');
-        }
-        out.push(if c.is_control() { ' ' } else { c });
-    }
-    out
 }
 
 /// The `<joint …/>` element of `j`.

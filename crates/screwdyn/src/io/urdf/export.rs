@@ -1,6 +1,7 @@
 //! Writing any [`Model`] as URDF.
 
 use crate::error::{Error, Result};
+use crate::io::xml_text::{xml_comment, xml_escape};
 use crate::model::{FrameKind, JointKind, Model};
 use crate::spatial::{ang, lin, Se3, SpatialInertia};
 use nalgebra::Vector3;
@@ -123,39 +124,6 @@ fn inertial_tag(i: &SpatialInertia) -> String {
         num(c[(1, 2)]),
         num(c[(2, 2)])
     )
-}
-
-/// `s` as the text of a double-quoted XML attribute: markup characters as entities, and tab,
-/// newline and carriage return as character references (an XML reader turns them into spaces
-/// otherwise).
-fn xml_escape(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\t' => out.push_str("&#9;"),
-            '\n' => out.push_str("&#10;"),
-            '\r' => out.push_str("&#13;"),
-            c => out.push(c),
-        }
-    }
-    out
-}
-
-/// `s` as text inside an XML comment, which ends at the first `--` and knows no entities:
-/// every `-` after a `-` is preceded by a space, and line breaks become spaces.
-fn xml_comment(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        if c == '-' && out.ends_with('-') {
-            out.push(' ');
-        }
-        out.push(if c.is_control() { ' ' } else { c });
-    }
-    out
 }
 
 /// What an export to URDF leaves out, one sentence each: URDF has no armature (rotor inertia
