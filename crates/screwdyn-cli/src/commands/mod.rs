@@ -11,6 +11,7 @@ mod identify;
 mod ik;
 mod inertia;
 mod inputs;
+mod joint_csv;
 mod kinematics;
 mod model;
 mod regressor;
@@ -20,7 +21,6 @@ mod states;
 mod symbolic;
 mod torque_profile;
 mod view;
-mod waypoints;
 
 use crate::args::{Cli, Command};
 use crate::CliError;

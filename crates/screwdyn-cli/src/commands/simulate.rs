@@ -1,6 +1,7 @@
 //! `simulate`: a run over time, streamed as CSV/JSON (docs/cli.md) and plotted.
 
 use super::inputs::{load, names, parse_numbers, parse_per_joint, parse_vector, parse_wrench};
+use super::joint_csv::{read_joint_rows, Columns};
 use super::run_files::{
     in_flag_words, joint_series, plot_kind, refuse_onto_inputs, run_file_kind, scalar_series,
     RunWriter,
@@ -122,64 +123,18 @@ impl RunSinks {
 /// Reads a torque series: columns `t` and `tau.<joint>` (a missing joint is zero); the times
 /// are checked when the controller is built.
 fn read_torque_csv(m: &Model, path: &Path) -> Result<ControllerSpec, CliError> {
-    let file = path.display().to_string();
-    let err =
-        |e: csv::Error| CliError::input(format!("{file}: {}", e.to_string().replace('\n', " ")));
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .from_path(path)
-        .map_err(|e| match e.kind() {
-            csv::ErrorKind::Io(io) => CliError::input(format!("{file}: cannot be read ({io})")),
-            _ => err(e),
-        })?;
-    let names = m.joint_names();
-    let headers = reader.headers().map_err(err)?.clone();
-    let mut cols = Vec::new(); // None = t, Some(j) = tau of joint j
-    for h in headers.iter() {
-        if h == "t" {
-            cols.push(None);
-        } else if let Some(j) = h
-            .strip_prefix("tau.")
-            .and_then(|n| names.iter().position(|x| *x == n))
-        {
-            cols.push(Some(j));
-        } else {
-            return Err(CliError::input(format!(
-                "{file}: unknown column '{h}' (expected t and tau.<joint>, joints: {})",
-                names.join(", ")
-            )));
-        }
+    let columns = Columns {
+        key: "t",
+        prefix: "tau.",
+        every_joint: false,
+    };
+    match read_joint_rows(m, path, &columns)? {
+        (Some(times), values) => Ok(ControllerSpec::Series { times, values }),
+        (None, _) => Err(CliError::input(format!(
+            "{}: the column 't' is missing",
+            path.display()
+        ))),
     }
-    if !cols.contains(&None) {
-        return Err(CliError::input(format!(
-            "{file}: the column 't' is missing"
-        )));
-    }
-    let (mut times, mut values) = (Vec::new(), Vec::new());
-    for record in reader.records() {
-        let record = record.map_err(err)?;
-        let line = record.position().map(|p| p.line()).unwrap_or(0);
-        let mut tau = vec![0.0; m.nq()];
-        let mut t = 0.0;
-        for ((c, cell), h) in cols.iter().zip(record.iter()).zip(headers.iter()) {
-            let x: f64 = cell
-                .parse()
-                .ok()
-                .filter(|x: &f64| x.is_finite())
-                .ok_or_else(|| {
-                    CliError::input(format!(
-                        "{file}:{line}: column '{h}': '{cell}' is not a finite number"
-                    ))
-                })?;
-            match c {
-                None => t = x,
-                Some(j) => tau[*j] = x,
-            }
-        }
-        times.push(t);
-        values.push(tau);
-    }
-    Ok(ControllerSpec::Series { times, values })
 }
 
 /// Parses `BODY:mx,my,mz,fx,fy,fz[@world]@T0-T1`.

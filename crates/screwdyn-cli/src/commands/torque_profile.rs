@@ -2,10 +2,10 @@
 //! CSV/JSON (docs/cli.md) and plotted.
 
 use super::inputs::{load, names, parse_per_joint, parse_vector};
+use super::joint_csv::read_waypoints;
 use super::run_files::{
     in_flag_words, joint_series, plot_kind, refuse_onto_inputs, run_file_kind, RunWriter,
 };
-use super::waypoints::read_waypoints;
 use crate::args::{Format, TorqueProfileArgs, TrajectoryArg};
 use crate::output::{fmt, resolve, table, Report, Value};
 use crate::plot::{plot_panels, Panel, Series};

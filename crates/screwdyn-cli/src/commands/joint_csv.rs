@@ -1,0 +1,102 @@
+//! Small CSV files with one value column per joint and one key column: `--waypoints PATH.CSV`
+//! (`s`, `q.<joint>`) and `--torque-csv PATH.CSV` (`t`, `tau.<joint>`).
+
+use crate::CliError;
+use screwdyn::Model;
+use std::path::Path;
+
+/// The rows of a joint-column file: the key column's values (when the file has it) and one
+/// vector per row.
+pub type JointRows = (Option<Vec<f64>>, Vec<Vec<f64>>);
+
+/// What a file's columns must be: the key column's name, the prefix of the joint columns, and
+/// whether every joint needs a column (else a missing one is zero).
+pub struct Columns<'a> {
+    pub key: &'a str,
+    pub prefix: &'a str,
+    pub every_joint: bool,
+}
+
+/// The waypoints of a CSV file with columns `q.<joint>` for every joint and optionally `s`:
+/// `(s if given, points)`. Cells must be finite numbers; the library checks the rest.
+pub fn read_waypoints(m: &Model, path: &Path) -> Result<JointRows, CliError> {
+    let columns = Columns {
+        key: "s",
+        prefix: "q.",
+        every_joint: true,
+    };
+    read_joint_rows(m, path, &columns)
+}
+
+/// Reads `path` with the columns `c` describes; every cell a finite number, an error naming
+/// the file, line and column otherwise.
+pub fn read_joint_rows(m: &Model, path: &Path, c: &Columns) -> Result<JointRows, CliError> {
+    let file = path.display().to_string();
+    let err =
+        |e: csv::Error| CliError::input(format!("{file}: {}", e.to_string().replace('\n', " ")));
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .from_path(path)
+        .map_err(|e| match e.kind() {
+            csv::ErrorKind::Io(io) => CliError::input(format!("{file}: cannot be read ({io})")),
+            _ => err(e),
+        })?;
+    let names = m.joint_names();
+    let headers = reader.headers().map_err(err)?.clone();
+    let mut cols = Vec::new(); // None = the key, Some(j) = joint j
+    for h in headers.iter() {
+        let col = if h == c.key {
+            None
+        } else if let Some(j) = h
+            .strip_prefix(c.prefix)
+            .and_then(|n| names.iter().position(|x| *x == n))
+        {
+            Some(j)
+        } else {
+            return Err(CliError::input(format!(
+                "{file}: unknown column '{h}' (expected {} and {}<joint>, joints: {})",
+                c.key,
+                c.prefix,
+                names.join(", ")
+            )));
+        };
+        if cols.contains(&col) {
+            return Err(CliError::input(format!(
+                "{file}: column '{h}' appears twice"
+            )));
+        }
+        cols.push(col);
+    }
+    if c.every_joint {
+        if let Some(missing) = (0..m.nq()).find(|j| !cols.contains(&Some(*j))) {
+            return Err(CliError::input(format!(
+                "{file}: the column '{}{}' is missing (every joint needs one)",
+                c.prefix, names[missing]
+            )));
+        }
+    }
+    let has_key = cols.contains(&None);
+    let (mut keys, mut rows) = (Vec::new(), Vec::new());
+    for record in reader.records() {
+        let record = record.map_err(err)?;
+        let line = record.position().map(|p| p.line()).unwrap_or(0);
+        let mut row = vec![0.0; m.nq()];
+        for ((col, cell), h) in cols.iter().zip(record.iter()).zip(headers.iter()) {
+            let x: f64 = cell
+                .parse()
+                .ok()
+                .filter(|x: &f64| x.is_finite())
+                .ok_or_else(|| {
+                    CliError::input(format!(
+                        "{file}:{line}: column '{h}': '{cell}' is not a finite number"
+                    ))
+                })?;
+            match col {
+                None => keys.push(x),
+                Some(j) => row[*j] = x,
+            }
+        }
+        rows.push(row);
+    }
+    Ok((has_key.then_some(keys), rows))
+}
