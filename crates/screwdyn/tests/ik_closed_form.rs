@@ -7,6 +7,9 @@
 //! offset (KUKA-like), an arm whose first two axes meet but whose second and third are skew,
 //! and arms with those geometries read from the tip.
 
+#[path = "common/counting.rs"]
+mod counting;
+
 use nalgebra::{Matrix6, Matrix6xX};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -17,8 +20,6 @@ use screwdyn::kinematics::{
 };
 use screwdyn::spatial::Se3;
 use screwdyn::{builtin, Model, Workspace};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 const MODELS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../models/");
@@ -622,34 +623,6 @@ fn near_ideal_geometry_gives_near_solutions() {
     }
 }
 
-struct Counting;
-
-thread_local! {
-    static ACTIVE: Cell<bool> = const { Cell::new(false) };
-    static COUNT: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if ACTIVE.with(|a| a.get()) {
-            COUNT.with(|c| c.set(c.get() + 1));
-        }
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if ACTIVE.with(|a| a.get()) {
-            COUNT.with(|c| c.set(c.get() + 1));
-        }
-        System.realloc(ptr, layout, new_size)
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
-
 #[test]
 fn solve_allocates_nothing() {
     for model in [
@@ -663,14 +636,13 @@ fn solve_allocates_nothing() {
             .map(|i| pose(&model, frame, &[0.1 * i as f64 - 0.7; 6]))
             .collect();
         let mut out = [[0.0; 6]; 8];
-        COUNT.with(|c| c.set(0));
-        ACTIVE.with(|a| a.set(true));
         let mut found = 0;
-        for target in &targets {
-            found += ik.solve(target, &mut out);
-        }
-        ACTIVE.with(|a| a.set(false));
+        let allocs = counting::allocations(|| {
+            for target in &targets {
+                found += ik.solve(target, &mut out);
+            }
+        });
         assert!(found > 0);
-        assert_eq!(COUNT.with(|c| c.get()), 0, "{}", model.name());
+        assert_eq!(allocs, 0, "{}", model.name());
     }
 }

@@ -5,6 +5,9 @@
 //! analytic cases (the planar arm's reach), agreement with the closed form, singular targets,
 //! limits, held joints, redundancy, and bad input.
 
+#[path = "common/counting.rs"]
+mod counting;
+
 use nalgebra::Vector3;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -14,9 +17,7 @@ use screwdyn::kinematics::ik::{
 };
 use screwdyn::kinematics::{forward_kinematics_poe, frame_pose};
 use screwdyn::spatial::{log_so3, Se3};
-use screwdyn::{builtin, Error, Model, Workspace};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
+use screwdyn::{builtin, Error, Model};
 use std::f64::consts::PI;
 
 const MODELS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../models/");
@@ -597,34 +598,6 @@ fn bad_input_is_an_error_naming_it() {
     assert!(IkSolver::new(&ur5, &[IkTask::pose(tool)], bad).is_err());
 }
 
-struct Counting;
-
-thread_local! {
-    static ACTIVE: Cell<bool> = const { Cell::new(false) };
-    static COUNT: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if ACTIVE.with(|a| a.get()) {
-            COUNT.with(|c| c.set(c.get() + 1));
-        }
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if ACTIVE.with(|a| a.get()) {
-            COUNT.with(|c| c.set(c.get() + 1));
-        }
-        System.realloc(ptr, layout, new_size)
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
-
 /// Once the workspace exists, solving allocates nothing (restarts and failures included).
 #[test]
 fn solve_allocates_nothing() {
@@ -647,19 +620,16 @@ fn solve_allocates_nothing() {
         targets.push(Se3::from_translation(Vector3::new(3.0, 0.0, 0.0)));
         let q0 = middle(&model);
         let mut q = vec![0.0; model.nq()];
-        let mut kin = Workspace::new(&model);
-        let _ = &mut kin;
-        COUNT.with(|c| c.set(0));
-        ACTIVE.with(|a| a.set(true));
         let mut successes = 0;
-        for target in &targets {
-            successes += solver
-                .solve(&mut ws, &[*target], &q0, &mut q)
-                .unwrap()
-                .success as usize;
-        }
-        ACTIVE.with(|a| a.set(false));
-        assert_eq!(COUNT.with(|c| c.get()), 0, "{}", model.name());
+        let allocs = counting::allocations(|| {
+            for target in &targets {
+                successes += solver
+                    .solve(&mut ws, &[*target], &q0, &mut q)
+                    .unwrap()
+                    .success as usize;
+            }
+        });
+        assert_eq!(allocs, 0, "{}", model.name());
         assert!(successes >= 10);
         let _ = frame_pose(&model, ws.kinematics(), frame).unwrap();
     }

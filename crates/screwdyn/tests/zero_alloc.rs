@@ -2,6 +2,10 @@
 //! counting global allocator that counts allocations made on the test's own thread.
 
 mod common;
+#[path = "common/counting.rs"]
+mod counting;
+
+use counting::allocations;
 
 use nalgebra::{Matrix6xX, Vector6};
 use rand::rngs::StdRng;
@@ -9,44 +13,6 @@ use rand::SeedableRng;
 use screwdyn::dynamics::*;
 use screwdyn::kinematics::*;
 use screwdyn::{builtin, Model, Workspace};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-
-struct Counting;
-
-thread_local! {
-    static ACTIVE: Cell<bool> = const { Cell::new(false) };
-    static COUNT: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if ACTIVE.with(|a| a.get()) {
-            COUNT.with(|c| c.set(c.get() + 1));
-        }
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if ACTIVE.with(|a| a.get()) {
-            COUNT.with(|c| c.set(c.get() + 1));
-        }
-        System.realloc(ptr, layout, new_size)
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
-
-fn allocations(f: impl FnOnce()) -> usize {
-    COUNT.with(|c| c.set(0));
-    ACTIVE.with(|a| a.set(true));
-    f();
-    ACTIVE.with(|a| a.set(false));
-    COUNT.with(|c| c.get())
-}
 
 fn check(model: &Model) {
     let n = model.nq();
