@@ -766,7 +766,7 @@ pub struct LagrangeArgs {
 /// `screwdyn view MODEL`: the robot in 3-D in one self-contained HTML page (docs/view.md).
 #[derive(Args, Debug)]
 pub struct ViewArgs {
-    /// A .urdf or .toml file, or builtin:<name>.
+    /// A .urdf, .xml (MJCF) or .toml file, or builtin:<name>.
     pub model: String,
     /// The configuration shown when there is no --run (default: all zero).
     #[arg(long, allow_hyphen_values = true)]

@@ -90,19 +90,15 @@ impl PyModel {
         })
     }
 
-    /// The URDF file the model was loaded from and its text, when it was loaded from one that
-    /// still exists (its `<visual>` elements are drawn by `view`, meshes found beside it).
-    pub(crate) fn urdf_source(&self) -> Option<(PathBuf, String)> {
+    /// The URDF or MJCF file the model was loaded from and its text, when it was loaded from
+    /// one that still exists (its visuals are drawn by `view`, meshes found beside it).
+    pub(crate) fn description_source(&self) -> Option<(PathBuf, String)> {
         match &self.source {
             Source::Text { file, text } => {
                 use screwdyn::io::Format;
-                let urdf = match Format::of_file(file) {
-                    Some(Format::Urdf) => true,
-                    Some(Format::Mjcf) => Format::of_text(text) == Format::Urdf,
-                    _ => false,
-                };
+                let drawn = matches!(Format::of_file(file), Some(Format::Urdf | Format::Mjcf));
                 let p = PathBuf::from(file);
-                (urdf && p.is_file()).then(|| (p, text.clone()))
+                (drawn && p.is_file()).then(|| (p, text.clone()))
             }
             Source::Builtin(_) => None,
         }

@@ -55,8 +55,9 @@ impl PyModel {
     ///     and the energies, joints past a limit highlighted): a :class:`SimResult` from
     ///     :meth:`simulate`, a :class:`TorqueProfile`, or the path of a run ``.csv``/``.json``
     ///     file as written by ``screwdyn simulate --output`` or :meth:`SimResult.save`.
-    /// urdf: the URDF whose ``<visual>`` elements are drawn (default: the file the model was
-    ///     loaded from, when it is a URDF file; otherwise the skeleton from the screw axes).
+    /// urdf: the URDF (``<visual>`` elements) or MJCF file (visual geoms: groups 0–2, with their
+    ///     colours) whose visuals are drawn (default: the file the model was loaded from, when it
+    ///     is a URDF or MJCF file; otherwise the skeleton from the screw axes).
     /// package_path: folders searched for ``package://`` meshes before ``ROS_PACKAGE_PATH``
     ///     (``--package-path``).
     /// max_triangles: cap on the embedded mesh triangles (``--max-triangles``; larger meshes are
@@ -104,15 +105,15 @@ impl PyModel {
             let q = q.transpose()?;
             let run = run.map(|r| r.read(m, max_samples)).transpose()?;
             // The model's own URDF is not read again; one given as `urdf` is.
-            let (urdf, urdf_text) = match urdf {
+            let (description, description_text) = match urdf {
                 Some(path) => (Some(path), None),
-                None => self.urdf_source().unzip(),
+                None => self.description_source().unzip(),
             };
             let options = ViewOptions {
                 q,
                 run,
-                urdf,
-                urdf_text,
+                description,
+                description_text,
                 package_paths,
                 max_triangles,
                 title,

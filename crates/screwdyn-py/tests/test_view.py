@@ -2,6 +2,7 @@
 text is checked as the Rust/CLI tests check it (joint list, run duration); a SimResult run and
 the same run written to CSV by the library's writer embed the same data; bad input raises."""
 
+import base64
 import html
 import json
 import re
@@ -148,3 +149,26 @@ def test_bad_input(arm, run, tmp_path):
         arm.view(run=42)
     with pytest.raises(ValueError, match="triangle cap"):
         arm.view(max_triangles=0)
+
+
+def test_mjcf_model_draws_its_visual_geoms_in_their_colours(tmp_path):
+    # Two visual geoms (a box of half-sizes 0.1 0.2 0.3 in its material's red, a sphere in its
+    # own rgba) and a collision capsule in group 3, which MuJoCo's viewer hides by default.
+    xml = tmp_path / "two.xml"
+    xml.write_text(
+        """<mujoco model="two"><asset><material name="red" rgba="1 0 0 1"/></asset>
+  <worldbody><body name="b"><joint name="j" axis="0 0 1"/>
+    <geom type="box" size="0.1 0.2 0.3" material="red"/>
+    <geom type="sphere" size="0.05" pos="0 0 0.5" rgba="0 0 1 0.5"/>
+    <geom type="capsule" size="0.2 0.4" group="3"/>
+  </body></worldbody></mujoco>"""
+    )
+    d = page_data(screwdyn.load(str(xml)).view().html)
+    robot = [p for p in d["parts"] if p["g"] == "robot"]
+    assert [p["c"] for p in robot] == [[1.0, 0.0, 0.0, 1.0], [0.0, 0.0, 1.0, 0.5]]
+    # The box's corners in its body frame: ±(0.1, 0.2, 0.3).
+    box = np.frombuffer(base64.b64decode(d["meshes"][robot[0]["m"]]["p"]), "<f4")
+    t = np.array(robot[0]["t"]).reshape(3, 4)
+    placed = box.reshape(-1, 3) @ t[:, :3].T + t[:, 3]
+    np.testing.assert_allclose(placed.max(axis=0), [0.1, 0.2, 0.3], rtol=1e-6)
+    np.testing.assert_allclose(placed.min(axis=0), [-0.1, -0.2, -0.3], rtol=1e-6)

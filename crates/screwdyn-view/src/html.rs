@@ -3,9 +3,10 @@
 
 use crate::run::{PAST_EFFORT, PAST_LIMIT};
 use crate::scene::{joint_anchor, joint_direction, Group, Scene};
-use crate::{visual, Page, ViewOptions};
+use crate::{Page, ViewOptions};
 use base64::Engine;
 use nalgebra::Matrix4;
+use screwdyn::io::visual::visuals_of;
 use screwdyn::model::FrameKind;
 use screwdyn::spatial::Se3;
 use screwdyn::{kinematics, Error, Model, Result, Workspace};
@@ -76,13 +77,13 @@ fn end_effectors(model: &Model) -> Result<Vec<usize>> {
     Ok(out)
 }
 
-/// Writes the page of `model` with `options` (see [`ViewOptions`]): the scene (URDF visuals
+/// Writes the page of `model` with `options` (see [`ViewOptions`]): the scene (visuals
 /// or skeleton), the overlays (frames `{i}` of every link, joint screw axes, centres of mass,
 /// the end-effector path of the run) and the run's animation and plots.
 ///
 /// # Errors
 /// [`Error::DimensionMismatch`]/[`Error::NonFinite`] for a bad `options.q`; [`Error::Io`] or
-/// [`Error::Parse`] when the URDF cannot be read again for its visuals;
+/// [`Error::Parse`] when the URDF or MJCF file cannot be read again for its visuals;
 /// [`Error::InvalidArgument`] when the run's samples do not have one position per joint or
 /// `max_triangles` is 0. Missing or unreadable meshes are not errors: they are in
 /// [`Page::warnings`] and drawn as stand-in boxes.
@@ -94,15 +95,16 @@ pub fn render_html(model: &Model, options: &ViewOptions) -> Result<Page> {
     }
     let q0 = options.q.clone().unwrap_or_else(|| vec![0.0; model.nq()]);
     model.check_vector(&q0, "q")?;
-    let (visuals, dir) = match &options.urdf {
+    let (visuals, dir) = match &options.description {
         Some(path) => {
             let file = path.display().to_string();
-            let text = match &options.urdf_text {
+            let text = match &options.description_text {
                 Some(text) => text.clone(),
                 None => std::fs::read_to_string(path).map_err(|e| Error::unreadable(path, &e))?,
             };
             let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-            (visual::parse_visuals(&text, &file)?, dir)
+            let load = screwdyn::io::LoadOptions::default();
+            (visuals_of(&text, &file, &load)?, dir)
         }
         None => (Vec::new(), Default::default()),
     };

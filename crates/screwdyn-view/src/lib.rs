@@ -6,8 +6,10 @@
 //! synchronised plot of `q`, `τ` and the energies, highlighting the joints past a position
 //! limit or an effort limit at the times they are.
 //!
-//! Geometry comes from the URDF `<visual>` elements (boxes, cylinders, spheres and STL, OBJ
-//! and Collada meshes, see [`visual`] and [`mesh`]); a model without visuals (DH, PoE, TOML,
+//! Geometry comes from the model's visuals, a format-neutral list the library reads
+//! ([`screwdyn::io::visual::visuals_of`]): a URDF's `<visual>` elements or an MJCF's visual
+//! geoms (boxes, spheres, cylinders, capsules, ellipsoids and STL, OBJ and Collada meshes, with
+//! their colours; see [`visual`] and [`mesh`]); a model without visuals (DH, PoE, TOML,
 //! built-ins) is drawn as a skeleton built from its screw axes (see [`scene`]). Every pose
 //! on the page is computed here, by the library's forward kinematics
 //! `H_i^0 = H_{λ(i)}^0 H_i^{λ(i)}(0) e^{[S_i] q_i}` (Lynch & Park, *Modern Robotics*); the page's JavaScript only
@@ -52,12 +54,13 @@ pub struct ViewOptions {
     pub q: Option<Vec<f64>>,
     /// A run to animate (see [`read_run`] and [`Run::from_recording`]).
     pub run: Option<Run>,
-    /// The URDF file the model was loaded from: its `<visual>` elements are drawn. `None`
-    /// (DH, PoE, TOML, built-ins) draws the skeleton.
-    pub urdf: Option<PathBuf>,
-    /// The text of `urdf` when the caller has already read it (see
-    /// [`screwdyn::io::Loaded::urdf`]); `None` reads the file.
-    pub urdf_text: Option<String>,
+    /// The URDF or MJCF file the model was loaded from: its visuals (a URDF's `<visual>`
+    /// elements, an MJCF's visual geoms, see [`screwdyn::io::visual::visuals_of`]) are drawn.
+    /// `None` (DH, PoE, TOML, built-ins) draws the skeleton.
+    pub description: Option<PathBuf>,
+    /// The text of `description` when the caller has already read it (see
+    /// [`screwdyn::io::Loaded::description`]); `None` reads the file.
+    pub description_text: Option<String>,
     /// Folders searched for `package://` mesh paths, before `ROS_PACKAGE_PATH`.
     pub package_paths: Vec<PathBuf>,
     /// Cap on the embedded triangles ([`DEFAULT_MAX_TRIANGLES`]).
@@ -71,8 +74,8 @@ impl Default for ViewOptions {
         ViewOptions {
             q: None,
             run: None,
-            urdf: None,
-            urdf_text: None,
+            description: None,
+            description_text: None,
             package_paths: Vec::new(),
             max_triangles: DEFAULT_MAX_TRIANGLES,
             title: None,

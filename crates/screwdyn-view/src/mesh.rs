@@ -1,10 +1,10 @@
-//! Triangle meshes: the readers of the mesh files URDF `<visual>` elements name (STL binary and
-//! ASCII, Wavefront OBJ, Collada `.dae`), the primitive shapes (box, cylinder, sphere, capsule)
-//! and the size controls (vertex deduplication, vertex-clustering decimation).
+//! Triangle meshes: the Collada `.dae` reader (STL and OBJ files are read by the library's
+//! [`screwdyn::io::visual::read_mesh`], see [`crate::visual::read_mesh_file`]), the primitive
+//! shapes (box, cylinder, sphere, capsule) and the size controls (vertex deduplication,
+//! vertex-clustering decimation).
 //!
-//! Every reader returns [`Mesh`]es in the file's own units with the file's transforms applied
-//! (Collada node matrices and `<unit meter=…>`); the URDF `scale` is applied later, by the
-//! visual's transform.
+//! Meshes are in the file's own units with the file's transforms applied (Collada node
+//! matrices and `<unit meter=…>`); the visual's `scale` is applied later, by its transform.
 
 use nalgebra::{Matrix4, Vector3, Vector4};
 use screwdyn::{Error, Result};
@@ -26,14 +26,6 @@ impl Mesh {
     /// Number of triangles.
     pub fn triangles(&self) -> usize {
         self.indices.len() / 3
-    }
-
-    /// Appends a triangle given by its corners (no sharing with earlier vertices; call
-    /// [`Mesh::dedup`] afterwards).
-    fn push_triangle(&mut self, a: [f32; 3], b: [f32; 3], c: [f32; 3]) {
-        let k = self.positions.len() as u32;
-        self.positions.extend([a, b, c]);
-        self.indices.extend([k, k + 1, k + 2]);
     }
 
     /// Merges vertices with bit-identical positions (STL repeats every corner for every
@@ -177,164 +169,6 @@ impl Mesh {
 
 fn bad(file: &str, what: impl std::fmt::Display) -> Error {
     Error::parse(file, what.to_string())
-}
-
-/// Reads an STL file, binary or ASCII (told apart by the binary layout: an 80-byte header, a
-/// triangle count and 50 bytes per triangle). Where a facet's stored normal points against
-/// the normal of its corners' order, the corners are swapped so that the order is
-/// counter-clockwise seen from outside, as the stored normal says.
-///
-/// # Errors
-/// [`Error::Parse`] naming `file` when the data is neither a binary nor an ASCII STL.
-///
-/// ```
-/// let ascii = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
-/// let m = screwdyn_view::mesh::read_stl(ascii.as_bytes(), "t.stl").unwrap();
-/// assert_eq!(m.triangles(), 1);
-/// ```
-pub fn read_stl(bytes: &[u8], file: &str) -> Result<Mesh> {
-    let binary = bytes.len() >= 84 && {
-        let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
-        n.checked_mul(50).and_then(|x| x.checked_add(84)) == Some(bytes.len())
-    };
-    let mut mesh = Mesh::default();
-    let mut add = |n: [f32; 3], a: [f32; 3], b: [f32; 3], c: [f32; 3]| {
-        let (va, vb, vc) = (v3(a), v3(b), v3(c));
-        let wound = (vb - va).cross(&(vc - va));
-        if wound.dot(&v3(n)) < 0.0 {
-            mesh.push_triangle(a, c, b);
-        } else {
-            mesh.push_triangle(a, b, c);
-        }
-    };
-    if binary {
-        for t in bytes[84..].chunks_exact(50) {
-            let f = |k: usize| {
-                let o = 4 * k;
-                f32::from_le_bytes([t[o], t[o + 1], t[o + 2], t[o + 3]])
-            };
-            let p = |k: usize| [f(3 * k), f(3 * k + 1), f(3 * k + 2)];
-            add(p(0), p(1), p(2), p(3));
-        }
-    } else {
-        let text = std::str::from_utf8(bytes)
-            .map_err(|_| bad(file, "is neither a binary STL (its size does not match its triangle count) nor an ASCII STL"))?;
-        if !text.trim_start().starts_with("solid") {
-            return Err(bad(
-                file,
-                "is neither a binary STL (its size does not match its triangle count) nor an ASCII STL (no 'solid' header)",
-            ));
-        }
-        let mut normal = [0.0; 3];
-        let mut corners = Vec::with_capacity(3);
-        for (line_no, line) in text.lines().enumerate() {
-            let mut w = line.split_whitespace();
-            match w.next() {
-                Some("facet") => {
-                    let rest: Vec<&str> = w.collect();
-                    normal = if rest.first() == Some(&"normal") {
-                        floats3(&rest[1..], file, line_no + 1)?
-                    } else {
-                        [0.0; 3]
-                    };
-                    corners.clear();
-                }
-                Some("vertex") => {
-                    let rest: Vec<&str> = w.collect();
-                    corners.push(floats3(&rest, file, line_no + 1)?);
-                }
-                Some("endfacet") => {
-                    if corners.len() != 3 {
-                        return Err(bad(
-                            file,
-                            format!(
-                                "line {}: a facet has {} vertices, expected 3",
-                                line_no + 1,
-                                corners.len()
-                            ),
-                        ));
-                    }
-                    add(normal, corners[0], corners[1], corners[2]);
-                }
-                _ => {}
-            }
-        }
-    }
-    mesh.dedup();
-    Ok(mesh)
-}
-
-fn v3(a: [f32; 3]) -> Vector3<f32> {
-    Vector3::new(a[0], a[1], a[2])
-}
-
-fn floats3(words: &[&str], file: &str, line: usize) -> Result<[f32; 3]> {
-    let v: Vec<f32> = words
-        .iter()
-        .take(3)
-        .map(|s| s.parse::<f32>())
-        .collect::<std::result::Result<_, _>>()
-        .map_err(|_| bad(file, format!("line {line}: expected three numbers")))?;
-    if v.len() != 3 || v.iter().any(|x| !x.is_finite()) {
-        return Err(bad(
-            file,
-            format!("line {line}: expected three finite numbers"),
-        ));
-    }
-    Ok([v[0], v[1], v[2]])
-}
-
-/// Reads a Wavefront OBJ file: `v` lines and `f` lines (`i`, `i/t`, `i//n`, `i/t/n`,
-/// negative indices counting back); polygons are split into fans. Materials are ignored.
-///
-/// # Errors
-/// [`Error::Parse`] naming `file` and the line of a malformed `v` or `f` line.
-///
-/// ```
-/// let m = screwdyn_view::mesh::read_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", "q.obj").unwrap();
-/// assert_eq!(m.triangles(), 2);
-/// ```
-pub fn read_obj(text: &str, file: &str) -> Result<Mesh> {
-    let mut mesh = Mesh::default();
-    for (line_no, line) in text.lines().enumerate() {
-        let mut w = line.split_whitespace();
-        match w.next() {
-            Some("v") => {
-                let rest: Vec<&str> = w.collect();
-                mesh.positions.push(floats3(&rest, file, line_no + 1)?);
-            }
-            Some("f") => {
-                let n = mesh.positions.len() as i64;
-                let idx: Vec<u32> = w
-                    .map(|corner| {
-                        let first = corner.split('/').next().unwrap_or("");
-                        let i: i64 = first.parse().map_err(|_| {
-                            bad(
-                                file,
-                                format!("line {}: '{corner}' is not a vertex index", line_no + 1),
-                            )
-                        })?;
-                        let k = if i < 0 { n + i } else { i - 1 };
-                        if k < 0 || k >= n {
-                            return Err(bad(
-                                file,
-                                format!(
-                                    "line {}: vertex index {i} is out of range (1..{n})",
-                                    line_no + 1
-                                ),
-                            ));
-                        }
-                        Ok(k as u32)
-                    })
-                    .collect::<Result<_>>()?;
-                for k in 1..idx.len().saturating_sub(1) {
-                    mesh.indices.extend([idx[0], idx[k], idx[k + 1]]);
-                }
-            }
-            _ => {}
-        }
-    }
-    Ok(mesh)
 }
 
 /// Reads a Collada (`.dae`) file: the geometries (`<triangles>`, `<polylist>`, `<polygons>`)

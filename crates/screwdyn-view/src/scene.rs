@@ -1,8 +1,8 @@
-//! The drawable scene: triangle meshes attached to bodies, from the URDF visuals or, for a
+//! The drawable scene: triangle meshes attached to bodies, from the model's visuals or, for a
 //! model without visuals, a skeleton built from the joints' screw axes and the bodies' inertias.
 
 use crate::mesh::{self, Mesh};
-use crate::visual::{self, Geometry, Visual};
+use crate::visual::{self, Shape, Visual};
 use crate::{ViewOptions, Warning, WarningKind};
 use nalgebra::{Matrix4, Vector3};
 use screwdyn::model::FrameKind;
@@ -189,8 +189,9 @@ fn along(a: &Vector3<f64>, d: &Vector3<f64>) -> Matrix4<f64> {
 }
 
 impl Scene {
-    /// Builds the scene of `model`: its URDF visuals when `visuals` is given and not empty
-    /// (with `urdf_dir` to resolve mesh paths), a skeleton otherwise; CoM spheres in both cases.
+    /// Builds the scene of `model`: its visuals (URDF or MJCF, see [`Visual`]) when `visuals` is
+    /// not empty (with `urdf_dir`, the description's folder, to resolve relative mesh paths), a
+    /// skeleton otherwise; CoM spheres in both cases.
     /// Meshes that cannot be found or read become warnings and stand-in boxes; when the meshes
     /// hold more than `options.max_triangles` triangles they are decimated to fit (a warning).
     ///
@@ -291,20 +292,35 @@ impl Scene {
             let frame = &model.frames()[model.frame_id(&v.link)?];
             let placed = se3_matrix(&frame.placement.compose(&v.origin));
             let color = v.color.unwrap_or(GREY);
-            let (meshes, transform, file_colors) = match &v.geometry {
-                Geometry::Box(s) => {
-                    let m = self.add(mesh::cuboid(s.map(|x| x as f32)));
+            let (meshes, transform, file_colors) = match &v.shape {
+                Shape::Box { size } => {
+                    let m = self.add(mesh::cuboid(size.map(|x| x as f32)));
                     ((m, 1), placed, false)
                 }
-                Geometry::Cylinder { radius, length } => {
+                Shape::Cylinder { radius, length } => {
                     let m = self.add(mesh::cylinder(*radius as f32, *length as f32, 32));
                     ((m, 1), placed, false)
                 }
-                Geometry::Sphere(r) => {
-                    let m = self.add(mesh::sphere(*r as f32, 24, 12));
+                Shape::Sphere { radius } => {
+                    let m = self.add(mesh::sphere(*radius as f32, 24, 12));
                     ((m, 1), placed, false)
                 }
-                Geometry::Mesh { filename, scale } => {
+                // The capsule mesh runs from z = 0 to z = length: shift it back by half.
+                Shape::Capsule { radius, length } => {
+                    let m = self.add(mesh::capsule(*radius as f32, *length as f32, 24));
+                    let shift = Matrix4::new_translation(&Vector3::new(0.0, 0.0, -length / 2.0));
+                    ((m, 1), placed * shift, false)
+                }
+                // A unit sphere scaled by the semi-axes.
+                Shape::Ellipsoid { radii } => {
+                    let m = self.add(mesh::sphere(1.0, 24, 12));
+                    let scale = Matrix4::new_nonuniform_scaling(&Vector3::from(*radii));
+                    ((m, 1), placed * scale, false)
+                }
+                Shape::Mesh {
+                    file: filename,
+                    scale,
+                } => {
                     let scaled = placed * visual::scaling(*scale).to_homogeneous();
                     let entry = match cache.get(filename) {
                         Some(e) => *e,

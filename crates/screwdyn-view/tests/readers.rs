@@ -5,10 +5,10 @@
 use nalgebra::Vector3;
 use screwdyn::kinematics::forward_kinematics;
 use screwdyn::{builtin, Workspace};
-use screwdyn_view::mesh::{read_dae, read_obj, read_stl, Mesh};
+use screwdyn_view::mesh::{read_dae, Mesh};
 use screwdyn_view::run::{read_run, PAST_EFFORT, PAST_LIMIT};
 use screwdyn_view::scene::skeleton_segments;
-use screwdyn_view::visual::resolve_mesh;
+use screwdyn_view::visual::{read_mesh_file, resolve_mesh};
 use screwdyn_view::{render_html, ViewOptions, WarningKind};
 use std::path::{Path, PathBuf};
 
@@ -19,8 +19,8 @@ fn tmp(name: &str) -> PathBuf {
     d
 }
 
-/// The unit tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1): four facets with their outward
-/// normals, corners listed in the order written to the file.
+/// The unit tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1): four facets with the normals of
+/// their corners' order (outward for the first three), corners listed as written to the file.
 fn tetrahedron() -> Vec<([f32; 3], [[f32; 3]; 3])> {
     let (o, x, y, z) = ([0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]);
     let s = 1.0 / 3f32.sqrt();
@@ -28,8 +28,9 @@ fn tetrahedron() -> Vec<([f32; 3], [[f32; 3]; 3])> {
         ([0.0, 0.0, -1.0], [o, y, x]),
         ([0.0, -1.0, 0.0], [o, x, z]),
         ([-1.0, 0.0, 0.0], [o, z, y]),
-        // Written clockwise seen from outside: the reader must re-wind it.
-        ([s, s, s], [x, z, y]),
+        // Written clockwise seen from outside: kept as written (MuJoCo reads STL corners in
+        // their order too; the page lights both faces).
+        ([-s, -s, -s], [x, z, y]),
     ]
 }
 
@@ -66,30 +67,36 @@ fn v(p: [f32; 3]) -> Vector3<f32> {
     Vector3::new(p[0], p[1], p[2])
 }
 
-/// Every triangle's right-hand normal points along one of the stored outward normals.
+/// Every triangle's right-hand normal is the normal of one of the facets as written.
 fn check_outward(m: &Mesh, facets: &[([f32; 3], [[f32; 3]; 3])]) {
     for t in m.indices.chunks_exact(3) {
         let [a, b, c] = [t[0], t[1], t[2]].map(|i| v(m.positions[i as usize]));
         let n = (b - a).cross(&(c - a)).normalize();
         assert!(
             facets.iter().any(|(s, _)| (n - v(*s)).norm() < 1e-5),
-            "triangle normal {n:?} is not an outward normal"
+            "triangle normal {n:?} is not the normal of a facet as written"
         );
     }
 }
 
 #[test]
-fn stl_binary_and_ascii_give_the_tetrahedron_with_outward_normals() {
+fn stl_binary_and_ascii_give_the_tetrahedron_as_written() {
     let f = tetrahedron();
-    let bin = read_stl(&stl_binary(&f), "tet.stl").unwrap();
-    let asc = read_stl(stl_ascii(&f).as_bytes(), "tet.stl").unwrap();
-    for m in [&bin, &asc] {
+    let dir = tmp("stl");
+    let (bin, asc, bad) = (dir.join("bin.stl"), dir.join("asc.STL"), dir.join("x.stl"));
+    std::fs::write(&bin, stl_binary(&f)).unwrap();
+    std::fs::write(&asc, stl_ascii(&f)).unwrap();
+    std::fs::write(&bad, b"not a mesh").unwrap();
+    for path in [&bin, &asc] {
+        let meshes = read_mesh_file(path).unwrap();
+        assert_eq!(meshes.len(), 1);
+        let m = &meshes[0];
         assert_eq!(m.triangles(), 4);
         assert_eq!(m.positions.len(), 4, "corners shared by facets are merged");
         check_outward(m, &f);
     }
-    let err = read_stl(b"not a mesh", "x.stl").unwrap_err().to_string();
-    assert!(err.starts_with("x.stl: is neither"), "{err}");
+    let err = read_mesh_file(&bad).unwrap_err().to_string();
+    assert!(err.starts_with(&format!("{}: ", bad.display())), "{err}");
 }
 
 #[test]
@@ -109,19 +116,25 @@ fn obj_quads_and_negative_indices() {
     ] {
         s += &format!("f {}/1/1 {}/1/1 {}/1/1 {}/1/1\n", q[0], q[1], q[2], q[3]);
     }
-    // The last face (x = 1: vertices 2, 4, 8, 6) by negative indices (−8 is vertex 1).
-    s += "f -7//1 -5//1 -1//1 -3//1\n";
-    let m = read_obj(&s, "cube.obj").unwrap();
+    // The last face (x = 1: vertices 2, 4, 8, 6) by negative indices (−8 is vertex 1; the
+    // texture coordinate −1 is the only one). `mesh-loader` wants the same attributes on every
+    // face of an object, as real files have them.
+    s += "f -7/-1/1 -5/-1/1 -1/-1/1 -3/-1/1\n";
+    let dir = tmp("obj");
+    let (cube, bad) = (dir.join("cube.obj"), dir.join("bad.obj"));
+    std::fs::write(&cube, &s).unwrap();
+    std::fs::write(&bad, "v 0 0 0\nf 1 2 3\n").unwrap();
+    let meshes = read_mesh_file(&cube).unwrap();
+    assert_eq!(meshes.len(), 1);
+    let m = &meshes[0];
     assert_eq!(m.triangles(), 12);
     assert_eq!(m.bounds(), ([0.0; 3], [1.0; 3]));
     // The x = 1 face's two triangles use exactly the vertices with x = 1.
     for t in m.indices[30..36].iter() {
         assert_eq!(m.positions[*t as usize][0], 1.0);
     }
-    let err = read_obj("v 0 0 0\nf 1 2 3\n", "bad.obj")
-        .unwrap_err()
-        .to_string();
-    assert!(err.contains("bad.obj") && err.contains("line 2"), "{err}");
+    let err = read_mesh_file(&bad).unwrap_err().to_string();
+    assert!(err.starts_with(&format!("{}: ", bad.display())), "{err}");
 }
 
 #[test]
@@ -338,7 +351,7 @@ fn missing_meshes_warn_and_huge_meshes_are_capped() {
     let page = render_html(
         &m,
         &ViewOptions {
-            urdf: Some(urdf.clone()),
+            description: Some(urdf.clone()),
             max_triangles: 5000,
             ..Default::default()
         },
@@ -362,7 +375,7 @@ fn missing_meshes_warn_and_huge_meshes_are_capped() {
     let full = render_html(
         &m,
         &ViewOptions {
-            urdf: Some(urdf),
+            description: Some(urdf),
             ..Default::default()
         },
     )

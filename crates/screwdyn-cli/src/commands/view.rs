@@ -53,8 +53,8 @@ pub fn view(a: &ViewArgs) -> Result<(), CliError> {
         .as_deref()
         .map(|p| read_run(p, model, a.max_samples))
         .transpose()?;
-    let (urdf, urdf_text) = loaded
-        .urdf()
+    let (description, description_text) = loaded
+        .description()
         .map(|(path, text)| (path.to_path_buf(), text.to_string()))
         .unzip();
     let page = render_html(
@@ -62,8 +62,8 @@ pub fn view(a: &ViewArgs) -> Result<(), CliError> {
         &ViewOptions {
             q,
             run,
-            urdf,
-            urdf_text,
+            description,
+            description_text,
             package_paths: a.package_path.clone(),
             max_triangles: a.max_triangles,
             title: None,

@@ -49,6 +49,7 @@ pub mod native;
 pub mod output;
 pub mod poe;
 pub mod urdf;
+pub mod visual;
 mod xml_text;
 
 mod common;

@@ -257,4 +257,23 @@ impl Loaded {
         };
         urdf.then_some((path, text))
     }
+
+    /// The URDF or MJCF file and its text when the model was read from one (its visuals can
+    /// then be drawn, see [`crate::io::visual::visuals_of`]); `None` for a TOML description
+    /// or a built-in robot.
+    ///
+    /// ```
+    /// use screwdyn::io::{load_source, LoadOptions};
+    /// let planar = load_source("builtin:planar2", &LoadOptions::default()).unwrap();
+    /// assert!(planar.description().is_none());
+    /// ```
+    pub fn description(&self) -> Option<(&std::path::Path, &str)> {
+        let path = self.path.as_deref()?;
+        let text = self.text.as_deref()?;
+        matches!(
+            Format::of_file(&path.to_string_lossy()),
+            Some(Format::Urdf | Format::Mjcf)
+        )
+        .then_some((path, text))
+    }
 }

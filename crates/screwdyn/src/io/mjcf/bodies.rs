@@ -55,6 +55,10 @@ pub(crate) struct Walk<'t> {
     pub joints: Vec<MJoint>,
     /// Sites: (name, link, placement in the link).
     pub sites: Vec<(String, String, Se3)>,
+    /// Geoms: (link, element, placement of what holds it in the link, class).
+    pub geoms: Vec<Held<'t>>,
+    /// The link of each geom of [`Walk::geoms`].
+    pub geom_links: Vec<String>,
     /// Warnings: (`file:line`, message).
     pub warnings: Vec<(String, String)>,
     unnamed: usize,
@@ -62,7 +66,7 @@ pub(crate) struct Walk<'t> {
 
 /// What a body holds directly or through `<frame>`s: the element, its placement in the body
 /// and its class.
-type Held<'t> = (&'t Element, Se3, ClassId);
+pub(crate) type Held<'t> = (&'t Element, Se3, ClassId);
 
 impl<'t> Walk<'t> {
     pub fn new(
@@ -79,6 +83,8 @@ impl<'t> Walk<'t> {
             links: Vec::new(),
             joints: Vec::new(),
             sites: Vec::new(),
+            geoms: Vec::new(),
+            geom_links: Vec::new(),
             warnings: Vec::new(),
             unnamed: 0,
         }
@@ -104,6 +110,10 @@ impl<'t> Walk<'t> {
                 match e.tag.as_str() {
                     "body" => self.body(e, base, at, class)?,
                     "site" => self.site(e, base, at, class)?,
+                    "geom" => {
+                        self.geoms.push((e, at, class));
+                        self.geom_links.push(base.to_string());
+                    }
                     "joint" | "freejoint" => {
                         return Err(self.tree.model_error(
                             e,
@@ -224,6 +234,10 @@ impl<'t> Walk<'t> {
             match c.tag.as_str() {
                 "body" => self.body(c, &name, at, cls)?,
                 "site" => self.site(c, &name, at, cls)?,
+                "geom" => {
+                    self.geoms.push((c, at, cls));
+                    self.geom_links.push(name.clone());
+                }
                 _ => {}
             }
         }

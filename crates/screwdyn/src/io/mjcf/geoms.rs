@@ -24,18 +24,7 @@ pub(crate) fn geom_inertia(
     if group < lo as f64 || group > hi as f64 {
         return Ok(None);
     }
-    let types = [
-        "plane",
-        "hfield",
-        "sphere",
-        "capsule",
-        "ellipsoid",
-        "cylinder",
-        "box",
-        "mesh",
-        "sdf",
-    ];
-    let kind = v.keyword("type", &types)?.unwrap_or("sphere");
+    let kind = geom_type(v)?;
     if matches!(kind, "plane" | "hfield") {
         return Ok(None);
     }
@@ -44,47 +33,7 @@ pub(crate) fn geom_inertia(
             "<geom type=\"sdf\"> has no inertia screwdyn can compute; give the body an <inertial>",
         ));
     }
-    let mut placement = pose(v, compiler)?;
-    let mut size = v.numbers_between("size", 0, 3)?.unwrap_or_default();
-    if let Some(ft) = v.numbers("fromto", 6)? {
-        if !matches!(kind, "capsule" | "cylinder" | "box" | "ellipsoid") {
-            return Err(v.error(format!("<geom type=\"{kind}\" fromto> is only defined for capsules, cylinders, boxes and ellipsoids")));
-        }
-        // Centre at the midpoint, ẑ along the segment, half-length |to − from|/2.
-        let (from, to) = (
-            Vector3::new(ft[0], ft[1], ft[2]),
-            Vector3::new(ft[3], ft[4], ft[5]),
-        );
-        let d = to - from;
-        if d.norm() < 1e-12 {
-            return Err(v.error("<geom fromto> has the same start and end point"));
-        }
-        placement = Se3::new(z_to(&Unit::new_normalize(d)), (from + to) / 2.0);
-        let half = d.norm() / 2.0;
-        match kind {
-            "capsule" | "cylinder" => {
-                size.resize(1, 0.0);
-                size.push(half);
-            }
-            _ => {
-                size.resize(2, 0.0);
-                size.push(half);
-            }
-        }
-    }
-    let need = match kind {
-        "sphere" => 1,
-        "capsule" | "cylinder" => 2,
-        "mesh" => 0,
-        _ => 3,
-    };
-    if size.len() < need || size[..need].iter().any(|s| *s <= 0.0) {
-        return Err(v.error(format!(
-            "<geom type=\"{kind}\"> needs {need} positive size value{} (got \"{}\")",
-            if need == 1 { "" } else { "s" },
-            v.text("size").unwrap_or("")
-        )));
-    }
+    let (placement, size) = placement_and_size(v, compiler, kind)?;
     let (volume, unit_inertia, centre) = match kind {
         "mesh" => {
             let name = v
@@ -117,6 +66,73 @@ pub(crate) fn geom_inertia(
         placement.act_point(&centre),
         r * i_geom * r.transpose(),
     )))
+}
+
+/// The geom's `type` (MuJoCo's default: a sphere).
+pub(crate) fn geom_type(v: &Values) -> Result<&'static str> {
+    let types = [
+        "plane",
+        "hfield",
+        "sphere",
+        "capsule",
+        "ellipsoid",
+        "cylinder",
+        "box",
+        "mesh",
+        "sdf",
+    ];
+    Ok(v.keyword("type", &types)?.unwrap_or("sphere"))
+}
+
+/// The geom's pose in its body (or frame) and its half-sizes (MuJoCo's `size`), from
+/// `pos`/orientation or from `fromto` (centre at the midpoint, `ẑ` along the segment,
+/// half-length `|to − from|/2`); the sizes the type needs are checked to be positive.
+pub(crate) fn placement_and_size(
+    v: &Values,
+    compiler: &Compiler,
+    kind: &str,
+) -> Result<(Se3, Vec<f64>)> {
+    let mut placement = pose(v, compiler)?;
+    let mut size = v.numbers_between("size", 0, 3)?.unwrap_or_default();
+    if let Some(ft) = v.numbers("fromto", 6)? {
+        if !matches!(kind, "capsule" | "cylinder" | "box" | "ellipsoid") {
+            return Err(v.error(format!("<geom type=\"{kind}\" fromto> is only defined for capsules, cylinders, boxes and ellipsoids")));
+        }
+        let (from, to) = (
+            Vector3::new(ft[0], ft[1], ft[2]),
+            Vector3::new(ft[3], ft[4], ft[5]),
+        );
+        let d = to - from;
+        if d.norm() < 1e-12 {
+            return Err(v.error("<geom fromto> has the same start and end point"));
+        }
+        placement = Se3::new(z_to(&Unit::new_normalize(d)), (from + to) / 2.0);
+        let half = d.norm() / 2.0;
+        match kind {
+            "capsule" | "cylinder" => {
+                size.resize(1, 0.0);
+                size.push(half);
+            }
+            _ => {
+                size.resize(2, 0.0);
+                size.push(half);
+            }
+        }
+    }
+    let need = match kind {
+        "sphere" => 1,
+        "capsule" | "cylinder" => 2,
+        "mesh" | "plane" | "hfield" | "sdf" => 0,
+        _ => 3,
+    };
+    if size.len() < need || size[..need].iter().any(|s| *s <= 0.0) {
+        return Err(v.error(format!(
+            "<geom type=\"{kind}\"> needs {need} positive size value{} (got \"{}\")",
+            if need == 1 { "" } else { "s" },
+            v.text("size").unwrap_or("")
+        )));
+    }
+    Ok((placement, size))
 }
 
 /// Volume `V` and inertia about the centre in the geom frame for unit mass times `V` (so that

@@ -1,9 +1,9 @@
 //! Mesh assets (`<asset><mesh name file scale inertia>`) and their mass properties by volume
 //! integration over the triangle surface, as MuJoCo computes them (see [`integrate`]).
 //!
-//! Files are read by the `mesh-loader` crate (STL binary and ASCII, Wavefront OBJ): pure Rust,
-//! no dependency of its own for these two formats, single-precision vertices as MuJoCo stores
-//! them.
+//! Files are read by [`crate::io::visual::read_mesh`] (the `mesh-loader` crate: STL binary and
+//! ASCII, Wavefront OBJ), the reader the viewer uses too; single-precision vertices as MuJoCo
+//! stores them.
 
 use super::compiler::Compiler;
 use super::defaults::Defaults;
@@ -92,6 +92,16 @@ impl<'t> MeshTable<'t> {
         })
     }
 
+    /// The file and scale of mesh `name`, named by the geom `v`.
+    pub fn file_of(&self, v: &Values, name: &str) -> Result<(&Path, Vector3<f64>)> {
+        let asset = self.assets.get(name).ok_or_else(|| {
+            v.error(format!(
+                "<geom mesh=\"{name}\"> names no <mesh> asset with a file"
+            ))
+        })?;
+        Ok((&asset.file, asset.scale))
+    }
+
     /// The mass properties of mesh `name`, named by the geom `v`.
     pub fn get(&self, v: &Values, name: &str) -> Result<MeshProps> {
         if let Some(p) = self.cache.borrow().get(name) {
@@ -102,13 +112,8 @@ impl<'t> MeshTable<'t> {
                 "<geom mesh=\"{name}\"> names no <mesh> asset with a file"
             ))
         })?;
-        let triangles = read_triangles(&asset.file).map_err(|e| {
-            v.error(format!(
-                "mesh '{name}' (declared at {}): {} cannot be read: {e}",
-                asset.at,
-                asset.file.display()
-            ))
-        })?;
+        let triangles = read_triangles(&asset.file)
+            .map_err(|e| v.error(format!("mesh '{name}' (declared at {}): {e}", asset.at)))?;
         let s = asset.scale;
         let scaled = triangles
             .iter()
@@ -127,33 +132,15 @@ impl<'t> MeshTable<'t> {
     }
 }
 
-/// The triangles of an STL or OBJ file.
-fn read_triangles(path: &Path) -> std::io::Result<Vec<[Vector3<f64>; 3]>> {
-    let loader = mesh_loader::Loader::default();
-    let lower = path.to_string_lossy().to_ascii_lowercase();
-    let scene = if lower.ends_with(".stl") {
-        loader.load_stl(path)?
-    } else if lower.ends_with(".obj") {
-        loader.load_obj(path)?
-    } else {
-        return Err(std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "only STL and OBJ meshes are read",
-        ));
-    };
+/// The triangles of an STL or OBJ file, read by [`crate::io::visual::read_mesh`].
+fn read_triangles(path: &Path) -> Result<Vec<[Vector3<f64>; 3]>> {
     let mut out = Vec::new();
-    for m in &scene.meshes {
+    for m in crate::io::visual::read_mesh(path)? {
         let p = |k: u32| {
-            let v = m.vertices[k as usize];
+            let v = m.positions[k as usize];
             Vector3::new(v[0] as f64, v[1] as f64, v[2] as f64)
         };
-        for f in &m.faces {
-            if f.iter().any(|&k| k as usize >= m.vertices.len()) {
-                return Err(std::io::Error::new(
-                    std::io::ErrorKind::InvalidData,
-                    "a face names a vertex that does not exist",
-                ));
-            }
+        for f in m.indices.chunks_exact(3) {
             out.push([p(f[0]), p(f[1]), p(f[2])]);
         }
     }

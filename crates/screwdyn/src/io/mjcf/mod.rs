@@ -47,12 +47,14 @@ mod orientation;
 mod report;
 mod tree;
 mod values;
+mod visuals;
 
 pub use report::Ignored;
 
 use crate::error::Result;
 use crate::io::common::{build, default_name};
 use crate::io::options::LoadOptions;
+use crate::io::visual::Visual;
 use crate::model::{JointSpec, Model, ModelBuilder};
 
 /// The name of the base (MuJoCo's world body).
@@ -81,6 +83,40 @@ pub fn parse_mjcf_report(
     file: &str,
     options: &LoadOptions,
 ) -> Result<(Model, Vec<Ignored>)> {
+    load(text, file, options, false).map(|(m, r, _)| (m, r))
+}
+
+/// The geoms of an MJCF text a viewer draws, as [`Visual`]s of the model's links: those in the
+/// groups MuJoCo's viewer shows by default (0, 1 and 2; Menagerie puts its visual meshes in
+/// group 2 and its collision shapes in group 3), with the geom's `rgba`, else its material's.
+/// Mesh files are given by their path through `<compiler meshdir>`, made absolute.
+///
+/// # Errors
+/// As [`parse_mjcf`] (the model is loaded to place the geoms).
+///
+/// ```
+/// use screwdyn::io::{mjcf::parse_mjcf_visuals, visual::Shape, LoadOptions};
+/// let text = r#"<mujoco><asset><material name="red" rgba="1 0 0 1"/></asset>
+///   <worldbody><body name="b"><joint/>
+///     <geom type="box" size="0.1 0.2 0.3" material="red"/>
+///     <geom type="sphere" size="0.5" group="3"/>
+///   </body></worldbody></mujoco>"#;
+/// let v = parse_mjcf_visuals(text, "m.xml", &LoadOptions::default()).unwrap();
+/// assert_eq!(v.len(), 1); // group 3 (collision) is not drawn
+/// assert_eq!(v[0].shape, Shape::Box { size: [0.2, 0.4, 0.6] });
+/// assert_eq!(v[0].color, Some([1.0, 0.0, 0.0, 1.0]));
+/// ```
+pub fn parse_mjcf_visuals(text: &str, file: &str, options: &LoadOptions) -> Result<Vec<Visual>> {
+    load(text, file, options, true).map(|(_, _, v)| v)
+}
+
+/// The model, the conformance report and (when `want_visuals`) the visual geoms.
+fn load(
+    text: &str,
+    file: &str,
+    options: &LoadOptions,
+    want_visuals: bool,
+) -> Result<(Model, Vec<Ignored>, Vec<Visual>)> {
     let tree = tree::read(text, file)?;
     tree.root.take();
     let name = tree
@@ -121,7 +157,14 @@ pub fn parse_mjcf_report(
         b.warn(&name, Some(at.clone()), message.clone());
     }
     let model = build(&b, file)?;
-    Ok((model, report::ignored(&tree)))
+    // The report first: reading the geoms' colours marks them as used.
+    let report = report::ignored(&tree);
+    let visuals = if want_visuals {
+        visuals::visuals(&walk)?
+    } else {
+        Vec::new()
+    };
+    Ok((model, report, visuals))
 }
 
 /// The conformance report of the MJCF file at `path` ([`parse_mjcf_report`] of its text);

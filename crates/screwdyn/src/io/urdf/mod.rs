@@ -31,6 +31,8 @@
 
 mod export;
 mod parse;
+mod visuals;
 
 pub use export::{to_urdf_string, urdf_export_warnings};
 pub use parse::parse_urdf;
+pub use visuals::parse_visuals;
