@@ -276,13 +276,17 @@ pub fn cartesian_move_along(
     let mut qs: Vec<Vec<f64>> = vec![q0.to_vec()];
     let mut q = vec![0.0; n];
     let names = model.joint_names();
+    // "43.0 % of the path (0.2150 m of 0.5000 m, 0.1200 rad of 0.3000 rad)", each part only
+    // when the path moves that way.
     let where_ = |sigma: f64| {
-        format!(
-            "{:.1} % of the path ({:.4} m of {length:.4} m, {:.4} rad of {angle:.4} rad)",
-            100.0 * sigma,
-            sigma * length,
-            sigma * angle
-        )
+        let mut parts = Vec::new();
+        if length > 0.0 {
+            parts.push(format!("{:.4} m of {length:.4} m", sigma * length));
+        }
+        if angle > 0.0 {
+            parts.push(format!("{:.4} rad of {angle:.4} rad", sigma * angle));
+        }
+        format!("{:.1} % of the path ({})", 100.0 * sigma, parts.join(", "))
     };
     for i in 1..=steps {
         let sigma = i as f64 / steps as f64;
