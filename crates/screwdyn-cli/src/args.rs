@@ -508,6 +508,12 @@ pub enum TrajectoryArg {
     /// The fastest jerk-limited motion from --q0 to --qf within --vmax, --amax and --jmax, all
     /// joints finishing together.
     JerkLimited,
+    /// --frame in a straight line from its pose at --q0 to --target (orientation by slerp), as
+    /// fast as the velocity (--vmax), acceleration (--amax), effort and tool speed (--speed)
+    /// limits allow.
+    Linear,
+    /// As linear, on the circular arc through --via.
+    Circular,
 }
 
 impl TrajectoryArg {
@@ -518,6 +524,8 @@ impl TrajectoryArg {
             TrajectoryArg::Quintic => "quintic",
             TrajectoryArg::TimeOptimal => "time-optimal",
             TrajectoryArg::JerkLimited => "jerk-limited",
+            TrajectoryArg::Linear => "linear",
+            TrajectoryArg::Circular => "circular",
         }
     }
 }
@@ -532,18 +540,18 @@ pub struct TorqueProfileArgs {
     /// The motion.
     #[arg(long, value_enum, default_value = "trapezoid")]
     pub trajectory: TrajectoryArg,
-    /// Start position (default: all zero).
+    /// Start position (default: all zero; required for linear and circular).
     #[arg(long, allow_hyphen_values = true)]
     pub q0: Option<String>,
     /// End position (trapezoid, quintic, jerk-limited).
     #[arg(long, allow_hyphen_values = true)]
     pub qf: Option<String>,
     /// Speed limit (rad/s): one value for all joints or one per joint. Default: 1 for the
-    /// trapezoid, the model's velocity limits for time-optimal and jerk-limited.
+    /// trapezoid, the model's velocity limits for the others.
     #[arg(long, allow_hyphen_values = true)]
     pub vmax: Option<String>,
     /// Acceleration limit (rad/s²): one value for all joints or one per joint. Default: 2 for
-    /// the trapezoid, none for time-optimal; required for jerk-limited.
+    /// the trapezoid, none for time-optimal, linear and circular; required for jerk-limited.
     #[arg(long, allow_hyphen_values = true)]
     pub amax: Option<String>,
     /// Jerk limit (rad/s³) of jerk-limited: one value for all joints or one per joint.
@@ -553,10 +561,23 @@ pub struct TorqueProfileArgs {
     /// optional s (the path parameter, increasing; default: the chord length).
     #[arg(long, value_name = "PATH.CSV")]
     pub waypoints: Option<PathBuf>,
-    /// Time-optimal: a fixed grid of this many intervals in s (default: refined until the
+    /// Time-optimal, linear and circular: a fixed grid of this many intervals in s (default: refined until the
     /// duration converges).
     #[arg(long)]
     pub grid: Option<usize>,
+    /// Linear and circular: the frame to move.
+    #[arg(long)]
+    pub frame: Option<String>,
+    /// Linear and circular: the target pose in the world frame, position (m) and unit
+    /// quaternion, scalar first.
+    #[arg(long, allow_hyphen_values = true, value_name = "X,Y,Z,QW,QX,QY,QZ")]
+    pub target: Option<String>,
+    /// Circular: a point (m, world frame) the arc passes through.
+    #[arg(long, allow_hyphen_values = true, value_name = "X,Y,Z")]
+    pub via: Option<String>,
+    /// Linear and circular: the tool speed limit (m/s) on the frame's origin (default: none).
+    #[arg(long)]
+    pub speed: Option<f64>,
     /// Let each trapezoid joint finish on its own (default: all joints end together).
     #[arg(long)]
     pub unsynchronised: bool,

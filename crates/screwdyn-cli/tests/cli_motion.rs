@@ -228,3 +228,179 @@ fn bad_motion_input_is_one_sentence() {
         "--jmax is not used by --trajectory trapezoid",
     );
 }
+
+const UR5_Q0: &str = "0.3,-1.2,1.5,-1.9,-1.57,0.2";
+
+/// The pose of tool0 at `q` as `x,y,z,qw,qx,qy,qz` shifted by `shift`, and its position.
+fn tool_target(q: &[f64], shift: [f64; 3]) -> (String, nalgebra::Vector3<f64>) {
+    let m = load_model("builtin:ur5").unwrap();
+    let p = tool_pose(&m, q);
+    let r = nalgebra::UnitQuaternion::from_matrix(&p.rotation);
+    let t = p.translation + nalgebra::Vector3::from(shift);
+    (
+        format!(
+            "{:.12},{:.12},{:.12},{:.12},{:.12},{:.12},{:.12}",
+            t.x, t.y, t.z, r.w, r.i, r.j, r.k
+        ),
+        p.translation,
+    )
+}
+
+fn tool_pose(m: &screwdyn::Model, q: &[f64]) -> screwdyn::spatial::Se3 {
+    let mut ws = Workspace::new(m);
+    screwdyn::kinematics::forward_kinematics(m, &mut ws, q).unwrap();
+    screwdyn::kinematics::frame_pose(m, &ws, m.frame_id("tool0").unwrap()).unwrap()
+}
+
+/// The tool positions of every row of a `torque-profile --output` CSV, with the time step.
+fn tool_positions(path: &std::path::Path) -> Vec<nalgebra::Vector3<f64>> {
+    let m = load_model("builtin:ur5").unwrap();
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let cols: Vec<usize> = m
+        .joint_names()
+        .iter()
+        .map(|n| header.iter().position(|h| *h == format!("q.{n}")).unwrap())
+        .collect();
+    lines
+        .map(|l| {
+            let row: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            let q: Vec<f64> = cols.iter().map(|&c| row[c]).collect();
+            tool_pose(&m, &q).translation
+        })
+        .collect()
+}
+
+#[test]
+fn linear_and_circular_moves_follow_their_paths_within_the_tool_speed() {
+    let q0: Vec<f64> = UR5_Q0.split(',').map(|x| x.parse().unwrap()).collect();
+    // A 0.2 m line along y at no more than 0.25 m/s.
+    let (target, p0) = tool_target(&q0, [0.0, 0.2, 0.0]);
+    let out_csv = tmp("ur5_linear.csv");
+    let out = json(&[
+        "torque-profile",
+        "builtin:ur5",
+        "--trajectory",
+        "linear",
+        "--frame",
+        "tool0",
+        &format!("--q0={UR5_Q0}"),
+        &format!("--target={target}"),
+        "--speed",
+        "0.25",
+        "--output",
+        out_csv.to_str().unwrap(),
+    ]);
+    assert!(f(&out["duration"]) > 0.2 / 0.25, "{out}");
+    let positions = tool_positions(&out_csv);
+    for p in &positions {
+        let d = p - p0;
+        assert!(d.x.abs() < 2e-6 && d.z.abs() < 2e-6, "{d:?} off the line");
+        assert!((-2e-6..=0.2 + 2e-6).contains(&d.y), "{d:?}");
+    }
+    assert!((positions.last().unwrap().y - p0.y - 0.2).abs() < 1e-6);
+    // The rows are 1 ms apart: a chord is never longer than the path, so ≤ 0.25 mm each.
+    let fastest = positions
+        .windows(2)
+        .map(|w| (w[1] - w[0]).norm() / 1e-3)
+        .fold(0.0, f64::max);
+    assert!(
+        fastest <= 0.25 * (1.0 + 1e-6) && fastest > 0.24,
+        "{fastest}"
+    );
+
+    // Half a circle of radius 0.1 m centred 0.1 m along −x, through the quarter point.
+    let (target, p0) = tool_target(&q0, [-0.2, 0.0, 0.0]);
+    let center = p0 - nalgebra::Vector3::new(0.1, 0.0, 0.0);
+    let via = center + nalgebra::Vector3::new(0.0, 0.1, 0.0);
+    let out_csv = tmp("ur5_circular.csv");
+    json(&[
+        "torque-profile",
+        "builtin:ur5",
+        "--trajectory",
+        "circular",
+        "--frame",
+        "tool0",
+        &format!("--q0={UR5_Q0}"),
+        &format!("--target={target}"),
+        &format!("--via={:.12},{:.12},{:.12}", via.x, via.y, via.z),
+        "--output",
+        out_csv.to_str().unwrap(),
+    ]);
+    for p in tool_positions(&out_csv) {
+        let d = p - center;
+        assert!(
+            (d.norm() - 0.1).abs() < 2e-6 && d.z.abs() < 2e-6,
+            "{d:?} off the circle"
+        );
+        assert!(d.y > -2e-6, "{d:?} on the wrong half");
+    }
+}
+
+#[test]
+fn cartesian_moves_report_where_they_fail() {
+    let q0: Vec<f64> = UR5_Q0.split(',').map(|x| x.parse().unwrap()).collect();
+    let (far, _) = tool_target(&q0, [-1.0, 0.0, 0.0]);
+    let (near, _) = tool_target(&q0, [0.0, 0.1, 0.0]);
+    let q0_flag = format!("--q0={UR5_Q0}");
+    let base = ["torque-profile", "builtin:ur5", "--trajectory"];
+    let run = |extra: &[&str], expected: &str| {
+        let args: Vec<&str> = base.iter().chain(extra).copied().collect();
+        fails(&args, expected)
+    };
+    let e = run(
+        &[
+            "linear",
+            "--frame",
+            "tool0",
+            &q0_flag,
+            &format!("--target={far}"),
+        ],
+        "the linear move of frame tool0 stops at",
+    );
+    assert!(
+        e.contains("out of reach") && e.contains("m of 1.0000 m"),
+        "{e}"
+    );
+    run(
+        &["linear", &q0_flag, &format!("--target={near}")],
+        "--frame is required with --trajectory linear",
+    );
+    run(
+        &[
+            "linear",
+            "--frame",
+            "tool0",
+            &q0_flag,
+            &format!("--target={near}"),
+            "--via=0,0,0",
+        ],
+        "--via is not used by --trajectory linear",
+    );
+    run(
+        &[
+            "circular",
+            "--frame",
+            "tool0",
+            &q0_flag,
+            &format!("--target={near}"),
+        ],
+        "--via is required with --trajectory circular",
+    );
+    run(
+        &[
+            "linear",
+            "--frame",
+            "tool0",
+            &q0_flag,
+            &format!("--target={near}"),
+            "--speed=-1",
+        ],
+        "--speed is -1",
+    );
+    run(
+        &["quintic", "--qf", "0,0,0,0,0,0", "--speed", "1"],
+        "--speed is not used by --trajectory quintic",
+    );
+}

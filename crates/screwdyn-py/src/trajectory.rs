@@ -7,8 +7,10 @@ use crate::model::PyModel;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
+use screwdyn::kinematics::ik::target_from_matrix;
 use screwdyn::motion::{
-    time_optimal, CubicSpline, JerkLimited, TimeOptimal, TimeOptimalOptions, TimingLimits,
+    cartesian_move, time_optimal, CartesianOptions, CubicSpline, JerkLimited, TimeOptimal,
+    TimeOptimalOptions, TimingLimits,
 };
 use screwdyn::sim::{Quintic, Trajectory, Trapezoid, Waypoints};
 
@@ -221,6 +223,37 @@ impl PyTrajectory {
         })
     }
 
+    /// `frame` (name or index) in a straight line from its pose at `q0` to the pose `target`
+    /// (a `(4, 4)` array, world frame), orientation by slerp, solved by the inverse kinematics
+    /// every 1 mm / 0.01 rad and timed as fast as the model's velocity and effort limits and
+    /// the tool speed limit `speed` (m/s, default none) allow. A point out of reach, a joint
+    /// limit or a singularity on the way raises `ValueError` naming the position on the path.
+    #[staticmethod]
+    #[pyo3(signature = (model, frame, q0, target, speed = None))]
+    fn linear(
+        model: &PyModel,
+        frame: &Bound<'_, PyAny>,
+        q0: ArrayIn<'_>,
+        target: ArrayIn<'_>,
+        speed: Option<f64>,
+    ) -> PyResult<Self> {
+        cartesian(model, frame, q0, target, None, speed)
+    }
+
+    /// As `linear`, on the circular arc through the point `via` (3 values, m, world frame).
+    #[staticmethod]
+    #[pyo3(signature = (model, frame, q0, via, target, speed = None))]
+    fn circular(
+        model: &PyModel,
+        frame: &Bound<'_, PyAny>,
+        q0: ArrayIn<'_>,
+        via: ArrayIn<'_>,
+        target: ArrayIn<'_>,
+        speed: Option<f64>,
+    ) -> PyResult<Self> {
+        cartesian(model, frame, q0, target, Some(via), speed)
+    }
+
     /// Time-optimal timings only: the phase-plane curve `(s_i, ṡ_i)` at the grid points, and
     /// the times `t_i` at which they are passed, three arrays `(N + 1,)`.
     fn phase_plane<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
@@ -309,4 +342,53 @@ impl PyTrajectory {
             t.duration()
         )
     }
+}
+
+/// `Trajectory.linear` and `Trajectory.circular`: the library's `cartesian_move`.
+fn cartesian(
+    model: &PyModel,
+    frame: &Bound<'_, PyAny>,
+    q0: ArrayIn<'_>,
+    target: ArrayIn<'_>,
+    via: Option<ArrayIn<'_>>,
+    speed: Option<f64>,
+) -> PyResult<PyTrajectory> {
+    guard(|| {
+        let m = &model.model;
+        let frame = model.frame(frame)?;
+        let q0 = values_1d(&q0, "q0")?;
+        let t = convert::contiguous(&target).into_owned();
+        if t.len() != 16 {
+            return Err(PyValueError::new_err(format!(
+                "target must be a (4, 4) pose, it has {} values",
+                t.len()
+            )));
+        }
+        let target = target_from_matrix(&nalgebra::Matrix4::from_row_slice(&t), "target")
+            .map_err(call_err)?;
+        let via = match via {
+            Some(v) => {
+                let v = values_1d(&v, "via")?;
+                if v.len() != 3 {
+                    return Err(PyValueError::new_err(format!(
+                        "via must be a point x, y, z, it has {} values",
+                        v.len()
+                    )));
+                }
+                Some(nalgebra::Vector3::new(v[0], v[1], v[2]))
+            }
+            None => None,
+        };
+        let options = CartesianOptions {
+            tool_speed: speed.unwrap_or(f64::INFINITY),
+            ..Default::default()
+        };
+        let limits = TimingLimits::from_model(m);
+        let motion =
+            cartesian_move(m, frame, &q0, &target, via, &limits, &options).map_err(call_err)?;
+        Ok(PyTrajectory {
+            traj: Traj::TimeOptimal(Box::new(motion.timing().clone())),
+            kind: if via.is_some() { "circular" } else { "linear" },
+        })
+    })
 }

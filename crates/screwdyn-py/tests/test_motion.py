@@ -74,3 +74,41 @@ def test_bad_motion_input():
         T.time_optimal(ur5, [UR5_WAYPOINTS[0], [0.8, -1.2, np.nan, -1.4, -1.6, 0.5]])
     with pytest.raises(ValueError, match="jmax must be positive, but joint 0 has -1"):
         T.jerk_limited([0.0], [1.0], [1.0], [1.0], [-1.0])
+
+
+UR5_Q0 = np.array([0.3, -1.2, 1.5, -1.9, -1.57, 0.2])
+
+
+def test_linear_move_stays_on_the_line_within_the_tool_speed():
+    ur5 = screwdyn.load("builtin:ur5")
+    start = ur5.frame_pose(UR5_Q0, "tool0")
+    target = start.copy()
+    target[:3, 3] += [0.0, 0.2, 0.0]
+    line = screwdyn.Trajectory.linear(ur5, "tool0", UR5_Q0, target, speed=0.25)
+    t = np.arange(0.0, line.duration, 1e-3)
+    q, _, _ = line.sample(t)
+    poses = ur5.frame_pose(q, "tool0")
+    d = poses[:, :3, 3] - start[:3, 3]
+    # On the segment (forward kinematics of every sample), orientation held.
+    assert np.max(np.abs(d[:, [0, 2]])) < 2e-6
+    assert np.max(np.abs(poses[:, :3, :3] - start[:3, :3])) < 2e-6
+    # The tool speed by differences of the forward kinematics: at most 0.25 m/s.
+    speed = np.linalg.norm(np.diff(poses[:, :3, 3], axis=0), axis=1) / 1e-3
+    assert speed.max() <= 0.25 * (1 + 1e-6)
+    assert line.duration > 0.2 / 0.25
+
+
+def test_circular_move_and_a_move_out_of_reach():
+    ur5 = screwdyn.load("builtin:ur5")
+    start = ur5.frame_pose(UR5_Q0, "tool0")
+    center = start[:3, 3] - [0.1, 0.0, 0.0]
+    target = start.copy()
+    target[:3, 3] = center - [0.1, 0.0, 0.0]
+    arc = screwdyn.Trajectory.circular(ur5, "tool0", UR5_Q0, center + [0.0, 0.1, 0.0], target)
+    q, _, _ = arc.sample(np.linspace(0.0, arc.duration, 200))
+    p = ur5.frame_pose(q, "tool0")[:, :3, 3]
+    assert np.max(np.abs(np.linalg.norm(p - center, axis=1) - 0.1)) < 2e-6
+    far = start.copy()
+    far[:3, 3] -= [1.0, 0.0, 0.0]
+    with pytest.raises(ValueError, match=r"stops at .* % of the path \(.* m of 1.0000 m\)"):
+        screwdyn.Trajectory.linear(ur5, "tool0", UR5_Q0, far)

@@ -1,7 +1,7 @@
 //! `torque-profile`: the torques a trajectory needs against the effort limits, written as
 //! CSV/JSON (docs/cli.md) and plotted.
 
-use super::inputs::{load, names, parse_per_joint, parse_vector};
+use super::inputs::{load, names, parse_fixed, parse_per_joint, parse_vector};
 use super::joint_csv::read_waypoints;
 use super::run_files::{
     in_flag_words, joint_series, plot_kind, refuse_onto_inputs, run_file_kind, RunWriter,
@@ -11,8 +11,10 @@ use crate::output::{fmt, resolve, table, Report, Value};
 use crate::plot::{plot_panels, Panel, Series};
 use crate::write::OutputFile;
 use crate::CliError;
+use screwdyn::kinematics::ik::target_from_quaternion;
 use screwdyn::motion::{
-    limit_fractions, time_optimal, CubicSpline, JerkLimited, TimeOptimalOptions, TimingLimits,
+    cartesian_move, limit_fractions, time_optimal, CartesianOptions, CubicSpline, JerkLimited,
+    TimeOptimalOptions, TimingLimits,
 };
 use screwdyn::sim::{self, Quintic, Trajectory, Trapezoid};
 use screwdyn::Model;
@@ -183,19 +185,34 @@ fn trajectory(a: &TorqueProfileArgs, m: &Model) -> Result<Motion, CliError> {
     };
     let q0 = || parse_vector(a.q0.as_deref(), "q0", m);
     let kind = a.trajectory.name();
+    let cartesian = matches!(
+        a.trajectory,
+        TrajectoryArg::Linear | TrajectoryArg::Circular
+    );
     if a.trajectory != TrajectoryArg::TimeOptimal {
-        unused(
-            &[
-                ("waypoints", a.waypoints.is_some()),
-                ("grid", a.grid.is_some()),
-            ],
-            kind,
-        )?;
+        unused(&[("waypoints", a.waypoints.is_some())], kind)?;
+        if !cartesian {
+            unused(&[("grid", a.grid.is_some())], kind)?;
+        }
     }
     if a.trajectory != TrajectoryArg::JerkLimited {
         unused(&[("jmax", a.jmax.is_some())], kind)?;
     }
+    if !cartesian {
+        unused(
+            &[
+                ("frame", a.frame.is_some()),
+                ("target", a.target.is_some()),
+                ("speed", a.speed.is_some()),
+            ],
+            kind,
+        )?;
+    }
+    if a.trajectory != TrajectoryArg::Circular {
+        unused(&[("via", a.via.is_some())], kind)?;
+    }
     Ok(match a.trajectory {
+        TrajectoryArg::Linear | TrajectoryArg::Circular => cartesian_motion(a, m)?,
         TrajectoryArg::Trapezoid => {
             let qf = parse_vector(Some(required(&a.qf, "qf", kind)?), "qf", m)?;
             let vmax = parse_per_joint(a.vmax.as_deref().unwrap_or("1"), "vmax", m)?;
@@ -288,6 +305,71 @@ fn trajectory(a: &TorqueProfileArgs, m: &Model) -> Result<Motion, CliError> {
                 timing: Some((limits, report)),
             }
         }
+    })
+}
+
+/// `--trajectory linear|circular`: `--frame` from its pose at `--q0` to `--target` (through
+/// `--via`), timed within the joint limits and `--speed`.
+fn cartesian_motion(a: &TorqueProfileArgs, m: &Model) -> Result<Motion, CliError> {
+    let kind = a.trajectory.name();
+    unused(
+        &[("qf", a.qf.is_some()), ("unsynchronised", a.unsynchronised)],
+        kind,
+    )?;
+    let frame = m.frame_id(required(&a.frame, "frame", kind)?)?;
+    let q0 = parse_vector(Some(required(&a.q0, "q0", kind)?), "q0", m)?;
+    let v = parse_fixed(
+        required(&a.target, "target", kind)?,
+        "--target",
+        7,
+        "x,y,z,qw,qx,qy,qz",
+    )?;
+    let target = target_from_quaternion([v[0], v[1], v[2]], [v[3], v[4], v[5], v[6]], "--target")?;
+    let via = match a.trajectory {
+        TrajectoryArg::Circular => {
+            let v = parse_fixed(required(&a.via, "via", kind)?, "--via", 3, "x,y,z")?;
+            Some(nalgebra::Vector3::new(v[0], v[1], v[2]))
+        }
+        _ => None,
+    };
+    let mut limits = TimingLimits::from_model(m);
+    if let Some(v) = &a.vmax {
+        limits.velocity = parse_limit(v, "vmax", m)?;
+    }
+    if let Some(v) = &a.amax {
+        limits.acceleration = parse_limit(v, "amax", m)?;
+    }
+    if let Some(speed) = a.speed {
+        if speed.is_nan() || speed <= 0.0 {
+            return Err(CliError::input(format!(
+                "--speed is {speed}, the tool speed limit must be positive"
+            )));
+        }
+    }
+    let options = CartesianOptions {
+        tool_speed: a.speed.unwrap_or(f64::INFINITY),
+        timing: TimeOptimalOptions {
+            grid: a.grid,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let motion = cartesian_move(m, frame, &q0, &target, via, &limits, &options)?;
+    let report = motion.timing().report().clone();
+    let speed = a.speed.map_or("no tool speed limit".to_string(), |v| {
+        format!("tool speed ≤ {v} m/s")
+    });
+    let what = format!(
+        "{kind} move of {}: {:.4} m and {:.4} rad, {} IK points, {speed}",
+        m.frames()[frame].name,
+        motion.path().length(),
+        motion.path().angle(),
+        motion.points()
+    );
+    Ok(Motion {
+        trajectory: Box::new(motion),
+        what,
+        timing: Some((limits, report)),
     })
 }
 

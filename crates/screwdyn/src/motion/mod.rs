@@ -1,6 +1,7 @@
 //! Motion planning in time: the fastest timing of a joint-space path within velocity,
 //! acceleration and torque limits (TOPP-RA, [`time_optimal`]), and jerk-limited point-to-point
-//! motion ([`JerkLimited`]); the user guide is `docs/motion.md`.
+//! motion ([`JerkLimited`]), and Cartesian moves on a line or an arc ([`cartesian_move`]); the
+//! user guide is `docs/motion.md`.
 //!
 //! ```
 //! use screwdyn::motion::{time_optimal, CubicSpline, TimeOptimalOptions, TimingLimits};
@@ -15,12 +16,16 @@
 //! assert!(profile.peak.iter().zip(&profile.effort_limit).all(|(p, l)| p <= l));
 //! ```
 
+mod cartesian;
 mod jerk_limited;
 mod path_dynamics;
 mod reachability;
 mod spline;
 mod time_optimal;
 
+pub use cartesian::{
+    cartesian_move, cartesian_move_along, CartesianMove, CartesianOptions, CartesianPath,
+};
 pub use jerk_limited::JerkLimited;
 pub use path_dynamics::{PathDynamics, PathPoint};
 pub use reachability::LimitKind;

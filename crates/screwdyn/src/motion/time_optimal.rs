@@ -117,6 +117,9 @@ pub struct TimeOptimalOptions {
     /// the margin keeps every sample of the check within the limits themselves. A sample over a
     /// limit refines the grid further.
     pub limit_margin: f64,
+    /// A bound on the path speed, `ṡ ≤ max_path_speed` (default `+∞`: none), kept within the
+    /// same margin as the joint limits. A Cartesian move uses it for its tool speed limit.
+    pub max_path_speed: f64,
 }
 
 impl Default for TimeOptimalOptions {
@@ -128,6 +131,7 @@ impl Default for TimeOptimalOptions {
             duration_tolerance: 1e-3,
             check_step: 1e-3,
             limit_margin: 1e-4,
+            max_path_speed: f64::INFINITY,
         }
     }
 }
@@ -292,7 +296,7 @@ pub fn time_optimal<P: Path>(
             model,
             &path,
             grid,
-            (limits, keep),
+            (limits, keep, options.max_path_speed),
             &mut dynamics,
             &mut constraints,
         )?;
@@ -357,6 +361,12 @@ fn check_options(o: &TimeOptimalOptions) -> Result<()> {
             return bad(what, &format!("must be positive and finite (got {x})"));
         }
     }
+    if o.max_path_speed.is_nan() || o.max_path_speed <= 0.0 {
+        return bad(
+            "the path speed bound",
+            &format!("must be positive (got {})", o.max_path_speed),
+        );
+    }
     if !(0.0..1.0).contains(&o.limit_margin) {
         return bad(
             "the limit margin",
@@ -385,7 +395,7 @@ fn time_on_grid(
     model: &Model,
     path: &dyn Path,
     n: usize,
-    limits: (&TimingLimits, f64),
+    limits: (&TimingLimits, f64, f64),
     dynamics: &mut PathDynamics,
     constraints: &mut Constraints,
 ) -> Result<Timing> {
@@ -425,7 +435,7 @@ fn fill_constraints(
     model: &Model,
     path: &dyn Path,
     s: &[f64],
-    (limits, keep): (&TimingLimits, f64),
+    (limits, keep, path_speed): (&TimingLimits, f64, f64),
     dynamics: &mut PathDynamics,
     c: &mut Constraints,
 ) -> Result<()> {
@@ -436,7 +446,8 @@ fn fill_constraints(
     c.x_max.clear();
     for &si in s {
         let p = dynamics.at(model, path, si)?;
-        let mut x_max = f64::INFINITY;
+        // x = ṡ² ≤ (keep · max_path_speed)²
+        let mut x_max = (keep * path_speed).powi(2);
         for (j, joint) in model.joints().iter().enumerate() {
             let (lo, hi) = (joint.limits.lower, joint.limits.upper);
             if p.q[j] < lo || p.q[j] > hi {
