@@ -5,6 +5,10 @@
 //!
 //! Meshes are in the file's own units with the file's transforms applied (Collada node
 //! matrices and `<unit meter=…>`); the visual's `scale` is applied later, by its transform.
+//!
+//! Why Collada is read here and not by `mesh-loader`: its Collada loader (0.1) keeps one
+//! material per geometry and one transform per instanced geometry, and the published arms'
+//! meshes colour their parts by several materials within one geometry.
 
 use nalgebra::{Matrix4, Vector3, Vector4};
 use screwdyn::{Error, Result};
