@@ -15,7 +15,8 @@ pkg=$(mktemp -d)
 trap 'rm -rf "$pkg"' EXIT
 cp -r "$root/crates/screwdyn-py/python/screwdyn" "$pkg/"
 cp "$root/target/release/lib_screwdyn.so" "$pkg/screwdyn/_screwdyn.abi3.so"
-robots=$("$venv/bin/python" -c 'import example_robot_data, pathlib, sys
+# example-robot-data 6 ships the robots as data only (no Python module): found under the venv.
+robots=$("$venv/bin/python" -c 'import pathlib, sys
 p = pathlib.Path(sys.prefix).glob("lib/python3*/site-packages/cmeel.prefix/share/example-robot-data/robots")
 print(next(p))')
 PYTHONPATH="$pkg" "$venv/bin/python" -W ignore "$root/bench/ik_compare.py" "$robots" "${1:-2000}"

@@ -5,6 +5,10 @@ use super::result::IkResult;
 use super::workspace::IkWorkspace;
 use crate::error::{Error, Result};
 use crate::spatial::Se3;
+use std::sync::Mutex;
+
+/// The most problems a thread takes at a time from a batch.
+const BLOCK: usize = 16;
 
 /// A joint that moved more than the threshold between two consecutive points of a path.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -92,8 +96,10 @@ impl IkSolver {
         let per_thread = k.div_ceil(threads.max(1)).max(1);
         let mut results: Vec<Result<IkResult>> = Vec::with_capacity(k);
         results.resize_with(k, || Ok(empty()));
-        let solve_range = |first: usize, q_out: &mut [f64], results: &mut [Result<IkResult>]| {
-            let mut ws = IkWorkspace::new(self);
+        let solve_range = |ws: &mut IkWorkspace,
+                           first: usize,
+                           q_out: &mut [f64],
+                           results: &mut [Result<IkResult>]| {
             for (i, (q, r)) in q_out.chunks_mut(n).zip(results.iter_mut()).enumerate() {
                 let p = first + i;
                 let start = if q0.len() == n {
@@ -102,28 +108,39 @@ impl IkSolver {
                     &q0[p * n..(p + 1) * n]
                 };
                 *r = self
-                    .solve_from(
-                        &mut ws,
-                        &targets[p * t..(p + 1) * t],
-                        start,
-                        q,
-                        p as u64,
-                        None,
-                    )
+                    .solve_from(ws, &targets[p * t..(p + 1) * t], start, q, p as u64, None)
                     .map_err(|e| Error::Batch {
                         state: p,
                         source: Box::new(e),
                     });
             }
         };
+        // Blocks of a few problems handed to whichever thread is free: a target that needs
+        // restarts costs many times one that does not, so fixed shares would leave a thread
+        // idle. Each problem draws from its own seed stream, so the answers do not depend on
+        // which thread solves it.
+        let block = per_thread.clamp(1, BLOCK);
+        let blocks = Mutex::new(
+            q_out
+                .chunks_mut(block * n)
+                .zip(results.chunks_mut(block))
+                .enumerate(),
+        );
         std::thread::scope(|scope| {
-            for (c, (q_chunk, r_chunk)) in q_out
-                .chunks_mut(per_thread * n)
-                .zip(results.chunks_mut(per_thread))
-                .enumerate()
-            {
-                let solve_range = &solve_range;
-                scope.spawn(move || solve_range(c * per_thread, q_chunk, r_chunk));
+            for _ in 0..threads.max(1).min(k.max(1)) {
+                let (solve_range, blocks) = (&solve_range, &blocks);
+                scope.spawn(move || {
+                    let mut ws = IkWorkspace::new(self);
+                    loop {
+                        // A poisoned lock only means another thread panicked; its blocks are
+                        // still valid to hand out.
+                        let next = blocks.lock().unwrap_or_else(|e| e.into_inner()).next();
+                        match next {
+                            Some((c, (q, r))) => solve_range(&mut ws, c * block, q, r),
+                            None => break,
+                        }
+                    }
+                });
             }
         });
         Ok(results)
