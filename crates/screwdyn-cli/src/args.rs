@@ -320,9 +320,9 @@ pub struct IkArgs {
 /// External wrenches on bodies and at frames.
 #[derive(Args, Debug)]
 pub struct WrenchArgs {
-    /// A wrench of the environment on a body, moment first, in the body frame unless @world:
-    /// BODY:mx,my,mz,fx,fy,fz[@world]. Repeatable.
-    #[arg(long, allow_hyphen_values = true, value_name = "BODY:W[@world]")]
+    /// A wrench of the environment on a link (one attached by a fixed joint too), moment first,
+    /// in the link's frame unless @world: LINK:mx,my,mz,fx,fy,fz[@world]. Repeatable.
+    #[arg(long, allow_hyphen_values = true, value_name = "LINK:W[@world]")]
     pub wrench: Vec<String>,
     /// A wrench that a frame applies to the environment, in that frame (adds J_eᵀ W):
     /// FRAME:mx,my,mz,fx,fy,fz. Repeatable.

@@ -164,6 +164,34 @@ fn external_wrenches_enter_as_jacobian_transpose() {
 }
 
 #[test]
+fn a_wrench_on_a_fixed_joint_link_is_the_same_spatial_wrench_on_its_body() {
+    // In world coordinates (moment about the world origin) a wrench does not depend on which
+    // rigidly joined link it is applied to: tool0 is fixed to wrist_3_link in the UR5 URDF.
+    let ur5 = "../../models/ur5.urdf";
+    let w = "0.1,-0.2,0.3,5,-4,3@world";
+    let state = [
+        "--q",
+        "0.3,-1.1,1.2,-0.4,0.9,0.2",
+        "--v",
+        "0.5,0,-0.3,0.2,0,0.1",
+    ];
+    let on = |link: &str| {
+        let arg = format!("{link}:{w}");
+        let mut args = vec!["rnea", ur5, "--wrench", arg.as_str()];
+        args.extend_from_slice(&state);
+        vec(&json(&args)["tau"])
+    };
+    let (tool, wrist) = (on("tool0"), on("wrist_3_link"));
+    close(&tool, &wrist, 1e-10);
+    // …and it does act: without it the torques differ.
+    let mut args = vec!["rnea", ur5];
+    args.extend_from_slice(&state);
+    let free = vec(&json(&args)["tau"]);
+    assert!(free.iter().zip(&tool).any(|(a, b)| (a - b).abs() > 0.1));
+    fails(&["rnea", ur5, "--wrench", "nowhere:0,0,0,0,0,1"], "nowhere");
+}
+
+#[test]
 fn closed_form_and_lagrange_follow_seed_004() {
     let half_pi = std::f64::consts::FRAC_PI_2;
     let q = format!("0,{half_pi}");

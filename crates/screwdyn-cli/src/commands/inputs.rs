@@ -123,13 +123,11 @@ pub fn external_wrenches(
     }
     let mut ext = ExternalWrenches::new(m);
     for w in wrenches {
-        let (body, w, world) = parse_wrench(w, "--wrench")?;
-        let b = m.body_id(&body)?;
-        if world {
-            ext.add_world(b, w)?;
-        } else {
-            ext.add_local(b, w)?;
-        }
+        // Any link, one merged into its parent by a fixed joint included (the library moves
+        // the wrench to the body that carries it).
+        let (link, w, world) = parse_wrench(w, "--wrench")?;
+        let frame = m.link_frame_id(&link)?;
+        ext.add_on_link(m, frame, w, world)?;
     }
     for t in tips {
         let (frame, w, world) = parse_wrench(t, "--tip-wrench")?;
