@@ -33,7 +33,8 @@ impl std::str::FromStr for Reference {
             _ => Err(crate::Error::UnknownChoice {
                 what: "reference",
                 got: s.into(),
-                expected: "world, local or world-aligned",
+                expected:
+                    "world, local or world-aligned (Pinocchio's WORLD, LOCAL, LOCAL_WORLD_ALIGNED)",
             }),
         }
     }
