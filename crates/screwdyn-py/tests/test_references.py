@@ -53,5 +53,5 @@ def test_the_symbolic_jacobian_takes_them_too():
 
 
 def test_an_unknown_reference_names_the_choices(ur5):
-    with pytest.raises(ValueError, match="world, local or world-aligned"):
+    with pytest.raises(ValueError, match="world, local, world-aligned, WORLD, LOCAL or LOCAL_WORLD_ALIGNED"):
         ur5.frame_jacobian(Q, "tool0", "GLOBAL")

@@ -33,8 +33,7 @@ impl std::str::FromStr for Reference {
             _ => Err(crate::Error::UnknownChoice {
                 what: "reference",
                 got: s.into(),
-                expected:
-                    "world, local or world-aligned (Pinocchio's WORLD, LOCAL, LOCAL_WORLD_ALIGNED)",
+                expected: "world, local, world-aligned, WORLD, LOCAL or LOCAL_WORLD_ALIGNED",
             }),
         }
     }
