@@ -155,7 +155,7 @@ fn unknown_names() {
     );
     fails(
         &["rnea", "builtin:planar2", "--wrench", "arm:0,0,0,0,0,1"],
-        "no moving body named 'arm'",
+        "no link named 'arm'",
     );
     fails(
         &[
