@@ -4,7 +4,7 @@
 use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::spatial::Se3;
-use nalgebra::{Matrix3, Matrix4, Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{Matrix4, Quaternion, Vector3};
 
 /// A quaternion counts as a unit quaternion when `|‖q‖ − 1|` is at most this; it is then
 /// normalised (so quaternions printed with 7 digits are accepted).
@@ -53,9 +53,8 @@ pub fn target_from_quaternion(
             "the {what}'s quaternion (qw, qx, qy, qz) = ({w}, {x}, {y}, {z}) has norm {norm}, not 1 within {QUATERNION_TOLERANCE:e}"
         )));
     }
-    let rotation: Matrix3<f64> = UnitQuaternion::from_quaternion(q)
-        .to_rotation_matrix()
-        .into();
+    // The rotation is the library's one quaternion rule (normalised, scalar first).
+    let rotation = Se3::from_quaternion(quaternion_wxyz)?.rotation;
     Ok(Se3::new(rotation, Vector3::from(position)))
 }
 
@@ -131,6 +130,7 @@ pub fn default_start(model: &Model) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::Matrix3;
 
     /// Rotating a vector by the quaternion's matrix equals the Hamilton product `q v q*`.
     #[test]
