@@ -15,7 +15,7 @@
 # compiles. The user's route, `pip install ./crates/screwdyn-py`, builds the same sources with
 # maturin in the release profile.
 #
-# Needs: cargo, python3 >= 3.9 with venv, PyPI, and Chromium for the `screwdyn view` tests
+# Needs: cargo, python3 >= 3.10 with venv, PyPI, and Chromium for the `screwdyn view` tests
 # (/usr/bin/chromium or $SCREWDYN_CHROMIUM; installed here with apt-get on Debian when run as root).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,9 +26,9 @@ die() { say "$*"; exit 2; }
 # Prerequisites, checked before anything is built.
 PYTHON="${PYTHON:-python3}"
 command -v cargo >/dev/null || die "cargo is not on PATH: install Rust from https://rustup.rs"
-command -v "$PYTHON" >/dev/null || die "$PYTHON is not on PATH: the Python suite needs Python >= 3.9"
-"$PYTHON" -c 'import sys; sys.exit(sys.version_info < (3, 9))' \
-    || die "$("$PYTHON" --version) is too old: the Python suite needs Python >= 3.9"
+command -v "$PYTHON" >/dev/null || die "$PYTHON is not on PATH: the Python suite needs Python >= 3.10"
+"$PYTHON" -c 'import sys; sys.exit(sys.version_info < (3, 10))' \
+    || die "$("$PYTHON" --version) is too old: the Python suite needs Python >= 3.10"
 chromium="${SCREWDYN_CHROMIUM:-/usr/bin/chromium}"
 if [[ ! -x "$chromium" ]]; then
     if [[ $EUID -eq 0 ]] && command -v apt-get >/dev/null; then

@@ -7,7 +7,7 @@ use crate::model::PyModel;
 use nalgebra::Vector6;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyString};
 use screwdyn::dynamics::{ExternalWrenches, ForwardMethod};
 use screwdyn::kinematics::Reference;
 
@@ -33,8 +33,8 @@ impl PyModel {
     /// The frame of a link that may carry a wrench: by name any link, moving or attached by a
     /// fixed joint (`Model::link_frame_id`); by index a moving link, as [`Self::link`].
     pub(crate) fn link_frame(&self, b: &Bound<'_, PyAny>) -> PyResult<usize> {
-        if let Ok(name) = b.extract::<String>() {
-            return self.model.link_frame_id(&name).map_err(call_err);
+        if let Ok(name) = b.cast::<PyString>() {
+            return self.model.link_frame_id(&name.to_cow()?).map_err(call_err);
         }
         let body = self.link(b)?;
         self.model.body_frame(body).map_err(call_err)
@@ -107,8 +107,10 @@ fn name_or_index(
     plural: &str,
     by_name: impl FnOnce(&str) -> screwdyn::Result<usize>,
 ) -> PyResult<usize> {
-    if let Ok(name) = x.extract::<String>() {
-        return by_name(&name).map_err(call_err);
+    // A type check first: a failed `extract` builds an exception object, which would cost an
+    // index more than the lookup itself.
+    if let Ok(name) = x.cast::<PyString>() {
+        return by_name(&name.to_cow()?).map_err(call_err);
     }
     if let Ok(i) = x.extract::<i64>() {
         return usize::try_from(i).ok().filter(|&i| i < n).ok_or_else(|| {

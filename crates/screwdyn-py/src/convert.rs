@@ -14,28 +14,56 @@ use std::borrow::Cow;
 /// Anything NumPy can turn into a float64 array (arrays, lists, tuples, scalars).
 pub type ArrayIn<'py> = PyArrayLikeDyn<'py, f64, AllowTypeChange>;
 
-/// A joint-space argument (`q`, `v`, `a`, `tau`…) as the per-state methods take it: a float64
-/// vector, the one state of most calls, is copied at once (rust-numpy's safe `to_vec`, under
-/// the GIL), which costs less than registering and releasing a borrow of it; anything else
-/// (stacked states, lists, other dtypes, strided views) is converted as [`ArrayIn`] and
-/// borrowed for the call.
+/// Joint vectors of at most this many values are copied onto the stack (`StateIn::Inline`).
+pub const INLINE: usize = 32;
+
+/// A joint-space argument (`q`, `v`, `a`, `tau`…) as the per-state methods take it. A float64,
+/// aligned, contiguous vector — the one state of most calls — is copied at once under the GIL,
+/// as rust-numpy's own `to_vec` reads it: onto the stack when it has at most [`INLINE`] values
+/// (no allocation: a 6- or 7-joint state is 48–56 bytes), into a `Vec` otherwise. That costs less
+/// than registering and releasing a rust-numpy borrow of it (a hash-map entry per argument, a
+/// fifth of a per-call `rnea` when measured). Anything else (stacked states, lists, other
+/// dtypes, strided views) is converted as [`ArrayIn`] and borrowed for the call, a float64
+/// `(N, nq)` array without a copy.
+// The inline variant is large on purpose: boxing it would bring back the allocation it avoids.
+#[allow(clippy::large_enum_variant)]
 pub enum StateIn<'py> {
+    Inline([f64; INLINE], [usize; 1]),
     Vector(Vec<f64>, [usize; 1]),
     Array(ArrayIn<'py>),
+}
+
+impl StateIn<'_> {
+    /// The values of a single float64 vector taken as it came (`Inline` or `Vector`); `None`
+    /// for an argument that went through conversion.
+    #[inline]
+    pub fn vector(&self) -> Option<&[f64]> {
+        match self {
+            StateIn::Inline(x, [n]) => Some(&x[..*n]),
+            StateIn::Vector(x, _) => Some(x),
+            StateIn::Array(_) => None,
+        }
+    }
 }
 
 impl<'py> FromPyObject<'_, 'py> for StateIn<'py> {
     type Error = PyErr;
 
     fn extract(ob: Borrowed<'_, 'py, PyAny>) -> PyResult<Self> {
-        if let Some(v) = ob
-            .cast::<PyArray1<f64>>()
-            .ok()
-            .filter(|v| v.data().is_aligned())
-        {
-            if let Ok(x) = v.to_vec() {
-                let n = x.len();
-                return Ok(StateIn::Vector(x, [n]));
+        if let Ok(v) = ob.cast::<PyArray1<f64>>() {
+            if v.data().is_aligned() {
+                // SAFETY: the GIL is held for the whole copy and no Python code runs during it,
+                // the read `PyArrayMethods::to_vec` makes; `as_slice` is `Err` unless the
+                // vector is contiguous.
+                if let Ok(x) = unsafe { v.as_slice() } {
+                    let n = x.len();
+                    if n <= INLINE {
+                        let mut values = [0.0; INLINE];
+                        values[..n].copy_from_slice(x);
+                        return Ok(StateIn::Inline(values, [n]));
+                    }
+                    return Ok(StateIn::Vector(x.to_vec(), [n]));
+                }
             }
         }
         Ok(StateIn::Array(ob.extract()?))
@@ -63,13 +91,14 @@ impl Values for ArrayIn<'_> {
 impl Values for StateIn<'_> {
     fn shape(&self) -> &[usize] {
         match self {
-            StateIn::Vector(_, shape) => shape,
+            StateIn::Inline(_, shape) | StateIn::Vector(_, shape) => shape,
             StateIn::Array(a) => Values::shape(a),
         }
     }
 
     fn values(&self) -> Cow<'_, [f64]> {
         match self {
+            StateIn::Inline(x, [n]) => Cow::Borrowed(&x[..*n]),
             StateIn::Vector(x, _) => Cow::Borrowed(x),
             StateIn::Array(a) => contiguous(a),
         }

@@ -8,6 +8,7 @@ use crate::compute::{arg, optional};
 use crate::convert::{self, StateIn};
 use crate::errors::call_err;
 use crate::model::PyModel;
+use crate::single::plain;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -101,6 +102,15 @@ impl PyModel {
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let (nq, batch) = (self.model.nq(), Batch { threads, out });
+        if fext.is_none() && fext_world.is_none() && tip_wrenches.is_none() && plain(threads, out) {
+            let joints = [Some(&q), v.as_ref(), a.as_ref()];
+            if let Some(r) = self.single_state(py, joints, [1, nq], |m, s, [q, v, a], o| {
+                put(o, dynamics::rnea(m, &mut s.ws, q, v, a)?);
+                Ok(())
+            }) {
+                return r;
+            }
+        }
         self.compute(py, |c| {
             let ext = self.wrenches([fext, fext_world, tip_wrenches])?;
             let joints = [arg(&q, "q"), optional(&v, "v"), optional(&a, "a")];
@@ -154,6 +164,14 @@ impl PyModel {
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let nq = self.model.nq();
+        if plain(threads, out) {
+            if let Some(r) = self.single_state(py, [Some(&q)], [nq, nq], |m, s, [q], o| {
+                convert::write_rows(dynamics::crba(m, &mut s.ws, q)?, o);
+                Ok(())
+            }) {
+                return r;
+            }
+        }
         self.compute(py, |c| {
             c.lanes(
                 Batch { threads, out },
@@ -318,6 +336,16 @@ impl PyModel {
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let wrenches = [fext, fext_world, tip_wrenches];
+        if wrenches.iter().all(Option::is_none) && plain(threads, out) {
+            let nq = self.model.nq();
+            let joints = [Some(&q), Some(&v), Some(&tau)];
+            if let Some(r) = self.single_state(py, joints, [1, nq], |m, s, [q, v, tau], o| {
+                put(o, dynamics::aba(m, &mut s.ws, q, v, tau)?);
+                Ok(())
+            }) {
+                return r;
+            }
+        }
         let batch = Batch { threads, out };
         self.forward(py, [&q, &v, &tau], "aba", wrenches, batch)
     }

@@ -6,6 +6,7 @@ use crate::batch::Batch;
 use crate::compute::arg;
 use crate::convert::{self, StateIn, Values};
 use crate::model::PyModel;
+use crate::single::plain;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PySlice};
 use screwdyn::kinematics;
@@ -23,6 +24,16 @@ impl PyModel {
         threads: Option<usize>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
+        if plain(threads, out) {
+            let f = self.frame(frame)?;
+            if let Some(r) = self.single_state(py, [Some(&q)], [4, 4], |m, s, [q], o| {
+                kinematics::forward_kinematics(m, &mut s.ws, q)?;
+                convert::write_pose(&kinematics::frame_pose(m, &s.ws, f)?, o);
+                Ok(())
+            }) {
+                return r;
+            }
+        }
         self.compute(py, |c| {
             let f = self.frame(frame)?;
             c.each(
@@ -92,6 +103,17 @@ impl PyModel {
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let nq = self.model.nq();
+        if plain(threads, out) {
+            let (f, rf) = (self.frame(frame)?, self::reference(reference)?);
+            if let Some(r) = self.single_state(py, [Some(&q)], [6, nq], |m, s, [q], o| {
+                kinematics::compute_joint_jacobians(m, &mut s.ws, q)?;
+                kinematics::frame_jacobian(m, &s.ws, f, rf, &mut s.jac)?;
+                convert::write_rows(&s.jac, o);
+                Ok(())
+            }) {
+                return r;
+            }
+        }
         self.compute(py, |c| {
             let (f, rf) = (self.frame(frame)?, self::reference(reference)?);
             c.each(

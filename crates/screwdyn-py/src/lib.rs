@@ -40,6 +40,7 @@ mod kinematics;
 mod model;
 mod se3;
 mod simulation;
+mod single;
 mod symbolic;
 mod trajectory;
 mod view;
