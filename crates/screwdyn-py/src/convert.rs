@@ -439,9 +439,12 @@ pub fn write_rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f6
     m: &nalgebra::Matrix<f64, R, C, S>,
     out: &mut [f64],
 ) {
+    // Row by row: no division per entry (a mass matrix is 36–81 of them per call).
     let c = m.ncols();
-    for (k, o) in out.iter_mut().enumerate() {
-        *o = m[(k / c, k % c)];
+    for (r, row) in out.chunks_exact_mut(c.max(1)).enumerate() {
+        for (j, o) in row.iter_mut().enumerate() {
+            *o = m[(r, j)];
+        }
     }
 }
 
