@@ -90,6 +90,10 @@ impl PyModel {
 /// The frame a twist or Jacobian is written in: `world`, `local` or `world-aligned`
 /// (Pinocchio's `WORLD`, `LOCAL`, `LOCAL_WORLD_ALIGNED` too: the library's spelling rule).
 pub(crate) fn reference(s: &str) -> PyResult<Reference> {
+    // The default as it is written, without the library's case folding (a `String` per call).
+    if s == "world" {
+        return Ok(Reference::World);
+    }
     s.parse::<Reference>().map_err(call_err)
 }
 

@@ -15,12 +15,13 @@ use std::borrow::Cow;
 pub type ArrayIn<'py> = PyArrayLikeDyn<'py, f64, AllowTypeChange>;
 
 /// Joint vectors of at most this many values are copied onto the stack (`StateIn::Inline`).
-pub const INLINE: usize = 32;
+pub const INLINE: usize = 16;
 
 /// A joint-space argument (`q`, `v`, `a`, `tau`…) as the per-state methods take it. A float64,
 /// aligned, contiguous vector — the one state of most calls — is copied at once under the GIL,
 /// as rust-numpy's own `to_vec` reads it: onto the stack when it has at most [`INLINE`] values
-/// (no allocation: a 6- or 7-joint state is 48–56 bytes), into a `Vec` otherwise. That costs less
+/// (no allocation: a 6- or 7-joint state is 48–56 bytes; a small inline array because
+/// arguments are moved by value through PyO3's extraction), into a `Vec` otherwise. That costs less
 /// than registering and releasing a rust-numpy borrow of it (a hash-map entry per argument, a
 /// fifth of a per-call `rnea` when measured). Anything else (stacked states, lists, other
 /// dtypes, strided views) is converted as [`ArrayIn`] and borrowed for the call, a float64

@@ -1,8 +1,8 @@
 //! One state, the call a Python loop makes (`model.rnea(q, v, a)` per time step), without the
-//! bookkeeping of the general path (`compute` and `batch`): the joint vectors are already on
-//! the stack ([`StateIn::Inline`]), the model's cached workspace is taken with one `try_lock`,
-//! and the kernel writes straight into the one fresh NumPy array it returns. Nothing else is
-//! allocated.
+//! bookkeeping of the general path (`compute` and `batch`): the joint vectors are already read
+//! (on the stack up to [`INLINE`](crate::convert::INLINE) joints, [`StateIn::Inline`]), the
+//! model's cached workspace is taken with one `try_lock`, and the kernel writes straight into
+//! the one fresh NumPy array it returns. Nothing else is allocated.
 //!
 //! Anything this path does not take — stacked states, lists or other dtypes, a vector of the
 //! wrong length, `out=`, `threads=0`, external wrenches — makes [`PyModel::single_state`] return
@@ -11,15 +11,18 @@
 //! the same bits.
 
 use crate::batch::Scratch;
-use crate::convert::{StateIn, INLINE};
+use crate::convert::StateIn;
 use crate::errors::{call_err, guard};
 use crate::model::PyModel;
 use numpy::{PyArray1, PyArray2, PyArrayDyn, PyArrayMethods};
 use pyo3::prelude::*;
 use screwdyn::Model;
 
+/// The most joints this path takes (the length of `ZEROS`).
+const MAX_JOINTS: usize = 64;
+
 /// The value of a joint vector left out (`v=None`): zero.
-const ZEROS: [f64; INLINE] = [0.0; INLINE];
+const ZEROS: [f64; MAX_JOINTS] = [0.0; MAX_JOINTS];
 
 /// Whether a call's `threads` and `out` arguments allow the one-state path: no `out=` (the
 /// general path checks and borrows it) and no `threads=0` (refused there with its message).
@@ -42,7 +45,7 @@ impl PyModel {
         kernel: impl FnOnce(&Model, &mut Scratch, [&[f64]; K], &mut [f64]) -> screwdyn::Result<()>,
     ) -> Option<PyResult<Bound<'py, PyAny>>> {
         let nq = self.model.nq();
-        if nq > INLINE {
+        if nq > MAX_JOINTS {
             return None;
         }
         let mut rows: [&[f64]; K] = [&ZEROS[..nq]; K];

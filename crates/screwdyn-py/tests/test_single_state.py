@@ -8,6 +8,7 @@ import threading
 import numpy as np
 import pytest
 
+import screwdyn
 from conftest import fixture_model
 
 TOL = 1e-9
@@ -175,3 +176,41 @@ def test_calls_from_several_threads(arm):
     for t in threads:
         t.join()
     assert not errors
+
+
+def planar_chain(n):
+    """`n` unit links turning about z, a 1 kg point mass at the end of each, gravity along −y."""
+    text = ['format = "screwdyn"', 'name = "chain"', "gravity = [0.0, -9.81, 0.0]"]
+    for i in range(1, n + 1):
+        text += ["[[body]]", f'name = "link{i}"', f'parent = "{"base" if i == 1 else f"link{i - 1}"}"',
+                 f'joint = "joint{i}"', 'type = "revolute"', "home = { xyz = [1.0, 0.0, 0.0] }",
+                 "screw_in_parent = [0, 0, 1, 0, 0, 0]", "mass = 1.0"]
+    return screwdyn.load_string("\n".join(text) + "\n", "toml", name="chain")
+
+
+def test_long_vectors_take_the_same_path_as_short_ones():
+    # 20 joints: more than a vector kept on the stack. Analytic planar values: the end of link k
+    # is p_k = Σ_{i≤k} (cos θ_i, sin θ_i) with θ_i = q_1 + … + q_i; holding the chain still takes
+    # τ_i = Σ_{k≥i} m g (x_k − x_{i−1}); the tip's velocity is Σ_i q̇_i ẑ × (p_n − p_{i−1}).
+    n = 20
+    m = planar_chain(n)
+    rng = np.random.default_rng(7)
+    q, a = rng.uniform(-1, 1, n), rng.normal(size=n)
+    theta = np.cumsum(q)
+    p = np.vstack([[0.0, 0.0], np.cumsum(np.c_[np.cos(theta), np.sin(theta)], axis=0)])
+    pose = m.frame_pose(q, f"link{n}")
+    close(pose[:2, 3], p[n], 1e-12)
+    close(pose[:2, :2], [[np.cos(theta[-1]), -np.sin(theta[-1])], [np.sin(theta[-1]), np.cos(theta[-1])]], 1e-12)
+    g = np.array([9.81 * np.sum(p[i + 1:, 0] - p[i, 0]) for i in range(n)])
+    close(m.rnea(q), g, 1e-12)
+    jac = m.frame_jacobian(q, f"link{n}", "world-aligned")
+    close(jac[3], -(p[n, 1] - p[:n, 1]), 1e-12)
+    close(jac[4], p[n, 0] - p[:n, 0], 1e-12)
+    close(jac[5], 0.0 * q, 0)
+    mass = m.crba(q)
+    close(mass, mass.T, 0)
+    close(mass @ a, m.rnea(q, None, a) - g, 1e-10)
+    close(m.aba(q, np.zeros(n), m.rnea(q, None, a)), a, 1e-8)
+    # and every one of them as a list: the same bits
+    np.testing.assert_array_equal(m.crba(list(q)), mass)
+    np.testing.assert_array_equal(m.frame_jacobian(list(q), f"link{n}", "world-aligned"), jac)
