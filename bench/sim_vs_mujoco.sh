@@ -12,9 +12,10 @@
 # faster for screwdyn).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-venv=.venv-mujoco
+# MJ_VENV: an existing venv with mujoco and numpy to use instead of .venv-mujoco.
+venv=${MJ_VENV:-.venv-mujoco}
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
-"$venv/bin/pip" install -q mujoco numpy
+"$venv/bin/python" -c 'import mujoco, numpy' 2>/dev/null || "$venv/bin/pip" install -q mujoco numpy
 mj=$("$venv/bin/python" -c 'import mujoco, os; print(os.path.dirname(mujoco.__file__))')
 lib=$(ls "$mj"/libmujoco.so.* | head -n 1)
 cargo build -q --release -p screwdyn --example sim_bench

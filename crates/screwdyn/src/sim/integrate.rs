@@ -237,23 +237,27 @@ impl Stepper {
     /// `k_2 = f(t + h/2, x + h/2 k_1)`, `k_3 = f(t + h/2, x + h/2 k_2)`, `k_4 = f(t + h, x + h k_3)`,
     /// `x ← x + h/6 (k_1 + 2k_2 + 2k_3 + k_4)`. Each stage needs only the one before it, so the
     /// stage states are formed directly rather than by the general tableau sum of `combine`.
+    /// The `q̇` half of stage `s`'s derivative is the stage's own velocity, so it is written once,
+    /// into `k[s][..n]`, and `f` reads it there (the first stage reads `(q, v)` in place).
     fn rk4(&mut self, f: &mut AccelFn, t: f64, h: f64, q: &mut [f64], v: &mut [f64]) -> Result<()> {
         let n = q.len();
-        self.qs.copy_from_slice(q);
-        self.vs.copy_from_slice(v);
-        self.stage(f, 0, t)?;
-        for (s, c) in [(1, 0.5), (2, 0.5), (3, 1.0)] {
-            let k = &self.k[s - 1];
-            for i in 0..n {
-                self.qs[i] = q[i] + h * (c * k[i]);
-                self.vs[i] = v[i] + h * (c * k[n + i]);
-            }
-            self.stage(f, s, t + c * h)?;
-        }
+        let Stepper { k, qs, .. } = self;
+        let qs = &mut qs[..n];
+        let [k0, k1, k2, k3, ..] = &mut k[..] else {
+            unreachable!("Stepper::new makes seven stages")
+        };
+        // Stage 1 at (q, v) itself: its q̇ is `v`, read in place.
+        f(t, q, v, &mut k0[n..2 * n])?;
+        rk4_stage(f, t, h, 0.5, (q, v), (v, &k0[n..2 * n]), qs, k1)?;
+        let (qd, qdd) = k1.split_at(n);
+        rk4_stage(f, t, h, 0.5, (q, v), (qd, qdd), qs, k2)?;
+        let (qd, qdd) = k2.split_at(n);
+        rk4_stage(f, t, h, 1.0, (q, v), (qd, qdd), qs, k3)?;
+        let (k1, k2, k3) = (&k1[..2 * n], &k2[..2 * n], &k3[..2 * n]);
+        let k0 = &k0[n..2 * n];
         for i in 0..n {
-            let k = &self.k;
-            q[i] += h / 6.0 * (k[0][i] + 2.0 * k[1][i] + 2.0 * k[2][i] + k[3][i]);
-            v[i] += h / 6.0 * (k[0][n + i] + 2.0 * k[1][n + i] + 2.0 * k[2][n + i] + k[3][n + i]);
+            q[i] += h / 6.0 * (v[i] + 2.0 * k1[i] + 2.0 * k2[i] + k3[i]);
+            v[i] += h / 6.0 * (k0[i] + 2.0 * k1[n + i] + 2.0 * k2[n + i] + k3[n + i]);
         }
         Ok(())
     }
@@ -330,4 +334,28 @@ impl Stepper {
         }
         Ok(())
     }
+}
+
+/// One later Runge–Kutta stage: `(q_s, q̇_s) = (q, q̇) + c h (q̇_prev, q̈_prev)`, then
+/// `q̈_s = f(t + c h, q_s, q̇_s)`; `q̇_s` and `q̈_s` are written into `next` (its two halves).
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn rk4_stage(
+    f: &mut AccelFn,
+    t: f64,
+    h: f64,
+    c: f64,
+    (q, v): (&[f64], &[f64]),
+    (qd_prev, qdd_prev): (&[f64], &[f64]),
+    qs: &mut [f64],
+    next: &mut [f64],
+) -> Result<()> {
+    let n = q.len();
+    let (vs, qdd) = next[..2 * n].split_at_mut(n);
+    let (v, qd_prev, qdd_prev, qs) = (&v[..n], &qd_prev[..n], &qdd_prev[..n], &mut qs[..n]);
+    for i in 0..n {
+        qs[i] = q[i] + h * (c * qd_prev[i]);
+        vs[i] = v[i] + h * (c * qdd_prev[i]);
+    }
+    f(t + c * h, qs, vs, qdd)
 }

@@ -38,29 +38,35 @@ struct Plant<'a> {
     controller: &'a mut dyn Controller,
     disturbances: &'a [Disturbance],
     fext: ExternalWrenches,
+    /// The controller's torque, when joint effects change it before it is applied.
     cmd: Vec<f64>,
+    /// The applied torque of the last evaluation.
     tau: Vec<f64>,
     method: ForwardMethod,
     effects: JointEffects,
+    /// Every joint effect is off: the controller writes the applied torque into `tau` itself.
+    commanded_only: bool,
     gains: EffectGains,
-    /// The last evaluation `(t, q, q̇) ↦ q̈` (its `τ` is still in `tau`): a sample is recorded
-    /// at the state the next step starts from, so the integrator's first stage there reuses
-    /// the recorder's forward dynamics instead of repeating it.
-    last: LastEvaluation,
+    /// The recorder's evaluation `(t, q, q̇) ↦ q̈` (its `τ` is still in `tau`): a sample is
+    /// recorded at the state the next step starts from, so the integrator's first stage there
+    /// takes it instead of repeating the forward dynamics.
+    recorded: RecordedEvaluation,
 }
 
-/// The inputs and result of [`Plant::accel`]'s last call (`t` is NaN before the first, so no
-/// call matches it).
-struct LastEvaluation {
+/// The inputs and result of the recorder's last evaluation, and whether the next call of
+/// [`Plant::accel`] (the first stage of the next step) may still take it.
+struct RecordedEvaluation {
+    pending: bool,
     t: f64,
     q: Vec<f64>,
     v: Vec<f64>,
     qdd: Vec<f64>,
 }
 
-impl LastEvaluation {
+impl RecordedEvaluation {
     fn new(n: usize) -> Self {
-        LastEvaluation {
+        RecordedEvaluation {
+            pending: false,
             t: f64::NAN,
             q: vec![0.0; n],
             v: vec![0.0; n],
@@ -70,38 +76,56 @@ impl LastEvaluation {
 }
 
 impl Plant<'_> {
-    /// `q̈ = FD(q, q̇, τ(t, q, q̇))`, the state equation the integrator steps; a call with the
-    /// same `(t, q, q̇)` as the previous one returns the previous result (the controller, a
-    /// function of the state, is not asked twice, and `tau` still holds its torque).
+    /// `q̈ = FD(q, q̇, τ(t, q, q̇))`, the state equation the integrator steps. The first call
+    /// after [`Plant::accel_for_sample`], when it has the same `(t, q, q̇)` (the first stage of
+    /// the step that starts at the sample), returns the recorder's result: the controller, a
+    /// function of the state, is not asked twice. Every other call evaluates, with nothing to
+    /// compare or copy.
     fn accel(&mut self, t: f64, q: &[f64], v: &[f64], qdd: &mut [f64]) -> Result<()> {
-        let l = &mut self.last;
-        if l.t == t && l.q == q && l.v == v {
-            qdd.copy_from_slice(&l.qdd);
-            return Ok(());
+        let r = &mut self.recorded;
+        if r.pending {
+            r.pending = false;
+            if r.t == t && r.q == q && r.v == v {
+                qdd.copy_from_slice(&r.qdd);
+                return Ok(());
+            }
         }
-        self.evaluate(t, q, v, qdd)?;
-        let l = &mut self.last;
-        l.t = t;
-        l.q.copy_from_slice(q);
-        l.v.copy_from_slice(v);
-        l.qdd.copy_from_slice(qdd);
+        self.evaluate(t, q, v, qdd)
+    }
+
+    /// [`Plant::accel`] for a recorded sample, kept for the next step's first stage.
+    fn accel_for_sample(&mut self, t: f64, q: &[f64], v: &[f64], qdd: &mut [f64]) -> Result<()> {
+        self.accel(t, q, v, qdd)?;
+        let r = &mut self.recorded;
+        r.pending = true;
+        r.t = t;
+        r.q.copy_from_slice(q);
+        r.v.copy_from_slice(v);
+        r.qdd.copy_from_slice(qdd);
         Ok(())
     }
 
     fn evaluate(&mut self, t: f64, q: &[f64], v: &[f64], qdd: &mut [f64]) -> Result<()> {
-        self.controller.torque(t, q, v, &mut self.cmd)?;
-        if let Some(i) = first_non_finite(&self.cmd) {
-            let x = self.cmd[i];
+        let torque = if self.commanded_only {
+            &mut self.tau
+        } else {
+            &mut self.cmd
+        };
+        self.controller.torque(t, q, v, torque)?;
+        if let Some(i) = first_non_finite(torque) {
+            let x = torque[i];
             return Err(Error::Numerical(format!(
                 "the controller returned a non-finite torque {x} for joint '{}' at t = {t:.6} s",
                 self.model.joints()[i].name
             )));
         }
-        if self.effects.position_limits && EffectGains::any_in_stop(self.model, q) {
-            self.gains.refresh_stops(self.model, &mut self.ws, q)?;
+        if !self.commanded_only {
+            if self.effects.position_limits && EffectGains::any_in_stop(self.model, q) {
+                self.gains.refresh_stops(self.model, &mut self.ws, q)?;
+            }
+            self.effects
+                .apply(self.model, &self.gains, q, v, &self.cmd, &mut self.tau)?;
         }
-        self.effects
-            .apply(self.model, &self.gains, q, v, &self.cmd, &mut self.tau)?;
         let active = |d: &&Disturbance| t >= d.start && t < d.end;
         let fext = if self.disturbances.iter().any(|d| active(&d)) {
             self.fext.clear();
@@ -257,8 +281,9 @@ pub fn simulate_into(
         tau: vec![0.0; n],
         method: opts.method,
         effects: opts.effects,
+        commanded_only: opts.effects.total_torque_is_commanded(),
         gains: EffectGains::new(&opts.effects, model, q0, opts.dt)?,
-        last: LastEvaluation::new(n),
+        recorded: RecordedEvaluation::new(n),
     };
     let mut stepper = Stepper::new(opts.integrator, n)?;
     let mut recorder = Recorder::new(model, &opts.frames)?;
@@ -267,7 +292,8 @@ pub fn simulate_into(
     let (mut q, mut v, mut a) = (q0.to_vec(), v0.to_vec(), vec![0.0; n]);
     // The state before the step, for the limit watch's crossing times.
     let (mut q_before, mut v_before) = (q0.to_vec(), v0.to_vec());
-    let mut watch = LimitWatch::new(model, opts.effects.position_limits);
+    let watching = opts.effects.position_limits;
+    let mut watch = LimitWatch::new(model, watching);
     let mut limit_events = watch.start(model, q0, v0, &mut |e| sink.event(e))?;
     let (steps, last_dt) = step_plan(opts.duration, opts.dt);
     let every = opts.record_every;
@@ -278,8 +304,10 @@ pub fn simulate_into(
     let mut t = 0.0;
     for k in 0..steps {
         let h = if k + 1 == steps { last_dt } else { opts.dt };
-        q_before.copy_from_slice(&q);
-        v_before.copy_from_slice(&v);
+        if watching {
+            q_before.copy_from_slice(&q);
+            v_before.copy_from_slice(&v);
+        }
         stepper.advance(
             &mut |t, q, v, qdd| plant.accel(t, q, v, qdd),
             t,
@@ -287,9 +315,11 @@ pub fn simulate_into(
             &mut q,
             &mut v,
         )?;
-        limit_events += watch.step(model, t, h, (&q_before, &v_before), &q, &mut |e| {
-            sink.event(e)
-        })?;
+        if watching {
+            limit_events += watch.step(model, t, h, (&q_before, &v_before), &q, &mut |e| {
+                sink.event(e)
+            })?;
+        }
         t = if k + 1 == steps {
             opts.duration
         } else {
@@ -374,7 +404,7 @@ impl<'m> Recorder<'m> {
         a: &mut [f64],
         sink: &mut dyn SampleSink,
     ) -> Result<()> {
-        plant.accel(t, q, v, a)?;
+        plant.accel_for_sample(t, q, v, a)?;
         forward_velocity(self.model, &mut self.ws, q, v)?;
         for (p, &f) in self.poses.iter_mut().zip(&self.frames) {
             *p = frame_pose(self.model, &self.ws, f)?;
