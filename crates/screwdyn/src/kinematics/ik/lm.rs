@@ -1,9 +1,11 @@
 //! One Levenberg–Marquardt step with a secondary objective in the null space:
-//! `Δθ = d + (Jᵀ J + λ I)⁻¹ Jᵀ (e − J d)`, on the weighted stacked Jacobian `J` and error `e`.
+//! `Δθ = d + (Jᵀ J + λ I)⁻¹ Jᵀ (e − J d)`, on the weighted stacked Jacobian `J` and error `e`,
+//! over the joints that are not locked (a locked joint's column of `J` is left out and its
+//! step is zero).
 
 /// Solves for the step: `normal` receives `Jᵀ J + λ I` and then its Cholesky factor, `step`
-/// the step. `stacked` is `J` (`rows × cols`, row-major), `error` is `e`, `secondary` is `d`
-/// (all zeros for none). Returns `false` when `Jᵀ J + λ I` is not positive definite (only
+/// the step. `stacked` is `J` (`rows × cols`, row-major, `cols` the length of `step`), `error` is `e`, `secondary` is `d`
+/// (all zeros for none), `locked[c]` leaves column `c` out (its step is 0). Returns `false` when `Jᵀ J + λ I` is not positive definite (only
 /// possible with `λ = 0`).
 ///
 /// With `d = 0` this is the damped least-squares step minimising `‖J Δθ − e‖² + λ ‖Δθ‖²`.
@@ -13,39 +15,51 @@
 pub(super) fn step(
     stacked: &[f64],
     error: &[f64],
-    cols: usize,
     lambda: f64,
     secondary: &[f64],
+    locked: &[bool],
     normal: &mut [f64],
     step: &mut [f64],
 ) -> bool {
-    let rows = error.len();
-    // normal = Jᵀ J + λ I (lower triangle), step = Jᵀ (e − J d).
+    let (rows, cols) = (error.len(), step.len());
+    // normal = Jᵀ J + λ I (lower triangle), step = Jᵀ (e − J d), over the free columns; a
+    // locked column's row and column are those of the identity, its right-hand side 0.
     for a in 0..cols {
         for b in 0..=a {
             let mut s = 0.0;
-            for r in 0..rows {
-                s += stacked[r * cols + a] * stacked[r * cols + b];
+            if !(locked[a] || locked[b]) {
+                for r in 0..rows {
+                    s += stacked[r * cols + a] * stacked[r * cols + b];
+                }
             }
             normal[a * cols + b] = s;
         }
-        normal[a * cols + a] += lambda;
+        normal[a * cols + a] += if locked[a] { 1.0 } else { lambda };
         step[a] = 0.0;
     }
     for r in 0..rows {
         let row = &stacked[r * cols..(r + 1) * cols];
-        let jd: f64 = row.iter().zip(secondary).map(|(j, d)| j * d).sum();
+        let mut jd = 0.0;
+        for c in 0..cols {
+            if !locked[c] {
+                jd += row[c] * secondary[c];
+            }
+        }
         let residual = error[r] - jd;
-        for (s, j) in step.iter_mut().zip(row) {
-            *s += j * residual;
+        for c in 0..cols {
+            if !locked[c] {
+                step[c] += row[c] * residual;
+            }
         }
     }
     if !cholesky(normal, cols) {
         return false;
     }
     solve(normal, cols, step);
-    for (s, d) in step.iter_mut().zip(secondary) {
-        *s += d;
+    for c in 0..cols {
+        if !locked[c] {
+            step[c] += secondary[c];
+        }
     }
     true
 }
@@ -103,7 +117,15 @@ mod tests {
         let e = [1.0, 2.0, 3.0];
         let mut normal = [0.0; 4];
         let mut x = [0.0; 2];
-        assert!(step(&j, &e, 2, 0.5, &[0.0; 2], &mut normal, &mut x));
+        assert!(step(
+            &j,
+            &e,
+            0.5,
+            &[0.0; 2],
+            &[false; 2],
+            &mut normal,
+            &mut x
+        ));
         // JᵀJ + λI = [[10.5, 2], [2, 5.5]], Jᵀe = (10, 4).
         let det = 10.5 * 5.5 - 4.0;
         let expected = [
@@ -122,12 +144,27 @@ mod tests {
         assert!(step(
             &[1.0, 1.0],
             &[0.0],
-            2,
             1e-3,
             &[1.0, -1.0],
+            &[false; 2],
             &mut normal,
             &mut x
         ));
         assert!((x[0] - 1.0).abs() < 1e-14 && (x[1] + 1.0).abs() < 1e-14);
+    }
+
+    /// A locked column does not move, and the others take the least-squares step of the
+    /// system without it: J = [[1, 2], [0, 1], [3, 0]] with column 1 locked is the column
+    /// (1, 0, 3), so Δθ₀ = (1·1 + 3·3) / (1 + 9 + λ).
+    #[test]
+    fn locked_column_is_left_out() {
+        let j = [1.0, 2.0, 0.0, 1.0, 3.0, 0.0];
+        let e = [1.0, 2.0, 3.0];
+        let mut normal = [0.0; 4];
+        let mut x = [0.0; 2];
+        let d = [0.0, 0.7];
+        assert!(step(&j, &e, 0.5, &d, &[false, true], &mut normal, &mut x));
+        assert!((x[0] - 10.0 / 10.5).abs() < 1e-14, "{x:?}");
+        assert_eq!(x[1], 0.0);
     }
 }

@@ -80,8 +80,11 @@ struct Search {
 /// `Δθ = d + (Jᵀ W² J + λ I)⁻¹ Jᵀ W (W e − W J d)`, until `d` falls below `10⁻⁶`; the latest
 /// `q` that meets the tasks is kept.
 ///
-/// **Limits.** After each step every joint is put back within its limits (`θ_j` clamped to
-/// `[lower, upper]`); a continuous joint (no limits) is wrapped to within `π` of its `q0`.
+/// **Limits.** A joint on one of its limits whose descent direction `(Jᵀ W² e)_j` (or whose
+/// step) points out of them is held for the step (its column left out, `Δθ_j = 0`), so that
+/// the other joints make up for it. After each step every joint is put back within its limits
+/// (`θ_j` clamped to `[lower, upper]`); a continuous joint (no limits) is wrapped to within `π`
+/// of its `q0`.
 /// Held joints and joints that move no task's frame keep their `q0`.
 ///
 /// **Attempts.** The first attempt starts from `q0`, or from the closed-form solution nearest
@@ -418,7 +421,6 @@ impl IkSolver {
         polish: bool,
     ) -> Result<End> {
         let o = &self.options;
-        let cols = self.active.len();
         let mut lowest = f64::INFINITY;
         let mut stalled = 0;
         let secondary = self.redundant && (o.posture_gain > 0.0 || o.limit_gain > 0.0);
@@ -478,15 +480,7 @@ impl IkSolver {
             }
             // λ = w E + λ_min (error-scaled damping).
             let lambda = mu * o.damping * cost + o.min_damping;
-            if !lm::step(
-                &ws.stacked,
-                &ws.error,
-                cols,
-                lambda,
-                &ws.secondary,
-                &mut ws.normal,
-                &mut ws.step,
-            ) {
+            if !self.limited_step(ws, lambda) {
                 return Ok(End::Stalled);
             }
             for (c, &j) in self.active.iter().enumerate() {
@@ -496,6 +490,52 @@ impl IkSolver {
             search.iterations += 1;
         }
         Ok(End::OutOfIterations)
+    }
+
+    /// The step over the joints free to move, into `ws.step`: a joint on one of its limits
+    /// whose descent direction `(Jᵀ W² e)_c`, or whose step, points out of the limits is locked
+    /// (its column left out, its step zero) and the step taken again without it, so that the
+    /// other joints make up for it instead of the step being cut by the clamp (an active set,
+    /// as in Bertsekas' projected Newton method). `false` when the normal matrix is singular.
+    fn limited_step(&self, ws: &mut IkWorkspace, lambda: f64) -> bool {
+        let cols = self.active.len();
+        let rows = ws.error.len();
+        let on_limit = |q: f64, j: usize, direction: f64| {
+            !self.wraps[j]
+                && ((q <= self.lower[j] && direction < 0.0)
+                    || (q >= self.upper[j] && direction > 0.0))
+        };
+        for (c, &j) in self.active.iter().enumerate() {
+            let g: f64 = (0..rows)
+                .map(|r| ws.stacked[r * cols + c] * ws.error[r])
+                .sum();
+            ws.locked[c] = on_limit(ws.q[j], j, g);
+        }
+        // Each pass locks at least one more joint or ends.
+        for _ in 0..=cols {
+            if !lm::step(
+                &ws.stacked,
+                &ws.error,
+                lambda,
+                &ws.secondary,
+                &ws.locked,
+                &mut ws.normal,
+                &mut ws.step,
+            ) {
+                return false;
+            }
+            let mut more = false;
+            for (c, &j) in self.active.iter().enumerate() {
+                if !ws.locked[c] && on_limit(ws.q[j], j, ws.step[c]) {
+                    ws.locked[c] = true;
+                    more = true;
+                }
+            }
+            if !more {
+                break;
+            }
+        }
+        true
     }
 
     /// Forward kinematics and Jacobians at `ws.q`; fills the weighted stacked Jacobian and

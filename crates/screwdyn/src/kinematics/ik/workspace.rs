@@ -31,6 +31,8 @@ pub struct IkWorkspace {
     pub(super) step: Vec<f64>,
     /// The secondary objective's step `d` (one per active joint).
     pub(super) secondary: Vec<f64>,
+    /// The moving joints held on their limits for the current step.
+    pub(super) locked: Vec<bool>,
     /// The iterate `θ` (nq).
     pub(super) q: Vec<f64>,
     /// The iterate before the last step (nq).
@@ -55,6 +57,7 @@ impl IkWorkspace {
             normal: vec![0.0; cols * cols],
             step: vec![0.0; cols],
             secondary: vec![0.0; cols],
+            locked: vec![false; cols],
             q: vec![0.0; nq],
             previous: vec![0.0; nq],
             best: vec![0.0; nq],
