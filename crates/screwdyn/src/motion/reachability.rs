@@ -26,7 +26,8 @@ pub(crate) struct Constraints {
 }
 
 impl Constraints {
-    fn at(&self, i: usize) -> &[[f64; 3]] {
+    /// The rows of grid point `i`.
+    pub(crate) fn at(&self, i: usize) -> &[[f64; 3]] {
         &self.rows[i * self.rows_per_point..(i + 1) * self.rows_per_point]
     }
 }
