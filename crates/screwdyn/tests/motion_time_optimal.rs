@@ -198,3 +198,22 @@ fn bad_input_is_one_sentence_naming_where() {
     // A path of the wrong number of joints.
     assert!(err(&ok, line(1.0)).contains("the path has 1 joints"));
 }
+
+#[test]
+fn refining_reuses_the_coarse_grid_exactly() {
+    // Each refinement copies the rows of the previous grid's points instead of recomputing
+    // them: every duration it reports is the one a fixed grid of that size gives on its own.
+    let m = builtin::load("ur5").unwrap();
+    let limits = TimingLimits::from_model(&m);
+    let refined = time_optimal(&m, ur5_path(), &limits, &TimeOptimalOptions::default()).unwrap();
+    let durations = &refined.report().durations;
+    assert!(durations.len() >= 3, "{durations:?}");
+    for &(grid, duration) in durations {
+        let options = TimeOptimalOptions {
+            grid: Some(grid),
+            ..Default::default()
+        };
+        let fixed = time_optimal(&m, ur5_path(), &limits, &options).unwrap();
+        assert_eq!(fixed.duration(), duration, "grid {grid}");
+    }
+}

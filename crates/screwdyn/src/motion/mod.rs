@@ -1,7 +1,8 @@
 //! Motion planning in time: the fastest timing of a joint-space path within velocity,
 //! acceleration and torque limits (TOPP-RA, [`time_optimal`]), and jerk-limited point-to-point
-//! motion ([`JerkLimited`]), and Cartesian moves on a line or an arc ([`cartesian_move`]); the
-//! user guide is `docs/motion.md`.
+//! motion ([`JerkLimited`]), and Cartesian moves on a line or an arc ([`cartesian_move`]); a
+//! sampled motion read back for tracking ([`SampledTrajectory`]); the user guide is
+//! `docs/motion.md`.
 //!
 //! ```
 //! use screwdyn::motion::{time_optimal, CubicSpline, TimeOptimalOptions, TimingLimits};
@@ -22,6 +23,7 @@ mod path_dynamics;
 mod reachability;
 mod spline;
 mod time_optimal;
+mod tracking;
 
 pub use cartesian::{
     cartesian_move, cartesian_move_along, CartesianMove, CartesianOptions, CartesianPath,
@@ -33,3 +35,4 @@ pub use spline::{CubicSpline, Path};
 pub use time_optimal::{
     limit_fractions, time_optimal, TimeOptimal, TimeOptimalOptions, TimingLimits, TimingReport,
 };
+pub use tracking::SampledTrajectory;

@@ -3,9 +3,11 @@
 //! `τ = a(s) s̈ + b(s) ṡ² + c(s)`, linear in `(s̈, ṡ²)`.
 
 use super::spline::Path;
-use crate::dynamics::{gravity_torque, rnea};
+use crate::dynamics::{base_acceleration, rnea_passes};
 use crate::error::{Error, Result};
+use crate::kinematics::forward_kinematics;
 use crate::model::Model;
+use crate::spatial::Twist;
 use crate::workspace::Workspace;
 
 /// The path and its dynamics at one `s`: `q`, `q'`, `q''` and the coefficients `a`, `b`, `c`
@@ -27,14 +29,15 @@ pub struct PathPoint {
     pub c: Vec<f64>,
 }
 
-/// Evaluates [`PathPoint`]s of one model along paths, allocating nothing per call: three
-/// inverse-dynamics calls per point,
+/// Evaluates [`PathPoint`]s of one model along paths, allocating nothing per call: one forward
+/// kinematics and three passes of the recursive Newton–Euler algorithm per point,
 ///
 /// ```text
-/// c = g(q) + f ∘ sign(q'),   a = RNEA(q, 0, q') − g(q),   b = RNEA(q, q', q'') − g(q),
+/// c = RNEA_g(q, 0, 0) + f ∘ sign(q'),   a = RNEA_0(q, 0, q'),   b = RNEA_0(q, q', q''),
 /// ```
 ///
-/// since `RNEA(q, q̇, q̈) = M q̈ + C(q, q̇) q̇ + g` and `C(q, q') q'` is quadratic in `q'`.
+/// where `RNEA_g` has the base accelerating at `−g` (gravity) and `RNEA_0` is at rest (no
+/// gravity), since `RNEA_0(q, q̇, q̈) = M q̈ + C(q, q̇) q̇` and `C(q, q') q'` is quadratic in `q'`.
 /// Whatever the model's inverse dynamics includes (joint armature in `M`) is included here.
 /// Viscous damping (`−b_i q̇_i`, linear in `ṡ`, not in `ṡ²`) is not part of this form.
 ///
@@ -50,7 +53,6 @@ pub struct PathPoint {
 #[derive(Clone, Debug)]
 pub struct PathDynamics {
     ws: Workspace,
-    zero: Vec<f64>,
     point: PathPoint,
 }
 
@@ -69,7 +71,6 @@ impl PathDynamics {
         let z = vec![0.0; nq];
         Ok(PathDynamics {
             ws: Workspace::new(model),
-            zero: z.clone(),
             point: PathPoint {
                 q: z.clone(),
                 dq: z.clone(),
@@ -89,16 +90,22 @@ impl PathDynamics {
     pub fn at(&mut self, model: &Model, path: &dyn Path, s: f64) -> Result<&PathPoint> {
         let p = &mut self.point;
         path.eval(s, &mut p.q, &mut p.dq, &mut p.ddq);
-        let g = gravity_torque(model, &mut self.ws, &p.q)?;
-        p.c.copy_from_slice(g.as_slice());
-        let ma = rnea(model, &mut self.ws, &p.q, &self.zero, &p.dq)?;
-        for ((a, x), g) in p.a.iter_mut().zip(ma.iter()).zip(&p.c) {
-            *a = x - g;
-        }
-        let mb = rnea(model, &mut self.ws, &p.q, &p.dq, &p.ddq)?;
-        for ((b, x), g) in p.b.iter_mut().zip(mb.iter()).zip(&p.c) {
-            *b = x - g;
-        }
+        model.check_vector(&p.dq, "q'")?;
+        model.check_vector(&p.ddq, "q''")?;
+        // One forward kinematics for the three passes below (it checks q).
+        forward_kinematics(model, &mut self.ws, &p.q)?;
+        let ws = &mut self.ws;
+        // c = g(q): the base accelerating at −g, q̇ = q̈ = 0.
+        rnea_passes(model, ws, None, |_| 0.0, &base_acceleration(model), None);
+        p.c.copy_from_slice(ws.tau.as_slice());
+        // a = M(q) q': no gravity, q̇ = 0, q̈ = q'.
+        let still = Twist::zeros();
+        rnea_passes(model, ws, None, |i| p.dq[i], &still, None);
+        p.a.copy_from_slice(ws.tau.as_slice());
+        // b = M(q) q'' + C(q, q') q': no gravity, q̇ = q', q̈ = q''.
+        rnea_passes(model, ws, Some(&p.dq), |i| p.ddq[i], &still, None);
+        p.b.copy_from_slice(ws.tau.as_slice());
+        // c += f ∘ sign(q'): Coulomb friction moving forward along the path.
         for ((c, j), dq) in p.c.iter_mut().zip(model.joints()).zip(&p.dq) {
             if *dq != 0.0 {
                 *c += j.friction * dq.signum();

@@ -286,19 +286,21 @@ pub fn time_optimal<P: Path>(
     let keep = 1.0 - options.limit_margin;
     let mut dynamics = PathDynamics::new(model, path.nq())?;
     let mut ws = Workspace::new(model);
-    let mut constraints = Constraints::default();
+    // The rows of the grid being timed, and of the one before (half as fine).
+    let (mut constraints, mut coarse) = (Constraints::default(), Constraints::default());
     let mut durations: Vec<(usize, f64)> = Vec::new();
     let mut grid = options.grid.unwrap_or(options.initial_grid);
     let mut refined_for_limits = 0;
     let mut converged = options.grid.is_some();
     loop {
+        std::mem::swap(&mut constraints, &mut coarse);
         let timing = time_on_grid(
             model,
             &path,
             grid,
             (limits, keep, options.max_path_speed),
             &mut dynamics,
-            &mut constraints,
+            (&coarse, &mut constraints),
         )?;
         let duration = timing.duration();
         if let Some(&(_, previous)) = durations.last() {
@@ -390,17 +392,18 @@ fn uniform_grid(path: &dyn Path, n: usize) -> Vec<f64> {
         .collect()
 }
 
-/// The timing on a uniform grid of `n` intervals within `keep` times the limits.
+/// The timing on a uniform grid of `n` intervals within `keep` times the limits; `coarse` holds
+/// the rows of the previous grid (or none).
 fn time_on_grid(
     model: &Model,
     path: &dyn Path,
     n: usize,
     limits: (&TimingLimits, f64, f64),
     dynamics: &mut PathDynamics,
-    constraints: &mut Constraints,
+    (coarse, constraints): (&Constraints, &mut Constraints),
 ) -> Result<Timing> {
     let s = uniform_grid(path, n);
-    fill_constraints(model, path, &s, limits, dynamics, constraints)?;
+    fill_constraints(model, path, &s, limits, dynamics, coarse, constraints)?;
     let mut p = Parameterization::default();
     if let Err(e) = parameterize(&s, constraints, &mut p) {
         return Err(Error::InvalidArgument(format!(
@@ -430,21 +433,30 @@ fn fmt_s(s: f64) -> String {
 /// The rows `α u + β x ≤ γ` of every grid point (acceleration and torque, both signs) and the
 /// speed bounds `x ≤ min_j (vmax_j / |q'_j|)²`, within `keep` times the limits; refuses points
 /// outside the position limits or where `|c_j(s)| > keep τmax_j` (the robot could not be held
-/// there).
+/// there). On a doubled grid (`coarse` has the rows of `s_0, s_2, s_4, …`, which
+/// [`uniform_grid`] computes to the same bits) the even points' rows are copied, not recomputed.
 fn fill_constraints(
     model: &Model,
     path: &dyn Path,
     s: &[f64],
     (limits, keep, path_speed): (&TimingLimits, f64, f64),
     dynamics: &mut PathDynamics,
+    coarse: &Constraints,
     c: &mut Constraints,
 ) -> Result<()> {
     let n = path.nq();
-    let names = model.joint_names();
     c.rows_per_point = 4 * n;
     c.rows.clear();
     c.x_max.clear();
-    for &si in s {
+    let doubled = s.len() % 2 == 1
+        && coarse.x_max.len() == s.len() / 2 + 1
+        && coarse.rows_per_point == c.rows_per_point;
+    for (k, &si) in s.iter().enumerate() {
+        if doubled && k % 2 == 0 {
+            c.rows.extend_from_slice(coarse.at(k / 2));
+            c.x_max.push(coarse.x_max[k / 2]);
+            continue;
+        }
         let p = dynamics.at(model, path, si)?;
         // x = ṡ² ≤ (keep · max_path_speed)²
         let mut x_max = (keep * path_speed).powi(2);
@@ -453,7 +465,7 @@ fn fill_constraints(
             if p.q[j] < lo || p.q[j] > hi {
                 return Err(Error::InvalidArgument(format!(
                     "the path leaves the position limits of joint {} at s = {}: q = {} outside [{lo}, {hi}]",
-                    names[j],
+                    model.joint_names()[j],
                     fmt_s(si),
                     p.q[j]
                 )));
@@ -463,7 +475,7 @@ fn fill_constraints(
                 return Err(Error::InvalidArgument(format!(
                     "gravity alone needs {:.3} at joint {} at s = {}, more than its effort limit {} allows: the robot cannot be held there",
                     p.c[j].abs(),
-                    names[j],
+                    model.joint_names()[j],
                     fmt_s(si),
                     limits.effort[j]
                 )));
