@@ -356,6 +356,21 @@ impl PyModel {
         convert::frozen(convert::vector(py, &v)?)
     }
 
+    /// Joint spring stiffnesses `k` (N·m/rad or N/m; MuJoCo's `stiffness`): simulation applies
+    /// `τ = −k (q − q_spring)`.
+    #[getter]
+    fn stiffness<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let v: Vec<f64> = self.model.joints().iter().map(|j| j.stiffness).collect();
+        convert::frozen(convert::vector(py, &v)?)
+    }
+
+    /// The joint springs' rest positions `q_spring` (rad or m; MuJoCo's `springref`).
+    #[getter]
+    fn springref<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let v: Vec<f64> = self.model.joints().iter().map(|j| j.springref).collect();
+        convert::frozen(convert::vector(py, &v)?)
+    }
+
     /// Coulomb friction torques (N·m).
     #[getter]
     fn friction<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
@@ -447,7 +462,7 @@ impl PyModel {
     }
 
     /// The model as MJCF text, MuJoCo's format (the library's exporter: armature, limits,
-    /// damping, friction, effort limits as motors, frames as sites, gravity).
+    /// damping, friction, springs, effort limits as motors, frames as sites, gravity).
     fn to_mjcf(&self) -> PyResult<String> {
         screwdyn::io::mjcf_export::to_mjcf_string(&self.model).map_err(call_err)
     }

@@ -38,9 +38,9 @@ impl PyModel {
     ///     ``atol``; ``dt`` is then the output interval).
     /// method: forward dynamics ``"aba"``, ``"crba"`` or ``"walker-orin"``.
     /// effects: joint effects added to the commanded torque: ``None``/``True`` for the library's
-    ///     defaults (effort saturation, viscous damping, smoothed Coulomb friction, position limits
+    ///     defaults (effort saturation, viscous damping, joint springs, smoothed Coulomb friction, position limits
     ///     as stiff spring–dampers), ``False`` for none, or a dict of fields (``saturate``,
-    ///     ``damping``, ``friction``, ``position_limits``, ``friction_smoothing``,
+    ///     ``damping``, ``springs``, ``friction``, ``position_limits``, ``friction_smoothing``,
     ///     ``limit_time_constant``, ``limit_damping_ratio``).
     /// disturbances: :class:`Disturbance` wrenches on links during time windows.
     /// record_every: keep every k-th step; frames: frames whose poses are recorded.
@@ -398,6 +398,7 @@ fn effects(e: Option<&Bound<'_, PyAny>>) -> PyResult<JointEffects> {
         if !b {
             x.saturate = false;
             x.damping = false;
+            x.springs = false;
             x.friction = false;
             x.position_limits = false;
         }
@@ -412,6 +413,7 @@ fn effects(e: Option<&Bound<'_, PyAny>>) -> PyResult<JointEffects> {
         match key.as_str() {
             "saturate" => x.saturate = v.extract()?,
             "damping" => x.damping = v.extract()?,
+            "springs" => x.springs = v.extract()?,
             "friction" => x.friction = v.extract()?,
             "position_limits" => x.position_limits = v.extract()?,
             "friction_smoothing" => x.friction_smoothing = v.extract()?,
@@ -419,7 +421,7 @@ fn effects(e: Option<&Bound<'_, PyAny>>) -> PyResult<JointEffects> {
             "limit_damping_ratio" => x.limit_damping_ratio = v.extract()?,
             other => {
                 return Err(PyValueError::new_err(format!(
-                    "unknown joint effect '{other}' (known: saturate, damping, friction, position_limits, friction_smoothing, limit_time_constant, limit_damping_ratio)"
+                    "unknown joint effect '{other}' (known: saturate, damping, springs, friction, position_limits, friction_smoothing, limit_time_constant, limit_damping_ratio)"
                 )))
             }
         }

@@ -225,3 +225,120 @@ def test_include_cycle_and_unknown_class(tmp_path):
     )
     with pytest.raises(screwdyn.ModelError, match=r"c\.xml:2: .*'nope'"):
         screwdyn.load(str(tmp_path / "c.xml"))
+
+
+def write_l_prism(path, h=0.4):
+    """An L-shaped prism as a binary STL (outward normals): the L (0,0)-(2,0)-(2,0.5)-(0.5,0.5)-
+    (0.5,1.5)-(0,1.5) extruded along z from 0 to h. Not convex: its hull is a third heavier."""
+    import struct
+
+    poly = [(0, 0), (2, 0), (2, 0.5), (0.5, 0.5), (0.5, 1.5), (0, 1.5)]
+    rects = [[(0, 0), (2, 0), (2, 0.5), (0, 0.5)], [(0, 0.5), (0.5, 0.5), (0.5, 1.5), (0, 1.5)]]
+    quad = lambda a, b, c, d: [(a, b, c), (a, c, d)]
+    tris = []
+    for r in rects:
+        top = [(x, y, h) for x, y in r]
+        bottom = [(x, y, 0.0) for x, y in r]
+        tris += quad(*top) + quad(bottom[0], bottom[3], bottom[2], bottom[1])
+    for i, p in enumerate(poly):
+        q = poly[(i + 1) % len(poly)]
+        tris += quad((p[0], p[1], 0.0), (q[0], q[1], 0.0), (q[0], q[1], h), (p[0], p[1], h))
+    with open(path, "wb") as f:
+        f.write(b"\0" * 80 + struct.pack("<I", len(tris)))
+        for t in tris:
+            a, b, c = (np.array(v, float) for v in t)
+            n = np.cross(b - a, c - a)
+            f.write(struct.pack("<12fH", *(n / np.linalg.norm(n)), *a, *b, *c, 0))
+
+
+MESH_BODIES = """<mujoco model="meshes">
+  <compiler angle="radian"/>
+  <asset>
+    <mesh name="l_default" file="l.stl" scale="0.5 0.3 0.7"/>
+    <mesh name="l_convex" file="l.stl" inertia="convex" scale="0.5 0.3 0.7"/>
+    <mesh name="l_exact" file="l.stl" inertia="exact" scale="0.5 0.3 0.7"/>
+  </asset>
+  <worldbody>
+    <body name="a">
+      <joint name="ja" axis="0 1 0"/>
+      <geom type="mesh" mesh="l_default" pos="0.1 0 0" euler="0.3 0.2 0.1"/>
+      <body name="b" pos="0.5 0 0">
+        <joint name="jb" axis="1 0 0"/>
+        <geom type="mesh" mesh="l_convex" pos="0 0.1 0" euler="-0.4 0.5 0.2" density="700"/>
+        <body name="c" pos="0 0.4 0">
+          <joint name="jc" axis="0 0 1"/>
+          <geom type="mesh" mesh="l_exact" euler="0.1 -0.3 0.6"/>
+          <site name="tip" pos="0.2 0.1 0"/>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+def test_mesh_inertia_convex_exact_and_the_default(tmp_path):
+    """<mesh inertia="convex"> weighs the convex hull (MuJoCo's body_mass and body_inertia), the
+    default is MuJoCo's (legacy), and exact is the solid L."""
+    write_l_prism(tmp_path / "l.stl")
+    path = tmp_path / "meshes.xml"
+    path.write_text(MESH_BODIES)
+    m, mj = compare(path)
+    volume = {"hull": 2.25 * 0.4, "solid": 1.5 * 0.4}
+    scaled = 0.5 * 0.3 * 0.7
+    masses = [float(m.spatial_inertias[k][3, 3]) for k in range(3)]
+    np.testing.assert_allclose(masses, mj.body_mass[1:], rtol=1e-9, atol=0)
+    # The hull's mass and the solid L's (the analytic volumes, single-precision vertices).
+    assert abs(masses[1] - 700 * volume["hull"] * scaled) < 1e-5 * masses[1]
+    assert abs(masses[2] - 1000 * volume["solid"] * scaled) < 1e-5 * masses[2]
+    # Principal moments about the centre of mass, as MuJoCo reports them.
+    for k in range(3):
+        i = np.asarray(m.spatial_inertias[k])
+        mass = i[3, 3]
+        c = np.array([i[2, 4], i[0, 5], i[1, 3]]) / mass  # 𝔍 = [[I_o, m[c]], [m[c]ᵀ, m 1]]
+        cx = np.array([[0, -c[2], c[1]], [c[2], 0, -c[0]], [-c[1], c[0], 0]])
+        inertia_com = i[:3, :3] - mass * cx @ cx.T
+        np.testing.assert_allclose(c, mj.body_ipos[k + 1], rtol=0, atol=1e-9)
+        np.testing.assert_allclose(np.sort(np.linalg.eigvalsh(inertia_com)),
+                                   np.sort(mj.body_inertia[k + 1]), rtol=1e-9, atol=0)
+
+
+FRAMES = """<mujoco model="frames">
+  <compiler angle="degree"/>
+  <default><default class="damped"><joint damping="2" armature="0.1"/></default></default>
+  <worldbody>
+    <body name="a" pos="0 0 0.3">
+      <frame pos="0.1 0.2 0" euler="0 90 0">
+        <joint name="in_frame" axis="1 0 0" pos="0 0 0.1"/>
+      </frame>
+      <geom type="box" size="0.2 0.05 0.05" pos="0.2 0 0"/>
+      <body name="b" pos="0.4 0 0">
+        <frame pos="0 0.1 0" euler="30 0 0">
+          <frame euler="0 0 45" childclass="damped">
+            <joint name="nested" axis="0 1 0" pos="0.1 0 0"/>
+            <joint name="nested_slide" type="slide" axis="1 0 0"/>
+          </frame>
+        </frame>
+        <geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>
+        <site name="tip" pos="0.3 0 0"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+def test_joints_inside_frames(tmp_path):
+    """MuJoCo accepts joints in <frame>s of a body (their axis and pos written in the frame,
+    classes from the frame's childclass); in a frame of <worldbody> both refuse them."""
+    path = tmp_path / "frames.xml"
+    path.write_text(FRAMES)
+    m, mj = compare(path)
+    np.testing.assert_allclose(m.damping, mj.dof_damping, rtol=0, atol=0)
+    world = tmp_path / "world_frame.xml"
+    world.write_text('<mujoco><worldbody><frame pos="0 0 1">\n<joint name="j"/></frame>'
+                     '<body><geom size="0.1"/></body></worldbody></mujoco>')
+    with pytest.raises(ValueError, match="World body cannot have joints"):
+        mujoco.MjModel.from_xml_path(str(world))
+    with pytest.raises(screwdyn.ModelError, match=r"world_frame\.xml:2: .*<worldbody>"):
+        screwdyn.load(str(world))

@@ -6,9 +6,10 @@
 //! Meshes are in the file's own units with the file's transforms applied (Collada node
 //! matrices and `<unit meter=…>`); the visual's `scale` is applied later, by its transform.
 //!
-//! Why Collada is read here and not by `mesh-loader`: its Collada loader (0.1) keeps one
-//! material per geometry and one transform per instanced geometry, and the published arms'
-//! meshes colour their parts by several materials within one geometry.
+//! Why Collada is read here and not by `mesh-loader`: its Collada loader keeps one material
+//! per geometry (the first primitive's) and one transform per instanced geometry, and the
+//! published arms' meshes colour their parts by several materials within one geometry.
+//! Checked against `mesh-loader` 0.1.13, the newest release on crates.io in November 2026.
 
 use nalgebra::{Matrix4, Vector3, Vector4};
 use screwdyn::{Error, Result};

@@ -152,6 +152,92 @@ fn a_closed_mesh_cube_has_the_box_inertia() {
     close(&i.inertia_com, &(Matrix3::identity() * s), 1e-12 * s);
 }
 
+#[test]
+fn a_convex_mesh_weighs_its_hull() {
+    // Two cubes of side 0.25, a gap of 0.25 between them along x: the hull is the box
+    // 0.75 × 0.25 × 0.25.
+    let dir = tempfile::tempdir().unwrap();
+    let mut obj = String::new();
+    for x0 in [0.0, 0.5] {
+        for k in 0..8 {
+            obj += &format!(
+                "v {} {} {}\n",
+                x0 + 0.25 * (k & 1) as f64,
+                0.25 * ((k >> 1) & 1) as f64,
+                0.25 * ((k >> 2) & 1) as f64
+            );
+        }
+    }
+    for o in [0, 8] {
+        for f in [
+            [1, 3, 4],
+            [1, 4, 2],
+            [5, 6, 8],
+            [5, 8, 7],
+            [1, 2, 6],
+            [1, 6, 5],
+            [3, 7, 8],
+            [3, 8, 4],
+            [1, 5, 7],
+            [1, 7, 3],
+            [2, 4, 8],
+            [2, 8, 6],
+        ] {
+            obj += &format!("f {} {} {}\n", f[0] + o, f[1] + o, f[2] + o);
+        }
+    }
+    std::fs::write(dir.path().join("pair.obj"), obj).unwrap();
+    let load_as = |inertia: &str| {
+        let main = dir.path().join(format!("{inertia}.xml"));
+        std::fs::write(&main, format!("<mujoco><asset><mesh file=\"pair.obj\" {inertia}/></asset><worldbody><body name=\"b\"><joint name=\"j\"/><geom type=\"mesh\" mesh=\"pair\"/></body></worldbody></mujoco>")).unwrap();
+        load_model(main.to_str().unwrap()).unwrap().bodies()[0].inertia
+    };
+    let hull = load_as("inertia=\"convex\"");
+    let (a, b, c) = (0.75, 0.25, 0.25);
+    let mass = 1000.0 * a * b * c;
+    assert!((hull.mass - mass).abs() < 1e-12 * mass, "{}", hull.mass);
+    assert!((hull.com - Vector3::new(0.375, 0.125, 0.125)).norm() < 1e-15);
+    let box_inertia = diag(b * b + c * c, a * a + c * c, a * a + b * b) * (mass / 12.0);
+    close(&hull.inertia_com, &box_inertia, 1e-12 * mass);
+    // Exact counts the two cubes; the default is legacy (MuJoCo's), whose pyramids from a centre
+    // between the cubes count more than the solid (the Python suite compares it with MuJoCo).
+    let two_cubes = 2.0 * 1000.0 * 0.25_f64.powi(3);
+    assert!((load_as("inertia=\"exact\"").mass - two_cubes).abs() < 1e-12);
+    let legacy = load_as("inertia=\"legacy\"").mass;
+    assert_eq!(load_as("").mass, legacy);
+    assert!(legacy > two_cubes * (1.0 + 1e-6), "{legacy}");
+    // A hull cut to fewer vertices is refused, naming the attribute.
+    let main = dir.path().join("cut.xml");
+    std::fs::write(&main, "<mujoco><asset><mesh file=\"pair.obj\" inertia=\"convex\" maxhullvert=\"6\"/></asset><worldbody><body><joint/><geom type=\"mesh\" mesh=\"pair\"/></body></worldbody></mujoco>").unwrap();
+    let e = load_model(main.to_str().unwrap()).unwrap_err().to_string();
+    assert!(e.contains("maxhullvert") && !e.contains('\n'), "{e}");
+}
+
+#[test]
+fn a_joint_in_a_frame_has_its_axis_and_pos_in_the_frame() {
+    // The frame at (0, 0, 1) turned 90° about y: the joint's x axis is the body's −z, through
+    // (0, 0, 1). A quarter turn takes the site (1, 0, 1) to (0, −1, 1).
+    let m = load(
+        r#"<mujoco><worldbody><body name="b"><geom size="0.1"/>
+  <frame pos="0 0 1" euler="0 90 0"><joint name="j" axis="1 0 0"/></frame>
+  <site name="s" pos="1 0 1"/></body></worldbody></mujoco>"#,
+    );
+    let mut ws = Workspace::new(&m);
+    forward_kinematics(&m, &mut ws, &[FRAC_PI_2]).unwrap();
+    let s = frame_pose(&m, &ws, m.frame_id("s").unwrap()).unwrap();
+    assert!(
+        (s.translation - Vector3::new(0.0, -1.0, 1.0)).norm() < 1e-12,
+        "{}",
+        s.translation
+    );
+    // A joint in a frame of <worldbody> moves nothing: refused, as MuJoCo does.
+    check(
+        &err("<mujoco><worldbody><frame pos=\"0 0 1\">\n<joint name=\"j\"/></frame></worldbody></mujoco>"),
+        "bad.xml:2:",
+        &["<worldbody>", "<frame>", "<body>"],
+    );
+}
+
 fn rot(axis: Vector3<f64>, angle: f64) -> Matrix3<f64> {
     *Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), angle).matrix()
 }
@@ -491,7 +577,7 @@ fn deep_and_long_files_fail_fast_without_overflowing_the_stack() {
 fn the_report_lists_what_the_loader_ignored() {
     let text = r#"<mujoco>
   <visual><global offwidth="100"/></visual>
-  <worldbody><body name="b"><joint name="j" stiffness="3" damping="1"/><geom size="0.1" rgba="1 0 0 1" friction="1 0 0"/></body></worldbody>
+  <worldbody><body name="b"><joint name="j" margin="0.01" damping="1"/><geom size="0.1" rgba="1 0 0 1" friction="1 0 0"/></body></worldbody>
   <tendon><fixed name="t"><joint joint="j" coef="1"/></fixed></tendon>
   <equality><joint joint1="j"/></equality>
   <contact><exclude body1="b" body2="b"/></contact>
@@ -503,7 +589,7 @@ fn the_report_lists_what_the_loader_ignored() {
         lines,
         vec![
             "r.xml:2: <visual> ignored",
-            "r.xml:3: <joint name=\"j\">: ignored stiffness",
+            "r.xml:3: <joint name=\"j\">: ignored margin",
             "r.xml:3: <geom>: ignored rgba, friction",
             "r.xml:4: <tendon> ignored",
             "r.xml:5: <equality> ignored",

@@ -52,6 +52,7 @@ pub fn info(a: &ModelArgs) -> Result<(), CliError> {
                         "lower": finite(j.limits.lower), "upper": finite(j.limits.upper),
                         "velocity": finite(j.limits.velocity), "effort": finite(j.limits.effort),
                         "damping": j.damping, "friction": j.friction, "armature": j.armature,
+                        "stiffness": j.stiffness, "springref": j.springref,
                     })
                 })
                 .collect();
@@ -99,8 +100,9 @@ pub fn info(a: &ModelArgs) -> Result<(), CliError> {
                 g.z
             );
             let mut t = table();
-            // The armature column only when some joint has one.
+            // The armature and spring columns only when some joint has one.
             let armature = m.joints().iter().any(|j| j.armature != 0.0);
+            let springs = m.joints().iter().any(|j| j.stiffness != 0.0);
             let mut header = vec![
                 "joint",
                 "kind",
@@ -112,6 +114,9 @@ pub fn info(a: &ModelArgs) -> Result<(), CliError> {
             ];
             if armature {
                 header.push("armature");
+            }
+            if springs {
+                header.extend(["stiffness", "springref"]);
             }
             t.set_header(header);
             for j in m.joints() {
@@ -127,6 +132,9 @@ pub fn info(a: &ModelArgs) -> Result<(), CliError> {
                 ];
                 if armature {
                     row.push(fmt(j.armature));
+                }
+                if springs {
+                    row.extend([fmt(j.stiffness), fmt(j.springref)]);
                 }
                 t.add_row(row);
             }

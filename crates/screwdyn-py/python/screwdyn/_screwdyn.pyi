@@ -81,6 +81,10 @@ class Model:
     friction: FloatArray
     armature: FloatArray
     """Rotor inertias reflected to the joints (kg·m² or kg), added to the mass matrix's diagonal."""
+    stiffness: FloatArray
+    """Joint spring stiffnesses ``k`` (MuJoCo's ``stiffness``); simulation applies ``−k (q − springref)``."""
+    springref: FloatArray
+    """The joint springs' rest positions (rad or m; MuJoCo's ``springref``)."""
     screw_axes: FloatArray
     """``S_i^{i,λ(i)}``, (nq, 6)."""
     spatial_inertias: FloatArray
@@ -99,7 +103,7 @@ class Model:
         """Each one value per joint or one number for every joint."""
     def to_urdf(self) -> str: ...
     def to_mjcf(self) -> str:
-        """MJCF (MuJoCo) text: armature, limits, damping, friction, motors, frames as sites."""
+        """MJCF (MuJoCo) text: armature, limits, damping, friction, springs, motors, frames as sites."""
     def keyframe(self, name: str) -> FloatArray: ...
 
     # frames and joints by name or index (every method taking a frame takes either)

@@ -267,6 +267,15 @@ impl LimitSpec {
     }
 }
 
+/// The joint spring of the TOML keys `stiffness` (`k`, default 0) and `springref`
+/// (`q_spring`, default 0): simulation applies `τ = −k (q − q_spring)`.
+pub(crate) fn spring(j: JointSpec, stiffness: Option<f64>, springref: Option<f64>) -> JointSpec {
+    if stiffness.is_none() && springref.is_none() {
+        return j;
+    }
+    j.spring(stiffness.unwrap_or(0.0), springref.unwrap_or(0.0))
+}
+
 /// The keys every TOML description shares — `name`, `base`, `gravity` and the `[[frame]]`
 /// tables — read from any of the three formats (DH, PoE, native), and what they do to the
 /// builder.

@@ -23,6 +23,7 @@
 //! | `row.parent` | parent link (default: the previous row's link, or the base) — allows trees |
 //! | `row.limits = { lower, upper, velocity, effort }`, `row.damping`, `row.friction` | joint limits, viscous and Coulomb coefficients |
 //! | `row.armature` | rotor inertia reflected to the joint (kg·m² or kg), added to `M(q)`'s diagonal |
+//! | `row.stiffness`, `row.springref` | a joint spring: stiffness `k` (N·m/rad or N/m) and rest position `q_spring` (rad or m, default 0); simulation applies `τ = −k (q − q_spring)` |
 //! | `row.mass`, `row.com`, `row.inertia` | link mass, CoM in link frame `{i}`, inertia about the CoM `[ixx, ixy, ixz, iyy, iyz, izz]` |
 //! | `[[frame]]` `name`, `link`, `pose = { xyz, rpy }` | extra frames (a flange, a tool) |
 //!
@@ -100,6 +101,10 @@ struct Row {
     friction: Option<f64>,
     #[serde(default)]
     armature: Option<f64>,
+    #[serde(default)]
+    stiffness: Option<f64>,
+    #[serde(default)]
+    springref: Option<f64>,
     #[serde(default)]
     mass: Option<f64>,
     #[serde(default)]
@@ -202,6 +207,7 @@ pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> 
             j.screw_in_parent(s)
         };
         j = row.limits.apply(j, row.damping, row.friction, row.armature);
+        j = common::spring(j, row.stiffness, row.springref);
         if row.mass.is_none() && (row.com.is_some() || row.inertia.is_some()) {
             return Err(bad("gives com or inertia without mass".into()));
         }

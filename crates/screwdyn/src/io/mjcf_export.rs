@@ -8,7 +8,7 @@
 //! an `<inertial>` at the centre of mass with `fullinertia` about it in MuJoCo's order
 //! `xx yy zz xy xz yz` (`diaginertia` when the body axes are principal; a singular inertia in
 //! its principal axes, with `boundmass`/`boundinertia`, see [`mjcf_export_warnings`]). Position limits become `range`, damping `damping`, Coulomb friction
-//! `frictionloss`, the armature `armature`, and a finite effort limit a `<motor>` with
+//! `frictionloss`, the armature `armature`, a joint spring `stiffness` and `springref`, and a finite effort limit a `<motor>` with
 //! `forcerange` (and `ctrlrange`) `±effort`. Every frame that is not a body frame (merged fixed
 //! links, tool points) becomes a `<site>` of the same name; gravity goes to
 //! `<option gravity>`. Velocity limits (MuJoCo has none) are left out.
@@ -94,10 +94,14 @@ fn joint_element(j: &Joint) -> Result<String> {
         ("damping", j.damping),
         ("frictionloss", j.friction),
         ("armature", j.armature),
+        ("stiffness", j.stiffness),
     ] {
         if x != 0.0 {
             let _ = write!(s, " {key}=\"{}\"", num(x));
         }
+    }
+    if j.stiffness != 0.0 && j.springref != 0.0 {
+        let _ = write!(s, " springref=\"{}\"", num(j.springref));
     }
     s += "/>";
     Ok(s)

@@ -19,6 +19,7 @@
 //! | `body.limits = { lower, upper, velocity, effort }` | each optional, infinite when absent |
 //! | `body.damping`, `body.friction` | viscous and Coulomb coefficients |
 //! | `body.armature` | rotor inertia reflected to the joint (kg·m² or kg), added to `M(q)`'s diagonal |
+//! | `body.stiffness`, `body.springref` | a joint spring: stiffness `k` (N·m/rad or N/m) and rest position `q_spring` (rad or m, default 0); simulation applies `τ = −k (q − q_spring)` |
 //! | `body.mass`, `body.com`, `body.inertia` | mass, CoM in the link frame, inertia about the CoM `[ixx, ixy, ixz, iyy, iyz, izz]` |
 //! | `body.shape` | or a uniform shape centred at `com`: `{ type = "box", size = [w, l, h] }`, `cylinder` `[r, h]` (axis z), `sphere` `[r]`, `rod` `[length]` (along z), `point`; optional `rpy` turns its axes |
 //! | `body.spatial_inertia` | or the full 6×6 `𝔍^{i,i}` (6 rows, angular first, about the link origin) |
@@ -106,6 +107,10 @@ struct BodySpec {
     friction: Option<f64>,
     #[serde(default)]
     armature: Option<f64>,
+    #[serde(default)]
+    stiffness: Option<f64>,
+    #[serde(default)]
+    springref: Option<f64>,
     #[serde(default)]
     mass: Option<f64>,
     #[serde(default)]
@@ -242,6 +247,7 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
         j = body
             .limits
             .apply(j, body.damping, body.friction, body.armature);
+        j = common::spring(j, body.stiffness, body.springref);
         b.link(&body.name, &body.parent, j, home, inertia);
     }
     header.finish(b, file, text)

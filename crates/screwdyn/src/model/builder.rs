@@ -40,6 +40,8 @@ pub struct JointSpec<T: Real = f64> {
     damping: T,
     friction: T,
     armature: T,
+    stiffness: T,
+    springref: T,
     mimic: Option<Mimic>,
 }
 
@@ -53,6 +55,8 @@ impl<T: Real> JointSpec<T> {
             damping: T::zero(),
             friction: T::zero(),
             armature: T::zero(),
+            stiffness: T::zero(),
+            springref: T::zero(),
             mimic: None,
         }
     }
@@ -116,6 +120,13 @@ impl<T: Real> JointSpec<T> {
     /// Armature: rotor inertia reflected to the joint, added to the joint's diagonal of `M(q)`.
     pub fn armature(mut self, a: T) -> Self {
         self.armature = a;
+        self
+    }
+    /// A joint spring: stiffness `k` and rest position `q_spring`, so that simulation applies
+    /// `τ = −k (q − q_spring)` (MuJoCo's `stiffness` and `springref`).
+    pub fn spring(mut self, stiffness: T, springref: T) -> Self {
+        self.stiffness = stiffness;
+        self.springref = springref;
         self
     }
     /// Records a URDF mimic tag (information only: the joint stays independent).
@@ -464,6 +475,8 @@ impl<T: Real> ModelBuilder<T> {
                         damping: l.joint.damping,
                         friction: l.joint.friction,
                         armature: l.joint.armature,
+                        stiffness: l.joint.stiffness,
+                        springref: l.joint.springref,
                         mimic: l.joint.mimic.clone(),
                     });
                     m.bodies.push(Body {
@@ -680,7 +693,7 @@ fn is_finite_pose<T: Real>(h: &Se3<T>) -> bool {
 }
 
 impl<T: Real> JointSpec<T> {
-    /// Limits, damping, friction, armature and pitch are numbers in range.
+    /// Limits, damping, friction, armature, spring and pitch are numbers in range.
     fn check_values(&self) -> Result<()> {
         let bad = |what: String| {
             Err(Error::InvalidModel(format!(
@@ -705,6 +718,7 @@ impl<T: Real> JointSpec<T> {
             ("damping", self.damping),
             ("friction", self.friction),
             ("armature", self.armature),
+            ("spring stiffness", self.stiffness),
         ] {
             if nan(x) || x < T::zero() {
                 return bad(format!("the {what} must be non-negative, got {x:?}"));
@@ -714,6 +728,8 @@ impl<T: Real> JointSpec<T> {
             ("damping", self.damping),
             ("friction", self.friction),
             ("armature", self.armature),
+            ("spring stiffness", self.stiffness),
+            ("spring reference position", self.springref),
         ] {
             if !x.is_finite() {
                 return bad(format!("the {what} must be finite, got {x:?}"));

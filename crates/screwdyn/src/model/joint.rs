@@ -97,6 +97,11 @@ pub struct Joint<T: Real = f64> {
     /// Armature: the rotor inertia reflected to the joint (kg·m² or kg), added to `M(q)`'s
     /// diagonal entry of this joint (MuJoCo's `armature`). Zero unless the model gives one.
     pub armature: T,
+    /// Joint spring stiffness `k` (N·m/rad or N/m, MuJoCo's `stiffness`): a passive torque
+    /// `τ = −k (q − q_spring)` acts in simulation, beside the damping. Zero unless given.
+    pub stiffness: T,
+    /// The spring's rest position `q_spring` (rad or m, MuJoCo's `springref`).
+    pub springref: T,
     /// The URDF mimic tag, if any (information only).
     pub mimic: Option<Mimic>,
 }

@@ -405,6 +405,35 @@ impl<T: Real> Model<T> {
         }
         Ok(m)
     }
+    /// A copy with every joint's spring set: stiffness `k_i` (N·m/rad or N/m, non-negative)
+    /// and rest position `q_spring,i` (rad or m), one value per joint. Simulation then applies
+    /// the passive torque `τ_i = −k_i (q_i − q_spring,i)` (MuJoCo's `stiffness` and `springref`);
+    /// the equations of motion (`M`, `C q̇ + g`) do not change.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`](crate::Error::DimensionMismatch)/[`Error::NonFinite`](crate::Error::NonFinite) for a vector of the wrong length or with NaN/∞; [`Error::InvalidArgument`](crate::Error::InvalidArgument) for a negative stiffness.
+    ///
+    /// ```
+    /// let m = screwdyn::builtin::planar2().with_springs(&[2.0, 0.0], &[0.5, 0.0]).unwrap();
+    /// assert_eq!((m.joints()[0].stiffness, m.joints()[0].springref), (2.0, 0.5));
+    /// assert!(screwdyn::builtin::planar2().with_springs(&[-1.0, 0.0], &[0.0, 0.0]).is_err());
+    /// ```
+    pub fn with_springs(&self, stiffness: &[T], springref: &[T]) -> Result<Self> {
+        self.check_vector(stiffness, "stiffness")?;
+        self.check_vector(springref, "springref")?;
+        let mut m = self.clone();
+        for (i, j) in m.joints.iter_mut().enumerate() {
+            if stiffness[i] < T::zero() {
+                return Err(Error::InvalidArgument(format!(
+                    "joint '{}': the spring stiffness must be non-negative (got {:?})",
+                    j.name, stiffness[i]
+                )));
+            }
+            j.stiffness = stiffness[i];
+            j.springref = springref[i];
+        }
+        Ok(m)
+    }
     /// Joint names in coordinate order.
     pub fn joint_names(&self) -> Vec<&str> {
         self.joints.iter().map(|j| j.name.as_str()).collect()
@@ -621,6 +650,8 @@ impl Model<f64> {
                     damping: c(&j.damping),
                     friction: c(&j.friction),
                     armature: c(&j.armature),
+                    stiffness: c(&j.stiffness),
+                    springref: c(&j.springref),
                     mimic: j.mimic.clone(),
                 })
                 .collect(),

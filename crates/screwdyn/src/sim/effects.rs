@@ -1,5 +1,5 @@
-//! Joint effects added to the commanded torque: effort saturation, viscous damping, smoothed
-//! Coulomb friction and position limits as a stiff spring–damper.
+//! Joint effects added to the commanded torque: effort saturation, viscous damping, joint
+//! springs, smoothed Coulomb friction and position limits as a stiff spring–damper.
 
 use super::setting::{check, Range};
 use crate::dynamics::mass_matrix_inverse;
@@ -10,10 +10,12 @@ use crate::workspace::Workspace;
 /// Which joint effects act, and how. The total joint torque is
 ///
 /// ```text
-/// τ = sat(τ_cmd, ±effort) − b q̇ − f tanh(q̇ / ε) + τ_limit
+/// τ = sat(τ_cmd, ±effort) − b q̇ − k (q − q_spring) − f tanh(q̇ / ε) + τ_limit
 /// ```
 ///
-/// with `b` (damping) and `f` (Coulomb friction) from the model, `ε` the friction smoothing
+/// with `b` (damping), `k` and `q_spring` (the joint spring's stiffness and rest position) and
+/// `f` (Coulomb friction) from the model (the damping and spring terms are MuJoCo's passive
+/// force `qfrc_passive` of a joint), `ε` the friction smoothing
 /// speed (so the ODE stays smooth and well posed), and, outside `[lower, upper]`,
 /// `τ_limit = −k (q − bound) − d q̇`: a one-sided spring–damper stop.
 ///
@@ -35,7 +37,7 @@ use crate::workspace::Workspace;
 /// ```
 /// use screwdyn::sim::JointEffects;
 /// let e = JointEffects::default();
-/// assert!(e.saturate && e.damping && e.friction && e.position_limits);
+/// assert!(e.saturate && e.damping && e.springs && e.friction && e.position_limits);
 /// assert_eq!((e.limit_time_constant, e.limit_damping_ratio), (0.01, 1.0));
 /// assert!(JointEffects::none().total_torque_is_commanded());
 /// ```
@@ -45,6 +47,8 @@ pub struct JointEffects {
     pub saturate: bool,
     /// Viscous damping `−b q̇`.
     pub damping: bool,
+    /// Joint springs `−k (q − q_spring)`.
+    pub springs: bool,
     /// Coulomb friction `−f tanh(q̇/ε)`.
     pub friction: bool,
     /// Smoothing speed `ε` of the friction (rad/s or m/s); raised per joint where a fixed step
@@ -63,6 +67,7 @@ impl Default for JointEffects {
         JointEffects {
             saturate: true,
             damping: true,
+            springs: true,
             friction: true,
             friction_smoothing: 1e-3,
             position_limits: true,
@@ -224,6 +229,7 @@ impl JointEffects {
         JointEffects {
             saturate: false,
             damping: false,
+            springs: false,
             friction: false,
             position_limits: false,
             ..JointEffects::default()
@@ -232,7 +238,7 @@ impl JointEffects {
 
     /// Whether every effect is off.
     pub fn total_torque_is_commanded(&self) -> bool {
-        !(self.saturate || self.damping || self.friction || self.position_limits)
+        !(self.saturate || self.damping || self.springs || self.friction || self.position_limits)
     }
 
     /// Writes the total joint torque for commanded `cmd` at state `(q, v)` into `tau`, with the
@@ -273,6 +279,10 @@ impl JointEffects {
             }
             if self.damping {
                 t -= j.damping * v[i];
+            }
+            // τ_spring = −k (q − q_spring)
+            if self.springs && j.stiffness != 0.0 {
+                t -= j.stiffness * (q[i] - j.springref);
             }
             if self.friction && j.friction != 0.0 {
                 t -= j.friction * (v[i] / gains.friction_smoothing[i]).tanh();

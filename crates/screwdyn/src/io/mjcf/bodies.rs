@@ -5,7 +5,8 @@
 //! (hinge) or `(0, a_k)` (slide): a chain of `n` links, the first `n − 1` massless and named
 //! `body/joint`, the last one the body. `ref` is folded into the home pose,
 //! `H_k(0) = H_k e^{−[S_k] ref_k}`, so that `q` is MuJoCo's `qpos`. A body without joints is
-//! welded to its parent. `<frame>` elements place what they hold.
+//! welded to its parent. `<frame>` elements place what they hold (bodies, geoms, sites,
+//! inertials and joints: a joint's `axis` and `pos` are written in its frame).
 
 use super::compiler::{Compiler, FromGeom};
 use super::defaults::{ClassId, Defaults, Styled};
@@ -30,6 +31,10 @@ pub(crate) struct MJoint {
     pub damping: f64,
     pub friction: f64,
     pub armature: f64,
+    /// The spring: stiffness `k` and rest position `q_spring` (`springref`, in radians or
+    /// metres).
+    pub stiffness: f64,
+    pub springref: f64,
     pub effort: f64,
 }
 
@@ -117,7 +122,7 @@ impl<'t> Walk<'t> {
                     "joint" | "freejoint" => {
                         return Err(self.tree.model_error(
                             e,
-                            "a joint directly in <worldbody> moves nothing; put it in a <body>",
+                            "a joint in <worldbody> (or in a <frame> of it) moves nothing, as in MuJoCo; put it in a <body>",
                         ))
                     }
                     _ => {}
@@ -184,10 +189,7 @@ impl<'t> Walk<'t> {
                         format!("body '{name}' has a <freejoint>; floating bases are not supported yet (fixed-base trees of hinge and slide joints only)"),
                     ))
                 }
-                "joint" if !at.rotation.is_identity(0.0) || at.translation.norm() > 0.0 => {
-                    return Err(self.tree.error(c, "a <joint> inside a <frame> is not supported; put it directly in its <body>"))
-                }
-                "joint" => joint_elements.push((*c, *cls)),
+                "joint" => joint_elements.push((*c, *at, *cls)),
                 _ => {}
             }
         }
@@ -195,8 +197,8 @@ impl<'t> Walk<'t> {
         let mut link_parent = parent.to_string();
         let mut home = placement;
         let n = joint_elements.len();
-        for (k, (c, cls)) in joint_elements.into_iter().enumerate() {
-            let j = self.joint(c, cls, &name)?;
+        for (k, (c, at, cls)) in joint_elements.into_iter().enumerate() {
+            let j = self.joint(c, &at, cls, &name)?;
             let link = if k + 1 == n {
                 name.clone()
             } else {
@@ -258,7 +260,15 @@ impl<'t> Walk<'t> {
         Ok(())
     }
 
-    fn joint(&mut self, e: &'t Element, inherited: ClassId, body: &str) -> Result<MJoint> {
+    /// A `<joint>` of `body`, held through `<frame>`s placed at `frame` in the body (identity
+    /// for a joint directly in the body).
+    fn joint(
+        &mut self,
+        e: &'t Element,
+        frame: &Se3,
+        inherited: ClassId,
+        body: &str,
+    ) -> Result<MJoint> {
         e.take();
         let class = self.defaults.class_of(self.tree, e, inherited)?;
         let v = self.values(e, class);
@@ -284,8 +294,9 @@ impl<'t> Walk<'t> {
                 format!("joint '{name}' has a zero axis; the axis must be a nonzero direction"),
             ));
         }
-        let a = (axis / scale).normalize();
-        let p = v.vec3("pos")?.unwrap_or_else(Vector3::zeros);
+        // The axis and its point, written in the frame, in the body: a = R a_f, p = R p_f + t.
+        let a = frame.rotation * (axis / scale).normalize();
+        let p = frame.rotation * v.vec3("pos")?.unwrap_or_else(Vector3::zeros) + frame.translation;
         // Hinge: S = (a, p × a); slide: S = (0, a).
         let screw = if slide {
             Vector6::new(0.0, 0.0, 0.0, a.x, a.y, a.z)
@@ -344,6 +355,8 @@ impl<'t> Walk<'t> {
             damping: v.non_negative("damping")?.unwrap_or(0.0),
             friction: v.non_negative("frictionloss")?.unwrap_or(0.0),
             armature: v.non_negative("armature")?.unwrap_or(0.0),
+            stiffness: v.non_negative("stiffness")?.unwrap_or(0.0),
+            springref: angle(v.number("springref")?.unwrap_or(0.0)),
             effort,
         })
     }

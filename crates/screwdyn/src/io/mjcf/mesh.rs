@@ -1,5 +1,6 @@
 //! Mesh assets (`<asset><mesh name file scale inertia>`) and their mass properties by volume
-//! integration over the triangle surface, as MuJoCo computes them (see [`integrate`]).
+//! integration over the triangle surface, as MuJoCo computes them (see [`integrate`]); for
+//! `inertia="convex"` over the surface of the mesh's convex hull ([`super::hull`]).
 //!
 //! Files are read by [`crate::io::visual::read_mesh`] (the `mesh-loader` crate: STL binary and
 //! ASCII, Wavefront OBJ), the reader the viewer uses too; single-precision vertices as MuJoCo
@@ -66,14 +67,21 @@ impl<'t> MeshTable<'t> {
                 let scale = v
                     .vec3("scale")?
                     .unwrap_or_else(|| Vector3::new(1.0, 1.0, 1.0));
+                // MuJoCo's default is "legacy" (3.x and 4.x; its documentation recommends
+                // "convex" but keeps the default for old models).
                 let mode = match v.keyword("inertia", &["legacy", "exact", "shell", "convex"])? {
                     None | Some("legacy") => MeshInertia::Legacy,
                     Some("exact") => MeshInertia::Exact,
                     Some("shell") => MeshInertia::Shell,
-                    Some(_) => return Err(v.error(
-                        "<mesh inertia=\"convex\"> (the convex hull's inertia) is not supported; use exact or legacy, or give the body an <inertial>",
-                    )),
+                    Some(_) => MeshInertia::Convex,
                 };
+                if mode == MeshInertia::Convex
+                    && v.number("maxhullvert")?.is_some_and(|n| n != -1.0)
+                {
+                    return Err(v.error(
+                        "<mesh inertia=\"convex\" maxhullvert> (a hull cut to fewer vertices) is not supported; remove maxhullvert or give the body an <inertial>",
+                    ));
+                }
                 assets.insert(
                     name,
                     Asset {
@@ -115,6 +123,14 @@ impl<'t> MeshTable<'t> {
         let triangles = read_triangles(&asset.file)
             .map_err(|e| v.error(format!("mesh '{name}' (declared at {}): {e}", asset.at)))?;
         let s = asset.scale;
+        // The hull of the scaled vertices is the scaled hull of the file's vertices (a scale
+        // is linear), which are single-precision numbers, so the hull sees them exactly.
+        let triangles = if asset.mode == MeshInertia::Convex {
+            super::hull::convex_hull(&triangles)
+                .map_err(|e| v.error(format!("mesh '{name}' (declared at {}): {e}", asset.at)))?
+        } else {
+            triangles
+        };
         let scaled = triangles
             .iter()
             .map(|t| t.map(|p| p.component_mul(&s)))
@@ -157,6 +173,9 @@ pub(crate) enum MeshInertia {
     Exact,
     /// Mass on the surface.
     Shell,
+    /// The solid convex hull of the vertices (integrated as `Legacy`, which is exact on a
+    /// convex surface whatever the winding of its triangles).
+    Convex,
 }
 
 /// Volume (area for a shell), centre and inertia about the centre (density 1) of a triangle
@@ -180,7 +199,7 @@ pub(crate) fn integrate(triangles: &[[Vector3<f64>; 3]], mode: MeshInertia) -> M
     }
     let pyramid = |[a, b, c]: &[Vector3<f64>; 3], o: &Vector3<f64>| {
         let v = (a - o).dot(&(b - o).cross(&(c - o))) / 6.0;
-        if mode == MeshInertia::Legacy {
+        if matches!(mode, MeshInertia::Legacy | MeshInertia::Convex) {
             v.abs()
         } else {
             v

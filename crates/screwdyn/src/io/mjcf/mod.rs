@@ -42,6 +42,7 @@ mod bodies;
 mod compiler;
 mod defaults;
 mod geoms;
+mod hull;
 mod mesh;
 mod orientation;
 mod report;
@@ -194,7 +195,8 @@ fn total_mass_scale(links: &[bodies::Link], total: f64) -> f64 {
     }
 }
 
-/// The builder's joint: screw in the child (body) frame, limits, damping, friction, armature.
+/// The builder's joint: screw in the child (body) frame, limits, damping, friction, armature,
+/// spring.
 fn joint_spec(j: &bodies::MJoint) -> JointSpec {
     let spec = match (j.slide, j.limits) {
         (true, _) => JointSpec::prismatic(&j.name),
@@ -208,4 +210,5 @@ fn joint_spec(j: &bodies::MJoint) -> JointSpec {
         .damping(j.damping)
         .friction(j.friction)
         .armature(j.armature)
+        .spring(j.stiffness, j.springref)
 }

@@ -127,7 +127,8 @@ fn inertial_tag(i: &SpatialInertia) -> String {
 }
 
 /// What an export to URDF leaves out, one sentence each: URDF has no armature (rotor inertia
-/// reflected to a joint), so a joint with one loses it. Empty when nothing is lost.
+/// reflected to a joint) and no joint spring, so a joint with one loses it. Empty when nothing
+/// is lost.
 ///
 /// ```
 /// use screwdyn::io::urdf::urdf_export_warnings;
@@ -135,22 +136,33 @@ fn inertial_tag(i: &SpatialInertia) -> String {
 /// let w = urdf_export_warnings(&m);
 /// assert_eq!(w.len(), 1);
 /// assert!(w[0].contains("joint2") && w[0].contains("armature"));
+/// let m = screwdyn::builtin::planar2().with_springs(&[3.0, 0.0], &[0.5, 0.0]).unwrap();
+/// let w = urdf_export_warnings(&m);
+/// assert!(w.len() == 1 && w[0].contains("joint1") && w[0].contains("spring"));
 /// assert!(urdf_export_warnings(&screwdyn::builtin::planar2()).is_empty());
 /// ```
 pub fn urdf_export_warnings(model: &Model) -> Vec<String> {
-    model
-        .joints()
-        .iter()
-        .filter(|j| j.armature != 0.0)
-        .map(|j| {
-            format!(
+    let mut out = Vec::new();
+    for j in model.joints() {
+        if j.armature != 0.0 {
+            out.push(format!(
                 "joint '{}' has an armature of {}, which URDF cannot hold: it is left out \
                  (export to MJCF keeps it)",
                 j.name,
                 num(j.armature)
-            )
-        })
-        .collect()
+            ));
+        }
+        if j.stiffness != 0.0 {
+            out.push(format!(
+                "joint '{}' has a spring (stiffness {}, rest position {}), which URDF cannot \
+                 hold: it is left out (export to MJCF keeps it)",
+                j.name,
+                num(j.stiffness),
+                num(j.springref)
+            ));
+        }
+    }
+    out
 }
 
 /// Writes `model` as URDF. Each moving body becomes a link named after it; when its screw axis
