@@ -440,11 +440,13 @@ pub fn write_rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f6
     m: &nalgebra::Matrix<f64, R, C, S>,
     out: &mut [f64],
 ) {
-    // Row by row: no division per entry (a mass matrix is 36–81 of them per call).
+    // Column j of `m` (contiguous in nalgebra's storage) goes to every `ncols`-th entry from j:
+    // no division or bounds check per entry (a mass matrix is 36–81 of them per call).
     let c = m.ncols();
-    for (r, row) in out.chunks_exact_mut(c.max(1)).enumerate() {
-        for (j, o) in row.iter_mut().enumerate() {
-            *o = m[(r, j)];
+    // (`take`: a matrix without rows has no entries to write, whatever its columns.)
+    for (j, column) in m.column_iter().enumerate().take(out.len()) {
+        for (o, &x) in out[j..].iter_mut().step_by(c).zip(column.iter()) {
+            *o = x;
         }
     }
 }
