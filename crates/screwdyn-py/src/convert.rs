@@ -434,6 +434,14 @@ pub fn vector<'py>(py: Python<'py>, v: &[f64]) -> PyResult<Bound<'py, PyAny>> {
     array(py, v.to_vec(), &[v.len()])
 }
 
+/// Whether every value is finite, in one pass the compiler vectorises (no chain of dependent
+/// adds, no early exit): the common case of the library's result check, which is called only
+/// when this fails, to word the error.
+#[inline]
+pub fn all_finite(values: &[f64]) -> bool {
+    values.iter().fold(true, |finite, x| finite & x.is_finite())
+}
+
 /// Writes `m` row-major into `out`.
 #[inline]
 pub fn write_rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f64, R, C>>(

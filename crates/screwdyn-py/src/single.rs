@@ -11,7 +11,7 @@
 //! the same bits.
 
 use crate::batch::Scratch;
-use crate::convert::StateIn;
+use crate::convert::{all_finite, StateIn};
 use crate::errors::{call_err, guard};
 use crate::model::PyModel;
 use numpy::{PyArray1, PyArray2, PyArrayDyn, PyArrayMethods};
@@ -74,9 +74,7 @@ impl PyModel {
             .expect("a fresh array is contiguous");
             let run = |s: &mut Scratch| {
                 kernel(&self.model, s, rows, out)?;
-                // All finite, the common case, in one pass without a chain of dependent adds;
-                // otherwise the library's check words the error.
-                if out.iter().fold(true, |finite, x| finite & x.is_finite()) {
+                if all_finite(out) {
                     return Ok(());
                 }
                 screwdyn::check_result(out, |i| format!("(entry {i})"))
