@@ -137,8 +137,8 @@ def per_call_cases(robot, np, pin, screwdyn, rng):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--states", type=int, default=1_000_000)
-    ap.add_argument("--calls", type=int, default=20_000)
-    ap.add_argument("--repeats", type=int, default=9)
+    ap.add_argument("--calls", type=int, default=5_000)
+    ap.add_argument("--repeats", type=int, default=31)
     ap.add_argument("--rounds", type=int, default=3, help="rounds of the batch comparison")
     ap.add_argument("--no-venv", action="store_true")
     ap.add_argument("--json", type=pathlib.Path, help="also write the results as JSON")

@@ -181,6 +181,9 @@ where
     // finite inputs is an overflow error naming the state and the entry, never returned.
     let chunk = |m: &Model, s: &mut Scratch, first: usize, block: &mut [f64]| {
         chunk(m, s, first, block)?;
+        if crate::convert::all_finite(block) {
+            return Ok(());
+        }
         let mut row = 0;
         screwdyn::check_result(block, |i| {
             row = i / width.max(1);

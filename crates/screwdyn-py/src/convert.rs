@@ -434,17 +434,27 @@ pub fn vector<'py>(py: Python<'py>, v: &[f64]) -> PyResult<Bound<'py, PyAny>> {
     array(py, v.to_vec(), &[v.len()])
 }
 
+/// Whether every value is finite, in one pass the compiler vectorises (no chain of dependent
+/// adds, no early exit): the common case of the library's result check, which is called only
+/// when this fails, to word the error.
+#[inline]
+pub fn all_finite(values: &[f64]) -> bool {
+    values.iter().fold(true, |finite, x| finite & x.is_finite())
+}
+
 /// Writes `m` row-major into `out`.
 #[inline]
 pub fn write_rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f64, R, C>>(
     m: &nalgebra::Matrix<f64, R, C, S>,
     out: &mut [f64],
 ) {
-    // Row by row: no division per entry (a mass matrix is 36–81 of them per call).
+    // Column j of `m` (contiguous in nalgebra's storage) goes to every `ncols`-th entry from j:
+    // no division or bounds check per entry (a mass matrix is 36–81 of them per call).
     let c = m.ncols();
-    for (r, row) in out.chunks_exact_mut(c.max(1)).enumerate() {
-        for (j, o) in row.iter_mut().enumerate() {
-            *o = m[(r, j)];
+    // (`take`: a matrix without rows has no entries to write, whatever its columns.)
+    for (j, column) in m.column_iter().enumerate().take(out.len()) {
+        for (o, &x) in out[j..].iter_mut().step_by(c).zip(column.iter()) {
+            *o = x;
         }
     }
 }

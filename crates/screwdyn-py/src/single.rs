@@ -11,7 +11,7 @@
 //! the same bits.
 
 use crate::batch::Scratch;
-use crate::convert::StateIn;
+use crate::convert::{all_finite, StateIn};
 use crate::errors::{call_err, guard};
 use crate::model::PyModel;
 use numpy::{PyArray1, PyArray2, PyArrayDyn, PyArrayMethods};
@@ -59,16 +59,24 @@ impl PyModel {
         }
         Some(guard(|| {
             // A `(1, n)` shape stands for the vector `(n,)`.
+            // SAFETY (both): a fresh, C-contiguous array of float64, not yet seen by any other
+            // code, its values set to zero before the slice over them is made; the slice does
+            // not outlive this block.
             let array = match shape {
-                [1, n] => PyArray1::<f64>::zeros(py, n, false).into_any(),
-                [r, c] => PyArray2::<f64>::zeros(py, [r, c], false).into_any(),
+                [1, n] => unsafe { PyArray1::<f64>::new(py, n, false) }.into_any(),
+                [r, c] => unsafe { PyArray2::<f64>::new(py, [r, c], false) }.into_any(),
             };
-            // SAFETY: the array was just made, is C-contiguous, initialised (zeros) and not yet
-            // seen by any other code; the slice does not outlive this block.
-            let out = unsafe { array.cast_unchecked::<PyArrayDyn<f64>>().as_slice_mut() }
-                .expect("a fresh array is contiguous");
+            let out = unsafe {
+                let a = array.cast_unchecked::<PyArrayDyn<f64>>();
+                std::ptr::write_bytes(a.data(), 0, shape[0] * shape[1]);
+                a.as_slice_mut()
+            }
+            .expect("a fresh array is contiguous");
             let run = |s: &mut Scratch| {
                 kernel(&self.model, s, rows, out)?;
+                if all_finite(out) {
+                    return Ok(());
+                }
                 screwdyn::check_result(out, |i| format!("(entry {i})"))
             };
             match self.scratch.try_lock() {
