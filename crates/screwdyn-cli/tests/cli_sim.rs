@@ -742,3 +742,34 @@ fn a_streamed_profile_reports_what_the_held_one_does() {
     c.extend(["--format", "csv"]);
     assert_eq!(ok(&c).into_bytes(), std::fs::read(&streamed).unwrap());
 }
+
+#[test]
+fn the_summary_of_a_run_recorded_every_step_is_its_last_sample() {
+    // 1000 recorded samples: the summary keeps only the latest (its buffers reused).
+    let run = tmp("summary_last.csv");
+    let v = json(&[
+        "simulate",
+        "builtin:pendulum",
+        "--q0",
+        "0.2",
+        "--dt",
+        "0.001",
+        "--duration",
+        "1",
+        "--output",
+        run.to_str().unwrap(),
+    ]);
+    assert_eq!(f(&v["samples"]), 1001.0);
+    assert_eq!(f(&v["t"]), 1.0);
+    // The small-angle pendulum (l = 1 m): q(t) ≈ q0 cos(√(g/l) t), half a period ≈ 1.003 s.
+    let q = vec(&v["q"])[0];
+    assert!((q - 0.2 * 9.81_f64.sqrt().cos()).abs() < 2e-3, "q(1) = {q}");
+    // Energy is conserved by the passive swing (RK4, 1 ms).
+    let (e0, e1) = (f(&v["total_energy_start"]), f(&v["total_energy_end"]));
+    assert!((e1 - e0).abs() < 1e-9 * e0.abs(), "{e0} → {e1}");
+    // The same numbers as the file's last row.
+    let mut r = csv::Reader::from_path(&run).unwrap();
+    let last = r.records().last().unwrap().unwrap();
+    let cell = |k: usize| last[k].parse::<f64>().unwrap();
+    assert_eq!((cell(0), cell(1), cell(2)), (1.0, q, vec(&v["v"])[0]));
+}

@@ -89,8 +89,7 @@ impl SampleSink for RunSinks {
             first.push(&Sample { poses: &[], ..*s })?;
             self.first = Some(first);
         }
-        self.last = Recording::new(self.joints.clone(), vec![]);
-        self.last.push(&Sample { poses: &[], ..*s })
+        keep_only(&mut self.last, &self.joints, s)
     }
     fn event(&mut self, e: &LimitEvent) -> screwdyn::Result<()> {
         if let Some(w) = &mut self.file {
@@ -102,6 +101,32 @@ impl SampleSink for RunSinks {
         self.event_count += 1;
         Ok(())
     }
+}
+
+/// Makes `s` (without poses) the one sample of `rec`: after the first sample its vectors are
+/// overwritten in place, so a run recorded every step allocates nothing per sample here.
+fn keep_only(rec: &mut Recording, joints: &[String], s: &Sample) -> screwdyn::Result<()> {
+    let n = joints.len();
+    let fits = |x: &[Vec<f64>], y: &[f64]| x.len() == 1 && x[0].len() == n && y.len() == n;
+    let reusable = rec.len() == 1
+        && rec.frames.is_empty()
+        && fits(&rec.q, s.q)
+        && fits(&rec.v, s.v)
+        && fits(&rec.a, s.a)
+        && fits(&rec.tau, s.tau);
+    if !reusable {
+        *rec = Recording::new(joints.to_vec(), vec![]);
+        return rec.push(&Sample { poses: &[], ..*s });
+    }
+    rec.t[0] = s.t;
+    rec.q[0].copy_from_slice(s.q);
+    rec.v[0].copy_from_slice(s.v);
+    rec.a[0].copy_from_slice(s.a);
+    rec.tau[0].copy_from_slice(s.tau);
+    rec.kinetic_energy[0] = s.kinetic_energy;
+    rec.potential_energy[0] = s.potential_energy;
+    rec.total_energy[0] = s.kinetic_energy + s.potential_energy;
+    Ok(())
 }
 
 impl RunSinks {
