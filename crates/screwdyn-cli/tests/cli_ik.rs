@@ -392,3 +392,88 @@ fn all_closed_form_solutions_of_the_ur5_reach_the_target() {
         }
     }
 }
+
+/// `--input` is one batch of the library streamed in chunks: a file longer than one chunk
+/// (512 rows), with out-of-reach rows whose answers depend on each row's seed stream (they
+/// take every restart), gives exactly the answers of the library's `solve_batch` on the same
+/// targets — bit for bit, the numbers read back from the CSV — on 1 and 2 threads. Python's
+/// `inverse_kinematics` on an `(N, 4, 4)` stack calls that same `solve_batch`.
+#[test]
+fn input_rows_get_the_answers_of_the_library_batch() {
+    use screwdyn::kinematics::ik::{target_from_quaternion, IkOptions, IkSolver, IkTask};
+    let (model, frame) = ("builtin:panda", "panda_link8");
+    let panda = screwdyn::builtin::load("panda").unwrap();
+    let lims: Vec<(f64, f64)> = panda
+        .joints()
+        .iter()
+        .map(|j| (j.limits.lower, j.limits.upper))
+        .collect();
+    let tool = panda.frame_id(frame).unwrap();
+    let placement = panda.frames()[tool].placement;
+    let body = panda.frames()[tool].body.unwrap();
+    let rows = 530;
+    let mut text = String::from("x,y,z,qw,qx,qy,qz\n");
+    let mut targets = Vec::new();
+    for (k, q) in configurations(&lims, rows).iter().enumerate() {
+        let h = screwdyn::kinematics::forward_kinematics_poe(&panda, q).unwrap()[body]
+            .compose(&placement)
+            .to_matrix();
+        let mut h: Vec<Vec<f64>> = (0..4)
+            .map(|i| (0..4).map(|j| h[(i, j)]).collect())
+            .collect();
+        if k % 30 == 7 {
+            h[0][3] += 2.0; // beyond the Panda's reach (about 1.2 m)
+        }
+        let line = pose_text(&h);
+        let v: Vec<f64> = line.split(',').map(|c| c.parse().unwrap()).collect();
+        targets.push(
+            target_from_quaternion([v[0], v[1], v[2]], [v[3], v[4], v[5], v[6]], "target").unwrap(),
+        );
+        text.push_str(&line);
+        text.push('\n');
+    }
+    let input = tmp("ik_stream.csv");
+    std::fs::write(&input, text).unwrap();
+    let options = IkOptions {
+        max_restarts: 3,
+        ..IkOptions::default()
+    };
+    let solver = IkSolver::new(&panda, &[IkTask::pose(tool)], options).unwrap();
+    let q0 = screwdyn::kinematics::ik::default_start(&panda);
+    let mut expected = vec![0.0; rows * 7];
+    let results = solver.solve_batch(&targets, &q0, &mut expected, 2).unwrap();
+    let unreachable = results
+        .iter()
+        .filter(|r| !r.as_ref().unwrap().success)
+        .count();
+    assert!(unreachable >= 10, "{unreachable} rows fail");
+    for threads in ["1", "2"] {
+        let out = ok(&[
+            "ik",
+            model,
+            "--frame",
+            frame,
+            "--input",
+            input.to_str().unwrap(),
+            "--max-restarts",
+            "3",
+            "--threads",
+            threads,
+            "--format",
+            "csv",
+        ]);
+        let mut reader = csv::Reader::from_reader(out.as_bytes());
+        let written: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+        assert_eq!(written.len(), rows);
+        for (k, row) in written.iter().enumerate() {
+            let q: Vec<f64> = (0..7).map(|j| row[j].parse().unwrap()).collect();
+            assert_eq!(
+                q,
+                expected[k * 7..(k + 1) * 7],
+                "row {k} on {threads} threads"
+            );
+            let r = results[k].as_ref().unwrap();
+            assert_eq!(&row[7], if r.success { "true" } else { "false" });
+        }
+    }
+}

@@ -41,23 +41,25 @@ fn targets(target: &ArrayIn<'_>) -> PyResult<(Vec<Se3>, bool)> {
     Ok((poses, stacked))
 }
 
-/// One result as the dict `screwdyn._results.IkResult` is made from.
+/// The results as the dict `screwdyn._results.IkResult` is made from: NumPy arrays made from
+/// the columns without a copy (a batch's per-target Python objects would cost as much as a
+/// closed-form solve each), `failure` a list.
 fn fill<'py>(d: &Bound<'py, PyDict>, results: &[IkResult]) -> PyResult<()> {
-    let col = |f: fn(&IkResult) -> f64| results.iter().map(f).collect::<Vec<_>>();
+    let py = d.py();
+    let floats = |f: fn(&IkResult) -> f64| {
+        numpy::PyArray1::from_vec(py, results.iter().map(f).collect::<Vec<_>>())
+    };
+    let counts = |f: fn(&IkResult) -> usize| {
+        numpy::PyArray1::from_vec(py, results.iter().map(|r| f(r) as i64).collect::<Vec<_>>())
+    };
     d.set_item(
         "success",
-        results.iter().map(|r| r.success).collect::<Vec<_>>(),
+        numpy::PyArray1::from_vec(py, results.iter().map(|r| r.success).collect::<Vec<_>>()),
     )?;
-    d.set_item(
-        "iterations",
-        results.iter().map(|r| r.iterations).collect::<Vec<_>>(),
-    )?;
-    d.set_item(
-        "restarts",
-        results.iter().map(|r| r.restarts).collect::<Vec<_>>(),
-    )?;
-    d.set_item("position_error", col(|r| r.position_error))?;
-    d.set_item("orientation_error", col(|r| r.orientation_error))?;
+    d.set_item("iterations", counts(|r| r.iterations))?;
+    d.set_item("restarts", counts(|r| r.restarts))?;
+    d.set_item("position_error", floats(|r| r.position_error))?;
+    d.set_item("orientation_error", floats(|r| r.orientation_error))?;
     let failure: Vec<Option<&str>> = results
         .iter()
         .map(|r| r.failure.map(|f| f.name()))

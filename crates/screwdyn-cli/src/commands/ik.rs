@@ -14,7 +14,6 @@ use screwdyn::spatial::Se3;
 use screwdyn::Model;
 use std::io::{BufRead, Write};
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Rows read, solved and written at a time: the memory of a batch is bounded by one chunk.
 const CHUNK_ROWS: usize = 512;
@@ -153,12 +152,6 @@ struct Row {
     target: Se3,
     q0: Vec<f64>,
     bad: Option<String>,
-}
-
-/// One row's answer: `q` and the result, or the row's error.
-struct Answer {
-    q: Vec<f64>,
-    result: Result<IkResult, String>,
 }
 
 /// The columns of a targets file: `x,y,z`, then `qw,qx,qy,qz` (all or none) and `q0.<joint>`.
@@ -391,25 +384,26 @@ struct Batch {
 }
 
 impl Batch {
-    /// Reads, solves and writes every row, one chunk at a time.
+    /// Reads, solves and writes every row, one chunk at a time. Each chunk is solved by the
+    /// library's [`IkSolver::solve_batch_into`] as problems `rows so far …` of one long batch,
+    /// so every row gets the answer `solve_batch` (and Python's batch) gives it, whatever the
+    /// chunking and the thread count. A bad row is handed over with a NaN target (the
+    /// library refuses it at once) and reported with its own reason.
     fn run<W: Write>(&mut self, w: W, format: Format) -> Result<(), CliError> {
         let nq = self.q0.len();
-        let fresh = || Row {
-            line: 0,
-            target: Se3::identity(),
-            q0: Vec::with_capacity(nq),
-            bad: None,
-        };
-        let mut rows: Vec<Row> = (0..CHUNK_ROWS).map(|_| fresh()).collect();
-        let mut answers: Vec<Answer> = (0..CHUNK_ROWS)
-            .map(|_| Answer {
-                q: vec![0.0; nq],
-                result: Err(String::new()),
+        let mut rows: Vec<Row> = (0..CHUNK_ROWS)
+            .map(|_| Row {
+                line: 0,
+                target: Se3::identity(),
+                q0: Vec::with_capacity(nq),
+                bad: None,
             })
             .collect();
-        let mut workspaces: Vec<IkWorkspace> = (0..self.threads)
-            .map(|_| IkWorkspace::new(&self.solver))
-            .collect();
+        let mut targets = vec![Se3::identity(); CHUNK_ROWS];
+        let mut starts = vec![0.0; CHUNK_ROWS * nq];
+        let mut q = vec![0.0; CHUNK_ROWS * nq];
+        let mut results: Vec<screwdyn::Result<IkResult>> = Vec::with_capacity(CHUNK_ROWS);
+        let refused = Se3::from_translation(Vector3::from_element(f64::NAN));
         let mut out = ReportWriter::new(w, format, true);
         loop {
             let mut len = 0;
@@ -421,35 +415,52 @@ impl Batch {
                 row.q0.clear();
                 row.q0.extend_from_slice(&self.q0);
                 self.columns.read(&text, line, &self.file, row);
+                targets[len] = if row.bad.is_some() {
+                    refused
+                } else {
+                    row.target
+                };
+                starts[len * nq..(len + 1) * nq].copy_from_slice(&row.q0);
                 len += 1;
             }
             if len == 0 {
                 break;
             }
-            solve_chunk(
-                &self.solver,
-                &mut workspaces,
-                &rows[..len],
-                &mut answers[..len],
-            );
-            for (row, answer) in rows.iter().zip(&answers).take(len) {
+            results.clear();
+            results.resize_with(len, || Err(screwdyn::Error::InvalidArgument(String::new())));
+            self.solver.solve_batch_into(
+                &targets[..len],
+                &starts[..len * nq],
+                &mut q[..len * nq],
+                self.threads,
+                self.rows,
+                &mut results,
+            )?;
+            for (k, (row, result)) in rows.iter().zip(&results).take(len).enumerate() {
                 self.rows += 1;
                 let mut r = Report::new();
                 r.add("joints", Value::Names(self.joints.clone()));
-                match &answer.result {
-                    Ok(result) => add_result(&mut r, &self.joints, &answer.q, result),
-                    Err(message) => {
-                        eprintln!("screwdyn: {}:{}: {message}", self.file, row.line);
-                        self.bad.push(row.line);
-                        let nan = vec![f64::NAN; self.q0.len()];
-                        r.add("q", Value::joints(&self.joints, &nan))
-                            .add("success", Value::Flag(false))
-                            .add("iterations", Value::Count(0))
-                            .add("restarts", Value::Count(0))
-                            .add("position_error", Value::Scalar(f64::NAN))
-                            .add("orientation_error", Value::Scalar(f64::NAN))
-                            .add("failure", Value::Text("bad input".into()));
+                let failed = match (&row.bad, result) {
+                    (None, Ok(result)) => {
+                        add_result(&mut r, &self.joints, &q[k * nq..(k + 1) * nq], result);
+                        None
                     }
+                    (Some(message), _) => Some(message.clone()),
+                    // The row's own input refused by the solver (e.g. q0 outside the limits).
+                    (None, Err(screwdyn::Error::Batch { source, .. })) => Some(source.to_string()),
+                    (None, Err(e)) => Some(e.to_string()),
+                };
+                if let Some(message) = failed {
+                    eprintln!("screwdyn: {}:{}: {message}", self.file, row.line);
+                    self.bad.push(row.line);
+                    let nan = vec![f64::NAN; nq];
+                    r.add("q", Value::joints(&self.joints, &nan))
+                        .add("success", Value::Flag(false))
+                        .add("iterations", Value::Count(0))
+                        .add("restarts", Value::Count(0))
+                        .add("position_error", Value::Scalar(f64::NAN))
+                        .add("orientation_error", Value::Scalar(f64::NAN))
+                        .add("failure", Value::Text("bad input".into()));
                 }
                 out.write(&r)?;
             }
@@ -482,44 +493,4 @@ impl Batch {
             shown.join(", ")
         )))
     }
-}
-
-/// Solves `rows` into `answers` on one thread per workspace; each thread takes the next
-/// unsolved row, so a row's answer depends on the row alone, not on the thread count.
-fn solve_chunk(
-    solver: &IkSolver,
-    workspaces: &mut [IkWorkspace],
-    rows: &[Row],
-    answers: &mut [Answer],
-) {
-    let solve = |ws: &mut IkWorkspace, row: &Row, answer: &mut Answer| {
-        answer.result = match &row.bad {
-            Some(message) => Err(message.clone()),
-            None => solver
-                .solve(ws, &[row.target], &row.q0, &mut answer.q)
-                .map_err(|e| e.to_string()),
-        };
-    };
-    if workspaces.len() == 1 || rows.len() == 1 {
-        for (row, answer) in rows.iter().zip(answers.iter_mut()) {
-            solve(&mut workspaces[0], row, answer);
-        }
-        return;
-    }
-    let next = AtomicUsize::new(0);
-    let slots: Vec<std::sync::Mutex<&mut Answer>> =
-        answers.iter_mut().map(std::sync::Mutex::new).collect();
-    std::thread::scope(|scope| {
-        for ws in workspaces.iter_mut() {
-            let (next, slots, solve) = (&next, &slots, &solve);
-            scope.spawn(move || loop {
-                let k = next.fetch_add(1, Ordering::Relaxed);
-                let Some(slot) = slots.get(k) else {
-                    break;
-                };
-                let mut answer = slot.lock().unwrap_or_else(|e| e.into_inner());
-                solve(ws, &rows[k], &mut answer);
-            });
-        }
-    });
 }

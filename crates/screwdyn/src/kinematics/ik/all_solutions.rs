@@ -1,6 +1,6 @@
-//! Every solution of an arm with a closed form: the closed-form branches shifted by whole turns
-//! into the joint limits, each refined by the numerical iteration and checked by forward
-//! kinematics, duplicates removed.
+//! Every solution of an arm with a closed form: the closed-form branches shifted by whole
+//! turns into the joint limits, each checked by forward kinematics (and refined by the
+//! numerical iteration when the check fails), duplicates removed.
 
 use super::numerical::IkSolver;
 use super::result::IkResult;
@@ -25,9 +25,10 @@ impl IkSolver {
     /// Every solution for `target` of an arm with a closed form (up to 8 for a 6R arm with a
     /// spherical wrist or three parallel axes): each closed-form branch is shifted by whole
     /// turns into the joint limits (the shift nearest `q0`; a branch that no shift fits is
-    /// left out), refined by the numerical iteration (one attempt, no restarts), checked by
-    /// forward kinematics as [`solve`](IkSolver::solve) checks its answer, and kept if it
-    /// succeeds and differs from those already kept. Sorted by distance from `q0`.
+    /// left out), checked by forward kinematics as [`solve`](IkSolver::solve) checks its
+    /// answer — if the check fails (round-off near a singularity), refined by the numerical
+    /// iteration (one attempt, no restarts) and checked again — and kept if it succeeds and
+    /// differs from those already kept. Sorted by distance from `q0`.
     ///
     /// For any other arm or task (no [`closed_form`](IkSolver::closed_form)), the one answer
     /// of [`solve`](IkSolver::solve), if it succeeds. Allocates the returned solutions.
@@ -92,8 +93,16 @@ impl IkSolver {
             if !fits {
                 continue;
             }
-            let mut q = vec![0.0; n];
-            let result = self.solve_from(ws, targets, q0, &mut q, 0, Some(&start))?;
+            // A branch that forward kinematics confirms as it is (the closed form is exact to
+            // round-off) needs no refinement.
+            let (q, result) = match self.confirmed(ws, targets, &start)? {
+                Some(result) => (start, result),
+                None => {
+                    let mut q = vec![0.0; n];
+                    let result = self.solve_from(ws, targets, q0, &mut q, 0, Some(&start))?;
+                    (q, result)
+                }
+            };
             let known = kept
                 .iter()
                 .any(|s| s.q.iter().zip(&q).all(|(a, b)| (a - b).abs() <= SAME));

@@ -9,6 +9,8 @@ use std::sync::Mutex;
 
 /// The most problems a thread takes at a time from a batch.
 const BLOCK: usize = 16;
+/// Batches of fewer problems are solved on the calling thread.
+const SPAWN_MIN: usize = 8;
 
 /// A joint that moved more than the threshold between two consecutive points of a path.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -34,7 +36,7 @@ impl IkSolver {
     /// Solves `k` independent problems on `threads` threads (`0`: as many as the machine has):
     /// `targets` holds `k × tasks` poses (problem `i`'s targets at `i × tasks …`), `q0`
     /// either one start for all (`nq` values) or one per problem (`k × nq`), `q_out`
-    /// receives `k × nq` values. Problem `i` draws its restarts from its own stream of the
+    /// receives `k × nq` values. Problem `i` draws its restarts from its own stream `i` of the
     /// seed, so each answer is the same whatever the number of threads.
     ///
     /// Returns one entry per problem: its result, or the error of its own input (a target
@@ -65,6 +67,55 @@ impl IkSolver {
         q_out: &mut [f64],
         threads: usize,
     ) -> Result<Vec<Result<IkResult>>> {
+        let k = targets.len() / self.tasks.len();
+        let mut results: Vec<Result<IkResult>> = Vec::with_capacity(k);
+        results.resize_with(k, || Ok(empty()));
+        self.solve_batch_into(targets, q0, q_out, threads, 0, &mut results)?;
+        Ok(results)
+    }
+
+    /// [`solve_batch`](IkSolver::solve_batch) for the problems `first`, `first + 1`, … of a
+    /// longer batch, writing their results into `results` (one per problem): problem `i` of
+    /// this call draws from stream `first + i`, so a batch solved block by block (as the CLI
+    /// streams a file) gives the same answers as in one call, and the same as `solve_batch`.
+    /// Errors in `results` name the problem by its index in the longer batch.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the lengths do not fit together.
+    ///
+    /// ```
+    /// use screwdyn::kinematics::ik::{IkOptions, IkSolver, IkTask, IkResult};
+    /// use nalgebra::Vector3;
+    /// use screwdyn::spatial::Se3;
+    /// let arm = screwdyn::builtin::planar2();
+    /// let tip = arm.body_frame(1).unwrap();
+    /// let solver = IkSolver::new(&arm, &[IkTask::position(tip)], IkOptions::default()).unwrap();
+    /// // Out of reach: every restart is taken, so the answers depend on the seed streams.
+    /// let targets: Vec<Se3> = (0..6)
+    ///     .map(|i| Se3::from_translation(Vector3::new(2.5, 0.1 * i as f64, 0.0)))
+    ///     .collect();
+    /// let mut whole = vec![0.0; 12];
+    /// solver.solve_batch(&targets, &[0.3, 0.4], &mut whole, 1).unwrap();
+    /// let mut blocks = vec![0.0; 12];
+    /// let mut results: Vec<screwdyn::Result<IkResult>> = Vec::new();
+    /// for first in [0, 4] {
+    ///     let end = (first + 4).min(6);
+    ///     results.resize_with(end - first, || Err(screwdyn::Error::InvalidArgument(String::new())));
+    ///     solver
+    ///         .solve_batch_into(&targets[first..end], &[0.3, 0.4], &mut blocks[2 * first..2 * end], 2, first, &mut results)
+    ///         .unwrap();
+    /// }
+    /// assert_eq!(whole, blocks);
+    /// ```
+    pub fn solve_batch_into(
+        &self,
+        targets: &[Se3],
+        q0: &[f64],
+        q_out: &mut [f64],
+        threads: usize,
+        first: usize,
+        results: &mut [Result<IkResult>],
+    ) -> Result<()> {
         let n = self.model.nq();
         let t = self.tasks.len();
         if targets.len() % t != 0 {
@@ -74,10 +125,11 @@ impl IkSolver {
             )));
         }
         let k = targets.len() / t;
-        if q_out.len() != k * n {
+        if q_out.len() != k * n || results.len() != k {
             return Err(Error::InvalidArgument(format!(
-                "the IK output has {} values, {k} problems of {n} joints need {}",
+                "the IK output has {} values and {} results, {k} problems of {n} joints need {} and {k}",
                 q_out.len(),
+                results.len(),
                 k * n
             )));
         }
@@ -93,57 +145,68 @@ impl IkSolver {
         } else {
             threads
         };
-        let per_thread = k.div_ceil(threads.max(1)).max(1);
-        let mut results: Vec<Result<IkResult>> = Vec::with_capacity(k);
-        results.resize_with(k, || Ok(empty()));
+        // Problems `offset …` of this call, into their slices of the output.
         let solve_range = |ws: &mut IkWorkspace,
-                           first: usize,
+                           offset: usize,
                            q_out: &mut [f64],
                            results: &mut [Result<IkResult>]| {
             for (i, (q, r)) in q_out.chunks_mut(n).zip(results.iter_mut()).enumerate() {
-                let p = first + i;
+                let p = offset + i;
                 let start = if q0.len() == n {
                     q0
                 } else {
                     &q0[p * n..(p + 1) * n]
                 };
+                let stream = (first + p) as u64;
                 *r = self
-                    .solve_from(ws, &targets[p * t..(p + 1) * t], start, q, p as u64, None)
+                    .solve_from(ws, &targets[p * t..(p + 1) * t], start, q, stream, None)
                     .map_err(|e| Error::Batch {
-                        state: p,
+                        state: first + p,
                         source: Box::new(e),
                     });
             }
         };
-        // Blocks of a few problems handed to whichever thread is free: a target that needs
-        // restarts costs many times one that does not, so fixed shares would leave a thread
-        // idle. Each problem draws from its own seed stream, so the answers do not depend on
-        // which thread solves it.
-        let block = per_thread.clamp(1, BLOCK);
-        let blocks = Mutex::new(
-            q_out
-                .chunks_mut(block * n)
-                .zip(results.chunks_mut(block))
-                .enumerate(),
-        );
+        let threads = threads.min(k);
+        if threads <= 1 || k < SPAWN_MIN {
+            // Starting threads would cost more than the problems.
+            let mut ws = IkWorkspace::new(self);
+            solve_range(&mut ws, 0, q_out, results);
+            return Ok(());
+        }
+        // Guided scheduling: each free thread takes a share of what is left, at most BLOCK
+        // problems and fewer toward the end, so that a problem that needs many restarts (it
+        // costs hundreds of ordinary ones) does not leave the other threads idle while the
+        // last block finishes. Each problem draws from its own seed stream, so the answers
+        // do not depend on which thread solves it.
+        let rest = Mutex::new((0, q_out, results));
         std::thread::scope(|scope| {
-            for _ in 0..threads.max(1).min(k.max(1)) {
-                let (solve_range, blocks) = (&solve_range, &blocks);
+            for _ in 0..threads {
+                let (solve_range, rest) = (&solve_range, &rest);
                 scope.spawn(move || {
                     let mut ws = IkWorkspace::new(self);
                     loop {
-                        // A poisoned lock only means another thread panicked; its blocks are
-                        // still valid to hand out.
-                        let next = blocks.lock().unwrap_or_else(|e| e.into_inner()).next();
-                        match next {
-                            Some((c, (q, r))) => solve_range(&mut ws, c * block, q, r),
-                            None => break,
-                        }
+                        let (offset, q, r) = {
+                            // A poisoned lock only means another thread panicked; what is left
+                            // is still valid to hand out.
+                            let mut left = rest.lock().unwrap_or_else(|e| e.into_inner());
+                            let (offset, q, r) = &mut *left;
+                            let take = (r.len() / (2 * threads)).clamp(1, BLOCK).min(r.len());
+                            if take == 0 {
+                                break;
+                            }
+                            let (q_head, q_tail) = std::mem::take(q).split_at_mut(take * n);
+                            let (r_head, r_tail) = std::mem::take(r).split_at_mut(take);
+                            (*q, *r) = (q_tail, r_tail);
+                            let at = *offset;
+                            *offset += take;
+                            (at, q_head, r_head)
+                        };
+                        solve_range(&mut ws, offset, q, r);
                     }
                 });
             }
         });
-        Ok(results)
+        Ok(())
     }
 
     /// Solves a path point by point, each point started from the previous point's answer

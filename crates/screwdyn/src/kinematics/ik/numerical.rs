@@ -88,7 +88,9 @@ struct Search {
 /// Held joints and joints that move no task's frame keep their `q0`.
 ///
 /// **Attempts.** The first attempt starts from `q0`, or from the closed-form solution nearest
-/// `q0` when the arm has one ([`IkOptions::closed_form`]). An attempt ends when both errors are
+/// `q0` when the arm has one ([`IkOptions::closed_form`]); that solution, when forward
+/// kinematics confirms it within the tolerances and limits, is the answer with no iteration
+/// at all. An attempt ends when both errors are
 /// below `10⁻³` of their tolerances, when the error stops decreasing (8 iterations without a
 /// relative decrease of `10⁻³`), or after [`IkOptions::max_iterations`]; then, unless the best
 /// `q` so far is within the tolerances, the next attempt starts from joint values drawn
@@ -350,6 +352,12 @@ impl IkSolver {
                 &self.upper,
                 &mut ws.q,
             );
+            // The closed form is exact to round-off: when forward kinematics confirms it, it
+            // is the answer, without an iteration.
+            q_out.copy_from_slice(&ws.q);
+            if let Some(result) = self.confirmed(ws, targets, q_out)? {
+                return Ok(result);
+            }
         }
         let mut search = Search {
             best_score: f64::INFINITY,
@@ -601,6 +609,28 @@ impl IkSolver {
                 q[j] = q[j].clamp(self.lower[j], self.upper[j]);
             }
         }
+    }
+
+    /// The result of `q` when forward kinematics confirms it (both tolerances, the limits),
+    /// with no iteration taken; `None` otherwise.
+    pub(super) fn confirmed(
+        &self,
+        ws: &mut IkWorkspace,
+        targets: &[Se3],
+        q: &[f64],
+    ) -> Result<Option<IkResult>> {
+        let (position_error, orientation_error, within_limits) = self.verify(ws, targets, q)?;
+        let success = position_error <= self.options.position_tolerance
+            && orientation_error <= self.options.orientation_tolerance
+            && within_limits;
+        Ok(success.then_some(IkResult {
+            success,
+            iterations: 0,
+            restarts: 0,
+            position_error,
+            orientation_error,
+            failure: None,
+        }))
     }
 
     /// The final check, by forward kinematics of `q` alone: the largest position and
