@@ -118,3 +118,69 @@ fn bench_rejects_an_unknown_algorithm() {
         "unknown algorithm 'warp'",
     );
 }
+
+/// A planar two-link MJCF arm (unit links about z) with two named configurations.
+const KEYFRAMES_XML: &str = r#"<mujoco model="two">
+  <compiler angle="radian"/>
+  <worldbody>
+    <body name="l1">
+      <joint name="j1" type="hinge" axis="0 0 1" range="-3 3"/>
+      <geom type="capsule" fromto="0 0 0 1 0 0" size="0.05" mass="1"/>
+      <body name="l2" pos="1 0 0">
+        <joint name="j2" type="hinge" axis="0 0 1" range="-3 3"/>
+        <geom type="capsule" fromto="0 0 0 1 0 0" size="0.05" mass="1"/>
+        <site name="tip" pos="1 0 0"/>
+      </body>
+    </body>
+  </worldbody>
+  <keyframe><key name="home" qpos="0.3 -0.8"/><key name="far" qpos="1 0.5"/></keyframe>
+</mujoco>
+"#;
+
+#[test]
+fn keyframes_stand_for_q_q0_and_qf() {
+    let dir = std::env::temp_dir().join(format!("screwdyn-keyframes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("two.xml");
+    std::fs::write(&file, KEYFRAMES_XML).unwrap();
+    let m = file.to_str().unwrap();
+    // --q key:home: the tip of the planar arm at (cos q1 + cos(q1+q2), sin q1 + sin(q1+q2)).
+    let v = run_json(&["fk", m, "--q", "key:home", "--frame", "tip"]);
+    let tip = &v["poses"]["tip"];
+    let (q1, q2) = (0.3_f64, -0.8_f64);
+    let x = q1.cos() + (q1 + q2).cos();
+    let y = q1.sin() + (q1 + q2).sin();
+    assert!((tip[0][3].as_f64().unwrap() - x).abs() < 1e-12, "{v}");
+    assert!((tip[1][3].as_f64().unwrap() - y).abs() < 1e-12, "{v}");
+    // --q0 (simulate): the run starts at the key's values.
+    let run = run_json(&["simulate", m, "--q0", "key:home", "--duration", "0.002"]);
+    assert_eq!(run["q.j1"][0].as_f64(), Some(0.3));
+    assert_eq!(run["q.j2"][0].as_f64(), Some(-0.8));
+    // --q0 and --qf (torque-profile): the quintic runs from one key to the other.
+    let csv = dir.join("profile.csv");
+    let out = Command::cargo_bin("screwdyn")
+        .unwrap()
+        .args(["torque-profile", m, "--q0", "key:home", "--qf", "key:far"])
+        .args(["--output", csv.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let row = |line: &str| -> Vec<f64> { line.split(',').map(|x| x.parse().unwrap()).collect() };
+    let first = row(text.lines().nth(1).unwrap());
+    let last = row(text.lines().last().unwrap());
+    assert_eq!(&first[1..3], &[0.3, -0.8]);
+    assert!(
+        (last[1] - 1.0).abs() < 1e-12 && (last[2] - 0.5).abs() < 1e-12,
+        "{last:?}"
+    );
+    fails(
+        &["fk", m, "--q", "key:nope"],
+        "no keyframe named 'nope' (known: home, far)",
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -73,8 +73,8 @@ pub fn parse_vector(text: Option<&str>, name: &str, model: &Model) -> Result<Vec
         return Ok(vec![0.0; model.nq()]);
     };
     let flag = format!("--{name}");
-    // `--q key:NAME`: a named configuration of the model (an MJCF <key>).
-    if let (Some(key), "q") = (text.strip_prefix("key:"), name) {
+    // `--q key:NAME` (and --q0, --qf): a named configuration of the model (an MJCF <key>).
+    if let (Some(key), "q" | "q0" | "qf") = (text.strip_prefix("key:"), name) {
         return Ok(model.keyframe(key.trim())?.to_vec());
     }
     let values = parse_numbers(text, &flag)?;
