@@ -1,7 +1,7 @@
 //! The joint-space mass matrix by the composite-rigid-body algorithm (O(n²) on a tree), and its
 //! inverse.
 
-use super::cholesky::singular_error;
+use super::cholesky::{singular_error, with_small_size};
 use crate::error::Result;
 use crate::kinematics::forward_kinematics;
 use crate::model::Model;
@@ -129,18 +129,35 @@ pub fn mass_matrix_inverse<'w, T: Real>(
 
 /// `ws.mass_matrix_inverse = ws.mass_matrix⁻¹` by a Cholesky factorisation `M = L Lᵀ` (in
 /// `ws.cholesky`, lower triangle), the inverse `L⁻¹` and `M⁻¹ = L⁻ᵀ L⁻¹`, all by operations on
-/// contiguous columns (column-major storage).
+/// contiguous columns (column-major storage), compiled for the size at hand
+/// ([`with_small_size`]).
 pub(crate) fn invert_mass_matrix<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) -> Result<()> {
     let n = model.nv();
     ws.cholesky.copy_from(&ws.mass_matrix);
     let a = &mut ws.cholesky.as_mut_slice()[..n * n];
+    let minv = &mut ws.mass_matrix_inverse.as_mut_slice()[..n * n];
+    match with_small_size!(n, |m| invert_columns(a, minv, m)) {
+        Ok(()) => Ok(()),
+        Err(j) => Err(singular_error(model, j)),
+    }
+}
+
+/// [`invert_mass_matrix`] on the column-major `n × n` slices `a` (`M` in, `L` out in the lower
+/// triangle) and `minv`; `Err(j)` when the pivot of column `j` is not positive.
+#[inline(always)]
+fn invert_columns<T: Real>(
+    a: &mut [T],
+    minv: &mut [T],
+    n: usize,
+) -> std::result::Result<(), usize> {
+    let (a, minv) = (&mut a[..n * n], &mut minv[..n * n]);
     let scale = (0..n).fold(T::zero(), |s, i| s.max(a[i * n + i].abs()));
     let tiny = super::cholesky::singular_threshold(scale);
     // Right-looking Cholesky: column j of L, then update the trailing lower triangle.
     for j in 0..n {
         let d = a[j * n + j];
         if d.partial_cmp(&tiny) != Some(std::cmp::Ordering::Greater) {
-            return Err(singular_error(model, j));
+            return Err(j);
         }
         let d = d.sqrt();
         a[j * n + j] = d;
@@ -158,17 +175,22 @@ pub(crate) fn invert_mass_matrix<T: Real>(model: &Model<T>, ws: &mut Workspace<T
             }
         }
     }
-    // L⁻¹ (lower triangular) in place of L: column c solves L x = e_c.
-    for c in 0..n {
-        // x_k for k < c is zero; work on column c of the result, stored in the upper part of
-        // mass_matrix_inverse first.
-        let out = &mut ws.mass_matrix_inverse.as_mut_slice()[c * n..(c + 1) * n];
+    // L⁻¹ (lower triangular), column c solving L x = e_c, last column first: (L⁻¹)_kk = 1/L_kk
+    // is then already in place for every k > c, so each column takes one division.
+    for c in (0..n).rev() {
+        let (head, done) = minv.split_at_mut((c + 1) * n);
+        let out = &mut head[c * n..];
         out.fill(T::zero());
-        out[c] = T::one();
-        for k in c..n {
-            let col = &a[k * n..(k + 1) * n];
-            let xk = out[k] / col[k];
+        let inv_c = T::one() / a[c * n + c];
+        out[c] = inv_c;
+        // x_c = 1/L_cc, then x_k = (e_c − Σ_{r<k} L_kr x_r)_k / L_kk for k > c.
+        for (o, l) in out[c + 1..].iter_mut().zip(&a[c * n + c + 1..(c + 1) * n]) {
+            *o -= inv_c * *l;
+        }
+        for k in c + 1..n {
+            let xk = out[k] * done[(k - c - 1) * n + k];
             out[k] = xk;
+            let col = &a[k * n..(k + 1) * n];
             for (o, l) in out[k + 1..].iter_mut().zip(&col[k + 1..]) {
                 *o -= xk * *l;
             }
@@ -177,7 +199,6 @@ pub(crate) fn invert_mass_matrix<T: Real>(model: &Model<T>, ws: &mut Workspace<T
     // M⁻¹_ij = Σ_{k ≥ max(i, j)} L⁻¹_ki L⁻¹_kj: dots of columns of L⁻¹. The strict upper
     // triangle of L⁻¹ is zero, so it takes M⁻¹_ij (i < j) first; then the diagonal; then the
     // lower triangle is mirrored over L⁻¹ (`cholesky` keeps L).
-    let minv = &mut ws.mass_matrix_inverse.as_mut_slice()[..n * n];
     let dot = |m: &[T], i: usize, j: usize| {
         let mut s = T::zero();
         for (x, y) in m[i * n + j..(i + 1) * n]
