@@ -53,12 +53,8 @@ pub struct Workspace<T: Real = f64> {
     /// `q̈`: joint accelerations from forward dynamics.
     pub qdd: DVector<T>,
 
-    /// Derivatives ([`rnea_derivatives`](crate::dynamics::rnea_derivatives)): composite
-    /// spatial inertia of the subtree rooted at body `i`, in the base frame.
+    /// CRBA: composite spatial inertia of the subtree rooted at body `i`, in the base frame.
     pub composite_inertia: Vec<CompositeInertia<T>>,
-    /// CRBA: composite spatial inertia `𝔍ᶜ_i` of the subtree rooted at body `i`, in body `i`'s
-    /// own frame.
-    pub composite_inertia_in_body: Vec<CompositeInertia<T>>,
     /// ABA: `V_i^0 = Ad_{H_i^0} V_i^{i,0}`, body `i`'s twist written in the base frame.
     pub twist_in_world: Vec<Twist<T>>,
     /// ABA: `V̇_i^0`, its time derivative (the base-frame spatial acceleration).
@@ -162,7 +158,6 @@ impl<T: Real> Workspace<T> {
             nonlinear_effects: DVector::zeros(n),
             qdd: DVector::zeros(n),
             composite_inertia: vec![CompositeInertia::zero(); n],
-            composite_inertia_in_body: vec![CompositeInertia::zero(); n],
             twist_in_world: vec![Twist::zeros(); n],
             twist_dot_in_world: vec![Twist::zeros(); n],
             articulated_inertia: vec![Matrix6::zeros(); n],

@@ -412,3 +412,29 @@ fn tip_and_world_wrenches_are_jacobian_transposes() {
         );
     }
 }
+
+/// `M⁻¹` and the products `−M⁻¹ ∂τ/∂x` are compiled for each size from 1 to 12 joints and run
+/// with the size at run time beyond: every size from 1 to 16 gives `M M⁻¹ = 1` and
+/// `M ∂q̈/∂q = −∂τ/∂q`, `M ∂q̈/∂q̇ = −∂τ/∂q̇` (the definition of the inverse and of the
+/// forward-dynamics derivatives).
+#[test]
+fn inverse_and_forward_derivatives_at_every_small_size() {
+    use screwdyn::dynamics::aba_derivatives;
+    let mut rng = StdRng::seed_from_u64(31);
+    for n in 1..=16 {
+        let model = random_tree(&mut rng, n, n % 2 == 0);
+        let mut ws = Workspace::new(&model);
+        let q = random_vec(&mut rng, n, 1.5);
+        let (v, tau) = (random_vec(&mut rng, n, 1.0), random_vec(&mut rng, n, 1.0));
+        let m = crba(&model, &mut ws, &q).unwrap().clone();
+        let minv = mass_matrix_inverse(&model, &mut ws, &q).unwrap().clone();
+        let eye = DMatrix::identity(n, n);
+        assert_close(&mat(&(&m * &minv)), &mat(&eye), 1e-9, "M M⁻¹");
+        aba_derivatives(&model, &mut ws, &q, &v, &tau, None).unwrap();
+        let scale = 1.0 + ws.dtau_dq.amax();
+        let dq = &m * &ws.dqdd_dq + &ws.dtau_dq;
+        let dv = &m * &ws.dqdd_dv + &ws.dtau_dv;
+        assert!(dq.amax() < 1e-9 * scale, "n = {n}: M ∂q̈/∂q + ∂τ/∂q = {dq}");
+        assert!(dv.amax() < 1e-9 * scale, "n = {n}: M ∂q̈/∂q̇ + ∂τ/∂q̇ = {dv}");
+    }
+}

@@ -7,6 +7,70 @@ use crate::model::Model;
 use crate::scalar::Real;
 use nalgebra::DMatrix;
 
+/// Evaluates `$body` with `$n` bound to a compile-time constant when the size `$size` is that of
+/// a common arm (1 to 12 joints), and to the run-time size otherwise. The kernels it calls are
+/// `#[inline(always)]`, so each arm is compiled with its size known: the short loops over
+/// `n ≤ 12` entries are unrolled and vectorised instead of running as scalar remainder loops.
+macro_rules! with_small_size {
+    ($size:expr, |$n:ident| $body:expr) => {
+        match $size {
+            1 => {
+                let $n = 1;
+                $body
+            }
+            2 => {
+                let $n = 2;
+                $body
+            }
+            3 => {
+                let $n = 3;
+                $body
+            }
+            4 => {
+                let $n = 4;
+                $body
+            }
+            5 => {
+                let $n = 5;
+                $body
+            }
+            6 => {
+                let $n = 6;
+                $body
+            }
+            7 => {
+                let $n = 7;
+                $body
+            }
+            8 => {
+                let $n = 8;
+                $body
+            }
+            9 => {
+                let $n = 9;
+                $body
+            }
+            10 => {
+                let $n = 10;
+                $body
+            }
+            11 => {
+                let $n = 11;
+                $body
+            }
+            12 => {
+                let $n = 12;
+                $body
+            }
+            other => {
+                let $n = other;
+                $body
+            }
+        }
+    };
+}
+pub(crate) use with_small_size;
+
 /// The smallest pivot (a Cholesky diagonal, an articulated inertia `D_i`) taken as positive,
 /// for entries of size `scale`: 64 ulp of it. Below it the mass matrix counts as singular.
 #[inline]

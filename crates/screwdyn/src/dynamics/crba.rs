@@ -1,7 +1,7 @@
 //! The joint-space mass matrix by the composite-rigid-body algorithm (O(n²) on a tree), and its
 //! inverse.
 
-use super::cholesky::singular_error;
+use super::cholesky::{singular_error, with_small_size};
 use crate::error::Result;
 use crate::kinematics::forward_kinematics;
 use crate::model::Model;
@@ -11,20 +11,16 @@ use nalgebra::DMatrix;
 
 /// The mass matrix `M(q)` by the composite-rigid-body algorithm: composite inertias
 /// `𝔍ᶜ_i = 𝔍_i + Σ_children 𝔍ᶜ_c` (backward), then `M_ij = S_iᵀ 𝔍ᶜ_j S_j` for every `i`
-/// supporting `j`, walking up the tree. Equal to the `M = Sᵀ Lᵀ 𝔍 L S` (Lynch & Park, *Modern
-/// Robotics*) and to the `Σ_i J_iᵀ 𝔍^{i,i} J_i`.
+/// supporting `j`, walking up the tree. Equal to the `M = Sᵀ Lᵀ 𝔍 L S` (Lynch & Park, *Modern Robotics*) and to
+/// the `Σ_i J_iᵀ 𝔍^{i,i} J_i`.
 ///
-/// Each composite inertia is summed in its own body's frame by its ten parameters
-/// (`m`, `h = m c`, `I_o`): `𝔍ᶜ_λ += Ad_{H_λ^i}ᵀ 𝔍ᶜ_i Ad_{H_λ^i}`, which for a joint turning
-/// about a coordinate axis with a home rotation of quarter turns is a turn in one plane and a
-/// shuffle of entries (`JointMotion::inertia_to_parent`). The column `F_i = 𝔍ᶜ_i S_i` is
-/// formed once in body `i` (a column of `𝔍ᶜ_i` for such joints), written once in the base
-/// frame, `F⁰_i = Ad_{H_0^i}ᵀ F_i`, and each entry above the diagonal is then the dot product
-/// `M_ki = s_kᵀ F⁰_i` with the space-Jacobian column `s_k = Ad_{H_k^0} S_k` of the ancestor `k`.
-/// Each joint's armature `I_a,i` (the rotor inertia reflected to it,
-/// [`Joint::armature`](crate::model::Joint::armature)) is added to its diagonal entry:
-/// `M_ii = S_iᵀ 𝔍ᶜ_i S_i + I_a,i`. Also fills `ws.screw_in_world` and
-/// `ws.composite_inertia_in_body`. Returns `ws.mass_matrix` (both triangles filled).
+/// Everything is written in the base frame {0}: `𝔍ᶜ_i` is summed from the bodies' inertias
+/// `Ad_{H_0^i}ᵀ 𝔍^{i,i} Ad_{H_0^i}`, and `S_i` is the space-Jacobian column
+/// `Ad_{H_i^0} S_i^{i,λ(i)}`, so each off-diagonal entry is a single 6-vector dot product (no
+/// per-ancestor change of frame). Each joint's armature `I_a,i` (the rotor inertia reflected
+/// to it, [`Joint::armature`](crate::model::Joint::armature)) is added to its diagonal entry:
+/// `M_ii = S_iᵀ 𝔍ᶜ_i S_i + I_a,i`. Also fills `ws.screw_in_world`.
+/// Returns `ws.mass_matrix` (both triangles filled).
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
@@ -62,53 +58,44 @@ pub fn mass_matrix<'w, T: Real>(
 
 pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) {
     let n = model.nbodies();
-    if n == 0 {
-        return;
+    let (motions, parents, bodies) = (model.motions(), model.parents(), &model.body_composite);
+    let ci = &mut ws.composite_inertia[..n];
+    let piw = &ws.pose_in_world[..n];
+    for i in 0..n {
+        ci[i] = bodies[i].transformed(&piw[i]);
     }
-    // Everything as slices of length n, so that the loops' bounds checks go.
-    let (motions, rotations, parents, joints) = (
-        &model.motions()[..n],
-        &model.home_rotations()[..n],
-        &model.parents()[..n],
-        &model.joints()[..n],
-    );
-    let ci = &mut ws.composite_inertia_in_body[..n];
-    ci.copy_from_slice(&model.body_composite[..n]);
-    let (pip, piw) = (&ws.pose_in_parent[..n], &ws.pose_in_world[..n]);
-    // s_i = Ad_{H_i^0} S_i: the space-Jacobian columns.
+    for i in (0..n).rev() {
+        if let Some(p) = parents[i] {
+            let c = ci[i];
+            ci[p].add(&c);
+        }
+    }
     let s = &mut ws.screw_in_world[..n];
     for i in 0..n {
         s[i] = motions[i].act(&piw[i]);
     }
     // Bodies on different branches do not couple: those entries stay zero (on a chain every
     // entry is written below).
-    let data = &mut ws.mass_matrix.as_mut_slice()[..n * n];
+    let data = ws.mass_matrix.as_mut_slice();
+    if n == 0 {
+        return;
+    }
     if !model.is_chain {
         data.fill(T::zero());
     }
-    // Backward, column i of the upper triangle through one slice (column-major storage: entry
-    // (k, i) is data[i n + k], with every ancestor k < i); every child of i (index > i) has
-    // already added its composite inertia to 𝔍ᶜ_i.
-    for i in (0..n).rev() {
-        let c = ci[i];
-        let column = &mut data[i * n..(i + 1) * n];
-        // F_i = 𝔍ᶜ_i S_i in body i; M_ii = S_iᵀ F_i + I_a,i.
-        let f_in_body = motions[i].inertia_column(&c);
-        column[i] = motions[i].dot(&f_in_body) + joints[i].armature;
-        // F⁰_i = Ad_{H_0^i}ᵀ F_i, then M_ki = s_kᵀ F⁰_i for k supporting i.
-        let f = piw[i].inv_act_transpose_wrench(&f_in_body);
+    // Column i of the upper triangle through one slice (column-major storage: entry (k, i) is
+    // data[i n + k], with every ancestor k < i), then the lower triangle mirrored.
+    // M_ii = S_iᵀ 𝔍ᶜ_i S_i + I_a,i, M_ki = S_kᵀ 𝔍ᶜ_i S_i for k supporting i.
+    let joints = model.joints();
+    for (i, column) in data.chunks_exact_mut(n).enumerate() {
+        let f = ci[i].apply(&s[i]);
+        column[i] = s[i].dot(&f) + joints[i].armature;
         let mut k = i;
         while let Some(p) = parents[k] {
             k = p;
             column[k] = s[k].dot(&f);
         }
-        // 𝔍ᶜ_λ += Ad_{H_λ^i}ᵀ 𝔍ᶜ_i Ad_{H_λ^i}.
-        if let Some(p) = parents[i] {
-            let moved = motions[i].inertia_to_parent(&c, &rotations[i], &pip[i]);
-            ci[p].add(&moved);
-        }
     }
-    // The lower triangle mirrored.
     for c in 0..n {
         for r in c + 1..n {
             data[c * n + r] = data[r * n + c];
@@ -142,18 +129,35 @@ pub fn mass_matrix_inverse<'w, T: Real>(
 
 /// `ws.mass_matrix_inverse = ws.mass_matrix⁻¹` by a Cholesky factorisation `M = L Lᵀ` (in
 /// `ws.cholesky`, lower triangle), the inverse `L⁻¹` and `M⁻¹ = L⁻ᵀ L⁻¹`, all by operations on
-/// contiguous columns (column-major storage).
+/// contiguous columns (column-major storage), compiled for the size at hand
+/// ([`with_small_size`]).
 pub(crate) fn invert_mass_matrix<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) -> Result<()> {
     let n = model.nv();
     ws.cholesky.copy_from(&ws.mass_matrix);
     let a = &mut ws.cholesky.as_mut_slice()[..n * n];
+    let minv = &mut ws.mass_matrix_inverse.as_mut_slice()[..n * n];
+    match with_small_size!(n, |m| invert_columns(a, minv, m)) {
+        Ok(()) => Ok(()),
+        Err(j) => Err(singular_error(model, j)),
+    }
+}
+
+/// [`invert_mass_matrix`] on the column-major `n × n` slices `a` (`M` in, `L` out in the lower
+/// triangle) and `minv`; `Err(j)` when the pivot of column `j` is not positive.
+#[inline(always)]
+fn invert_columns<T: Real>(
+    a: &mut [T],
+    minv: &mut [T],
+    n: usize,
+) -> std::result::Result<(), usize> {
+    let (a, minv) = (&mut a[..n * n], &mut minv[..n * n]);
     let scale = (0..n).fold(T::zero(), |s, i| s.max(a[i * n + i].abs()));
     let tiny = super::cholesky::singular_threshold(scale);
     // Right-looking Cholesky: column j of L, then update the trailing lower triangle.
     for j in 0..n {
         let d = a[j * n + j];
         if d.partial_cmp(&tiny) != Some(std::cmp::Ordering::Greater) {
-            return Err(singular_error(model, j));
+            return Err(j);
         }
         let d = d.sqrt();
         a[j * n + j] = d;
@@ -171,17 +175,22 @@ pub(crate) fn invert_mass_matrix<T: Real>(model: &Model<T>, ws: &mut Workspace<T
             }
         }
     }
-    // L⁻¹ (lower triangular) in place of L: column c solves L x = e_c.
-    for c in 0..n {
-        // x_k for k < c is zero; work on column c of the result, stored in the upper part of
-        // mass_matrix_inverse first.
-        let out = &mut ws.mass_matrix_inverse.as_mut_slice()[c * n..(c + 1) * n];
+    // L⁻¹ (lower triangular), column c solving L x = e_c, last column first: (L⁻¹)_kk = 1/L_kk
+    // is then already in place for every k > c, so each column takes one division.
+    for c in (0..n).rev() {
+        let (head, done) = minv.split_at_mut((c + 1) * n);
+        let out = &mut head[c * n..];
         out.fill(T::zero());
-        out[c] = T::one();
-        for k in c..n {
-            let col = &a[k * n..(k + 1) * n];
-            let xk = out[k] / col[k];
+        let inv_c = T::one() / a[c * n + c];
+        out[c] = inv_c;
+        // x_c = 1/L_cc, then x_k = (e_c − Σ_{r<k} L_kr x_r)_k / L_kk for k > c.
+        for (o, l) in out[c + 1..].iter_mut().zip(&a[c * n + c + 1..(c + 1) * n]) {
+            *o -= inv_c * *l;
+        }
+        for k in c + 1..n {
+            let xk = out[k] * done[(k - c - 1) * n + k];
             out[k] = xk;
+            let col = &a[k * n..(k + 1) * n];
             for (o, l) in out[k + 1..].iter_mut().zip(&col[k + 1..]) {
                 *o -= xk * *l;
             }
@@ -190,7 +199,6 @@ pub(crate) fn invert_mass_matrix<T: Real>(model: &Model<T>, ws: &mut Workspace<T
     // M⁻¹_ij = Σ_{k ≥ max(i, j)} L⁻¹_ki L⁻¹_kj: dots of columns of L⁻¹. The strict upper
     // triangle of L⁻¹ is zero, so it takes M⁻¹_ij (i < j) first; then the diagonal; then the
     // lower triangle is mirrored over L⁻¹ (`cholesky` keeps L).
-    let minv = &mut ws.mass_matrix_inverse.as_mut_slice()[..n * n];
     let dot = |m: &[T], i: usize, j: usize| {
         let mut s = T::zero();
         for (x, y) in m[i * n + j..(i + 1) * n]

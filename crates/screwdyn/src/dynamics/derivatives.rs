@@ -69,6 +69,7 @@
 //! (O(n²) on a chain), and allocates nothing.
 
 use super::aba::articulated_body;
+use super::cholesky::with_small_size;
 use super::crba::invert_mass_matrix;
 use super::inputs::checked_poses;
 use super::rnea::base_acceleration;
@@ -328,13 +329,20 @@ pub fn aba_derivatives<T: Real>(
 }
 
 /// `out = −a b` for n×n matrices, column by column as sums of columns of `a` (a plain loop:
-/// `gemm` may allocate packing buffers).
+/// `gemm` may allocate packing buffers), compiled for the size at hand ([`with_small_size`]).
 fn negated_product<T: Real>(a: &DMatrix<T>, b: &DMatrix<T>, out: &mut DMatrix<T>, n: usize) {
     let (a, b) = (a.as_slice(), b.as_slice());
-    let out = &mut out.as_mut_slice()[..n * n];
+    let out = out.as_mut_slice();
+    with_small_size!(n, |m| negated_product_columns(a, b, out, m));
+}
+
+/// [`negated_product`] on column-major slices.
+#[inline(always)]
+fn negated_product_columns<T: Real>(a: &[T], b: &[T], out: &mut [T], n: usize) {
+    let (a, b, out) = (&a[..n * n], &b[..n * n], &mut out[..n * n]);
     for (j, col) in out.chunks_exact_mut(n).enumerate() {
         col.fill(T::zero());
-        for (k, ak) in a[..n * n].chunks_exact(n).enumerate() {
+        for (k, ak) in a.chunks_exact(n).enumerate() {
             let x = -b[j * n + k];
             for (o, y) in col.iter_mut().zip(ak) {
                 *o += *y * x;

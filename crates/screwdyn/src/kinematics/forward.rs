@@ -36,27 +36,20 @@ pub fn forward_kinematics<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &
     // `check_vector` made `q.len() == n`; `check` that the workspace was made for this model.
     let n = model.nq();
     // Everything as slices of length n, so that the loop's bounds checks go.
-    let (joints, motions, rotations, parents) = (
+    let (joints, motions, parents) = (
         &model.joints()[..n],
         &model.motions()[..n],
-        &model.home_rotations()[..n],
         &model.parents()[..n],
     );
     let q = &q[..n];
     let (pip, piw) = (&mut ws.pose_in_parent[..n], &mut ws.pose_in_world[..n]);
     for i in 0..n {
-        let home = &joints[i].home;
-        // H_i^0 = H_λ^0 H_i^λ: for a home rotation of quarter turns, R_i^0 = (R_λ^0 R(0)) Rot(q)
-        // is a choice of columns and two turned ones (JointMotion::poses).
-        let (h, w) = match parents[i] {
-            Some(p) => motions[i].poses(home, &rotations[i], &piw[p], q[i]),
-            None => {
-                let h = motions[i].pose_in_parent(home, q[i]);
-                (h, h)
-            }
-        };
+        let h = motions[i].pose_in_parent(&joints[i].home, q[i]);
         pip[i] = h;
-        piw[i] = w;
+        piw[i] = match parents[i] {
+            Some(p) => piw[p].compose(&h),
+            None => h,
+        };
     }
     Ok(())
 }

@@ -439,7 +439,6 @@ impl<T: Real> ModelBuilder<T> {
             },
             meshes: self.meshes.clone(),
             motions: Vec::new(),
-            home_rotations: Vec::new(),
             inertia_scale: T::zero(),
             body_composite: Vec::new(),
             is_chain: false,

@@ -18,13 +18,11 @@ mod joint;
 #[allow(clippy::module_inception)]
 mod model;
 pub(crate) use model::{check_finite, first_non_finite};
-mod home_rotation;
 mod motion;
 
 pub use builder::{JointSpec, ModelBuilder};
 pub use configuration::SplitMix64;
 pub use findings::{PhysicalFinding, Problem};
-pub use home_rotation::HomeRotation;
 pub use joint::{Joint, JointKind, JointLimits, Mimic};
 pub use model::{check_result, Body, Frame, FrameKind, Model};
 pub use motion::JointMotion;

@@ -1,7 +1,6 @@
 //! The immutable [`Model`].
 
 use super::findings::PhysicalFinding;
-use super::home_rotation::HomeRotation;
 use super::joint::Joint;
 use super::motion::JointMotion;
 use crate::error::{Error, Result};
@@ -63,8 +62,6 @@ pub struct Model<T: Real = f64> {
     pub(crate) meshes: Vec<(String, String)>,
     /// Derived from `joints` at build time (see [`Model::motions`]).
     pub(crate) motions: Vec<JointMotion<T>>,
-    /// Derived from the joints' home poses at build time (see [`Model::home_rotations`]).
-    pub(crate) home_rotations: Vec<HomeRotation<T>>,
     /// Derived: the largest entry of any body's 6×6 spatial inertia (ABA's singularity scale).
     pub(crate) inertia_scale: T,
     /// Derived: each body's inertia in the parameters CRBA sums (`m`, `m c`, `I_o`).
@@ -213,23 +210,12 @@ impl<T: Real> Model<T> {
     pub fn motions(&self) -> &[JointMotion<T>] {
         &self.motions
     }
-    /// The rotations of the joints' home poses classified for forward kinematics (identity and
-    /// quarter turns are signed permutations), in coordinate order.
-    #[inline]
-    pub fn home_rotations(&self) -> &[HomeRotation<T>] {
-        &self.home_rotations
-    }
-    /// Fills `motions` from the joints' screw axes (and the other derived data).
+    /// Fills `motions` from the joints' screw axes.
     pub(crate) fn with_motions(mut self) -> Self {
         self.motions = self
             .joints
             .iter()
             .map(|j| JointMotion::classify(&j.screw))
-            .collect();
-        self.home_rotations = self
-            .joints
-            .iter()
-            .map(|j| HomeRotation::classify(&j.home.rotation))
             .collect();
         self.body_composite = self
             .bodies
@@ -696,7 +682,6 @@ impl Model<f64> {
             },
             meshes: self.meshes.clone(),
             motions: Vec::new(),
-            home_rotations: Vec::new(),
             inertia_scale: U::zero(),
             body_composite: Vec::new(),
             is_chain: false,

@@ -10,9 +10,8 @@
 //! the general screw formulas. Every algorithm reaches the joint's screw through the methods
 //! here, so the specialisation lives in this one place.
 
-use super::home_rotation::HomeRotation;
 use crate::scalar::Real;
-use crate::spatial::{ad, ang, lin, CompositeInertia, Se3, Twist, Wrench};
+use crate::spatial::{ad, ang, lin, Se3, Twist, Wrench};
 use nalgebra::{Matrix3, Vector3, Vector6};
 
 /// A joint's screw axis in the child frame, specialised by shape.
@@ -149,117 +148,6 @@ impl<T: Real> JointMotion<T> {
         }
     }
 
-    /// Both poses of forward kinematics' step for this joint, `(H_i^{λ(i)}, H_i^0)`:
-    /// `H_i^{λ(i)} = H(0) e^{[S]q}` ([`JointMotion::pose_in_parent`]) and
-    /// `H_i^0 = H_{λ(i)}^0 H_i^{λ(i)}`, given the parent's pose in the base frame
-    /// `parent_in_world` and the home rotation's class `home_rotation`. When `R(0)` is a signed
-    /// permutation, `R_i^0 = (R_{λ(i)}^0 R(0)) Rot_k(θ)`: the columns of `R_{λ(i)}^0` chosen and
-    /// signed ([`HomeRotation::right_multiply`]), then two of them turned by the joint's one
-    /// `sin_cos` — no 3×3 product. Otherwise the general composition.
-    // Always inlined, so that the CPU-specific clones of forward kinematics compile it too.
-    #[inline(always)]
-    pub fn poses(
-        &self,
-        home: &Se3<T>,
-        home_rotation: &HomeRotation<T>,
-        parent_in_world: &Se3<T>,
-        q: T,
-    ) -> (Se3<T>, Se3<T>) {
-        let rp = &parent_in_world.rotation;
-        // p_i^0 = R_λ^0 p_i^λ + p_λ^0.
-        let world_point = |p: &Vector3<T>| rp * p + parent_in_world.translation;
-        match (*self, home_rotation) {
-            (JointMotion::RevoluteAxis { axis, sign }, HomeRotation::SignedPermutation { .. }) => {
-                let (s, c) = crate::scalar::sin_cos(q * sign);
-                let (local, _) = rotate_about_axis_by(&home.rotation, axis, s, c);
-                let chosen = home_rotation.right_multiply(rp, &home.rotation);
-                let (world, _) = rotate_about_axis_by(&chosen, axis, s, c);
-                (
-                    Se3::new(local, home.translation),
-                    Se3::new(world, world_point(&home.translation)),
-                )
-            }
-            (JointMotion::PrismaticAxis { .. }, HomeRotation::SignedPermutation { .. }) => {
-                let h = self.pose_in_parent(home, q);
-                let world = home_rotation.right_multiply(rp, &home.rotation);
-                let p = world_point(&h.translation);
-                (h, Se3::new(world, p))
-            }
-            _ => {
-                let h = self.pose_in_parent(home, q);
-                (h, parent_in_world.compose(&h))
-            }
-        }
-    }
-
-    /// `𝔍 S`: the wrench of unit joint speed on an inertia given in the child frame (the
-    /// CRBA's column `F_i = 𝔍ᶜ_i S_i`). For `S = (σ ê_k, 0)` it is `(σ I_o ê_k, −σ h × ê_k)`: a
-    /// column of `I_o` and two entries of `h`; for `S = (0, σ ê_k)` it is `(σ h × ê_k, σ m ê_k)`.
-    #[inline(always)]
-    pub fn inertia_column(&self, inertia: &CompositeInertia<T>) -> Wrench<T> {
-        // h × ê_k for k = 0, 1, 2.
-        let cross_axis = |h: &Vector3<T>, k: usize| match k {
-            0 => Vector3::new(T::zero(), h.z, -h.y),
-            1 => Vector3::new(-h.z, T::zero(), h.x),
-            _ => Vector3::new(h.y, -h.x, T::zero()),
-        };
-        match *self {
-            JointMotion::RevoluteAxis { axis, sign } => {
-                let a = inertia.inertia_origin.column(axis) * sign;
-                let l = cross_axis(&inertia.first_moment, axis) * -sign;
-                Vector6::new(a[0], a[1], a[2], l.x, l.y, l.z)
-            }
-            JointMotion::PrismaticAxis { axis, sign } => {
-                let a = cross_axis(&inertia.first_moment, axis) * sign;
-                let mut w = Vector6::new(a.x, a.y, a.z, T::zero(), T::zero(), T::zero());
-                w[3 + axis] = inertia.mass * sign;
-                w
-            }
-            JointMotion::General { screw } | JointMotion::RevoluteOffsetAxis { screw, .. } => {
-                inertia.apply(&screw)
-            }
-        }
-    }
-
-    /// An inertia given in the child frame written in the parent frame,
-    /// `Ad_{H_λ^i}ᵀ 𝔍 Ad_{H_λ^i}`, where `pose = H_i^{λ(i)} = H(0) e^{[S]q}` (the CRBA's
-    /// `𝔍ᶜ_λ += …`). For a revolute joint about `ê_k` whose home rotation `P` is a signed
-    /// permutation, `R = P Rot_k(θ)`: the inertia is turned about `ê_k`
-    /// ([`CompositeInertia::rotated_about_axis`], with `cos θ`, `sin θ` read back exactly from
-    /// `R`, since `Rot = Pᵀ R`), then its entries are moved and signed by `P` and shifted by `p`
-    /// ([`CompositeInertia::permuted_and_shifted`]); a prismatic joint with such a `P` only
-    /// needs the second step. Everything else goes through [`CompositeInertia::transformed`].
-    #[inline(always)]
-    pub fn inertia_to_parent(
-        &self,
-        inertia: &CompositeInertia<T>,
-        home_rotation: &HomeRotation<T>,
-        pose: &Se3<T>,
-    ) -> CompositeInertia<T> {
-        match (*self, *home_rotation) {
-            (
-                JointMotion::RevoluteAxis { axis, .. },
-                HomeRotation::SignedPermutation { columns, signs },
-            ) => {
-                // The axes that turn: Rot ê_i = c ê_i + s ê_j.
-                let (i, j) = [(1, 2), (2, 0), (0, 1)][axis];
-                let r = &pose.rotation;
-                let c = signs[i] * r[(columns[i], i)];
-                let s = signs[j] * r[(columns[j], i)];
-                inertia.rotated_about_axis(axis, s, c).permuted_and_shifted(
-                    columns,
-                    signs,
-                    &pose.translation,
-                )
-            }
-            (
-                JointMotion::PrismaticAxis { .. },
-                HomeRotation::SignedPermutation { columns, signs },
-            ) => inertia.permuted_and_shifted(columns, signs, &pose.translation),
-            _ => inertia.transformed(pose),
-        }
-    }
-
     /// `v + S x`, in place.
     #[inline]
     pub fn add_scaled(&self, v: &mut Twist<T>, x: T) {
@@ -357,17 +245,6 @@ fn rotate_about_axis<T: Real>(
     theta: T,
 ) -> (Matrix3<T>, (usize, usize)) {
     let (s, c) = crate::scalar::sin_cos(theta);
-    rotate_about_axis_by(r, axis, s, c)
-}
-
-/// [`rotate_about_axis`] given `sin θ` and `cos θ`.
-#[inline(always)]
-fn rotate_about_axis_by<T: Real>(
-    r: &Matrix3<T>,
-    axis: usize,
-    s: T,
-    c: T,
-) -> (Matrix3<T>, (usize, usize)) {
     // One code path per axis, so that the columns are known at compile time.
     match axis {
         0 => (rotate_columns::<_, 1, 2>(r, s, c), (1, 2)),
@@ -395,7 +272,6 @@ fn rotate_columns<T: Real, const I: usize, const J: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::f64::consts::{FRAC_PI_2, PI};
 
     /// Every special case agrees with the general screw formulas it replaces (which are checked
     /// against the matrix-exponential series in the spatial tests).
@@ -446,53 +322,6 @@ mod tests {
                 jm.add_scaled(&mut x, q);
                 assert!((x - (v + s * q)).amax() < 1e-15);
                 assert!((jm.ad_scaled(q, &v) - ad(&(s * q), &v)).amax() < 1e-14);
-            }
-            // Both poses of the forward-kinematics step, for a home rotation of quarter turns
-            // (a signed permutation) and a general one: H_i^0 = H_λ^0 H(0) e^{[S]q}.
-            for home_rpy in [
-                (0.0, 0.0, 0.0),
-                (-FRAC_PI_2, 0.0, 0.0),
-                (0.0, FRAC_PI_2, PI),
-            ] {
-                let (r, p, y) = home_rpy;
-                let perm_home = Se3::from_rpy(r, p, y).with_translation(home.translation);
-                assert!(matches!(
-                    HomeRotation::classify(&perm_home.rotation),
-                    HomeRotation::SignedPermutation { .. }
-                ));
-                for home in [perm_home, home] {
-                    let kind = HomeRotation::classify(&home.rotation);
-                    for q in [0.0, 0.8, -2.3] {
-                        let (local, world) = jm.poses(&home, &kind, &h, q);
-                        let expected = home.compose(&Se3::exp_screw(s, q));
-                        assert!((local.to_matrix() - expected.to_matrix()).amax() < 1e-14);
-                        let expected = h.compose(&expected);
-                        assert!((world.to_matrix() - expected.to_matrix()).amax() < 1e-14);
-                    }
-                }
-            }
-            // The CRBA's column 𝔍 S and the change of frame of an inertia to the parent, for
-            // both kinds of home rotation, against the general formulas.
-            let body = CompositeInertia::from(&crate::spatial::SpatialInertia::new(
-                1.7,
-                Vector3::new(0.12, -0.31, 0.05),
-                Matrix3::new(0.3, 0.01, -0.02, 0.01, 0.2, 0.03, -0.02, 0.03, 0.25),
-            ));
-            assert!((jm.inertia_column(&body) - body.apply(s)).amax() < 1e-15);
-            for home in [
-                Se3::from_rpy(FRAC_PI_2, 0.0, -FRAC_PI_2).with_translation(home.translation),
-                home,
-            ] {
-                let kind = HomeRotation::classify(&home.rotation);
-                for q in [0.0, 0.8, -2.3] {
-                    let pose = jm.pose_in_parent(&home, q);
-                    let moved = jm.inertia_to_parent(&body, &kind, &pose);
-                    let expected = body.transformed(&pose);
-                    assert!(
-                        (moved.matrix() - expected.matrix()).amax() < 1e-14,
-                        "{kind:?}"
-                    );
-                }
             }
             assert!((jm.dot(&w) - s.dot(&w)).abs() < 1e-14);
             assert!((jm.act(&h) - h.act_twist(s)).amax() < 1e-14, "{kind}");
