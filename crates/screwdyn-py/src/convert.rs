@@ -448,13 +448,13 @@ pub fn write_rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f6
     m: &nalgebra::Matrix<f64, R, C, S>,
     out: &mut [f64],
 ) {
-    // Column j of `m` (contiguous in nalgebra's storage) goes to every `ncols`-th entry from j:
-    // no division or bounds check per entry (a mass matrix is 36–81 of them per call).
-    let c = m.ncols();
-    // (`take`: a matrix without rows has no entries to write, whatever its columns.)
-    for (j, column) in m.column_iter().enumerate().take(out.len()) {
-        for (o, &x) in out[j..].iter_mut().step_by(c).zip(column.iter()) {
-            *o = x;
+    // Row by row, no division or bounds check per entry (a mass matrix is 36–81 of them per
+    // call; measured with callgrind against indexing and against strided iterators).
+    let (rows, cols) = m.shape();
+    for (i, row) in out.chunks_exact_mut(cols.max(1)).take(rows).enumerate() {
+        for (j, o) in row.iter_mut().enumerate() {
+            // SAFETY: i < rows (`take`) and j < cols (the row's length).
+            *o = unsafe { *m.get_unchecked((i, j)) };
         }
     }
 }
