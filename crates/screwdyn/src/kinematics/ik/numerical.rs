@@ -246,12 +246,11 @@ impl IkSolver {
         } else {
             None
         };
-        let home = super::target::default_start(model);
         let reach = tasks
             .iter()
             .map(|t| {
                 if t.weights[3..].iter().all(|&w| w != 0.0) {
-                    Reach::of(model, t.frame, &home)
+                    Reach::of(model, t.frame)
                 } else {
                     Ok(None)
                 }
@@ -417,7 +416,7 @@ impl IkSolver {
             && within_limits;
         let failure = if success {
             None
-        } else if self.beyond_reach(targets) {
+        } else if self.beyond_reach(ws, targets, q_out)? {
             Some(IkFailure::Unreachable)
         } else if let Some(cf) = &self.closed_form {
             // Exact: the closed form has solutions (none of which fits the limits, or it would
@@ -679,10 +678,18 @@ impl IkSolver {
 
     /// Whether some task's target lies farther from its chain's first joint axis than the
     /// chain can reach ([`Reach`]), by more than the position tolerance.
-    fn beyond_reach(&self, targets: &[Se3]) -> bool {
-        self.reach.iter().zip(targets).any(|(reach, target)| {
-            reach.is_some_and(|r| r.beyond(&target.translation) > self.options.position_tolerance)
-        })
+    /// Leaves in `ws.kinematics` the screws and forward kinematics of `q`.
+    fn beyond_reach(&self, ws: &mut IkWorkspace, targets: &[Se3], q: &[f64]) -> Result<bool> {
+        compute_joint_jacobians(&self.model, &mut ws.kinematics, q)?;
+        for (reach, target) in self.reach.iter().zip(targets) {
+            if let Some(r) = reach {
+                let beyond = r.beyond(&self.model, &ws.kinematics, &target.translation)?;
+                if beyond > self.options.position_tolerance {
+                    return Ok(true);
+                }
+            }
+        }
+        Ok(false)
     }
 
     /// Whether, at `q`, the error's descent direction `Jᵀ W² e` points mostly out of the limits
