@@ -679,3 +679,75 @@ fn targets_with_joints_on_their_limits() {
         "{successes} of {count} reached in one attempt ({iterations} iterations)"
     );
 }
+
+/// Why a UR5 solve fails. Its tool is at most `Σ (|a_i| + |d_i|)` of its Denavit–Hartenberg
+/// parameters from the base origin (the tool's position is a sum of those vectors):
+/// 0.089159 + 0.425 + 0.39225 + 0.10915 + 0.09465 + 0.0823 = 1.192709 m. Targets farther than
+/// that are `Unreachable`, whatever the limits. A target made by forward kinematics (so within
+/// reach) whose every closed-form solution puts the base joint outside narrowed limits
+/// `[−0.1, 0.1]` is `Limits`.
+#[test]
+fn out_of_reach_is_unreachable_and_out_of_the_limits_is_limits() {
+    let ur5 = load_model(&format!("{MODELS}ur5.urdf")).unwrap();
+    let tool = ur5.frame_id("tool0").unwrap();
+    let options = IkOptions {
+        max_restarts: 5,
+        ..IkOptions::default()
+    };
+    let solver = IkSolver::new(&ur5, &[IkTask::pose(tool)], options.clone()).unwrap();
+    let mut ws = IkWorkspace::new(&solver);
+    let mut q = [0.0; 6];
+    let dh_sum = 0.089159 + 0.425 + 0.39225 + 0.10915 + 0.09465 + 0.0823;
+    for (distance, direction) in [
+        (1.25, Vector3::new(1.0, 0.0, 0.0)),
+        (1.25, Vector3::new(0.0, -0.6, 0.8)),
+        (3.0, Vector3::new(0.0, 0.0, 1.0)),
+    ] {
+        assert!(distance > dh_sum);
+        let far = Se3::from_translation(direction * distance);
+        let r = solver.solve(&mut ws, &[far], &[0.0; 6], &mut q).unwrap();
+        assert!(!r.success);
+        assert_eq!(
+            r.failure,
+            Some(IkFailure::Unreachable),
+            "{distance} m: {r:?}"
+        );
+        // The errors are those of the returned q, which stays within the limits.
+        let (p, _) = distance_of(&ur5, tool, &q, &far);
+        assert!((p - r.position_error).abs() < 1e-9 && within_limits(&ur5, &q));
+    }
+    // The base joint narrowed to [−0.1, 0.1].
+    let text = std::fs::read_to_string(format!("{MODELS}ur5.urdf")).unwrap();
+    let narrowed = text.replacen(
+        r#"<limit lower="-6.283185307179586" upper="6.283185307179586""#,
+        r#"<limit lower="-0.1" upper="0.1""#,
+        1,
+    );
+    assert_ne!(narrowed, text);
+    let tight = load_str(&narrowed, "ur5_tight.urdf", &LoadOptions::default()).unwrap();
+    assert_eq!(tight.joints()[0].limits.upper, 0.1);
+    let truth = [1.0, -1.2, 1.4, -0.5, 1.1, 0.3];
+    let target = poe_pose(&ur5, tool, &truth);
+    assert!(target.translation.norm() < dh_sum);
+    let cf = ClosedForm::detect(&ur5, tool).unwrap().unwrap();
+    let mut all = [[0.0; 6]; 8];
+    let count = cf.solve(&target, &mut all);
+    assert!(count > 0);
+    for theta in &all[..count] {
+        let base = (theta[0] + PI).rem_euclid(2.0 * PI) - PI;
+        assert!(
+            base.abs() > 0.1,
+            "a solution within the narrowed limits: {theta:?}"
+        );
+    }
+    let solver = IkSolver::new(&tight, &[IkTask::pose(tool)], options).unwrap();
+    let mut ws = IkWorkspace::new(&solver);
+    let r = solver.solve(&mut ws, &[target], &[0.0; 6], &mut q).unwrap();
+    assert!(!r.success && within_limits(&tight, &q), "{r:?} {q:?}");
+    assert_eq!(r.failure, Some(IkFailure::Limits), "{r:?} {q:?}");
+}
+
+/// The position error (m) and rotation angle (rad) of `frame` at `q` from `target`.
+fn distance_of(model: &Model, frame: usize, q: &[f64], target: &Se3) -> (f64, f64) {
+    distance(&poe_pose(model, frame, q), target)
+}

@@ -13,6 +13,7 @@ mod lm;
 mod numerical;
 mod options;
 mod pose_error;
+mod reach;
 mod restart;
 mod result;
 mod seed;

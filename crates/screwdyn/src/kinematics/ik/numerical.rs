@@ -6,6 +6,7 @@ use super::closed_form::ClosedForm;
 use super::lm;
 use super::options::{IkOptions, IkTask};
 use super::pose_error::{body_error, check_target, measured};
+use super::reach::Reach;
 use super::restart::{sample_range, SplitMix};
 use super::result::{IkFailure, IkResult};
 use super::seed::nearest_closed_form;
@@ -138,6 +139,9 @@ pub struct IkSolver {
     /// More moving joints than weighed task axes.
     pub(super) redundant: bool,
     pub(super) closed_form: Option<ClosedForm>,
+    /// Per task, the ball its frame's origin cannot leave, when the task weighs every
+    /// position axis and the frame's chain has one ([`Reach::of`]).
+    reach: Vec<Option<Reach>>,
 }
 
 impl IkSolver {
@@ -242,7 +246,18 @@ impl IkSolver {
         } else {
             None
         };
+        let reach = tasks
+            .iter()
+            .map(|t| {
+                if t.weights[3..].iter().all(|&w| w != 0.0) {
+                    Reach::of(model, t.frame)
+                } else {
+                    Ok(None)
+                }
+            })
+            .collect::<Result<Vec<_>>>()?;
         Ok(IkSolver {
+            reach,
             model: model.clone(),
             tasks: tasks.to_vec(),
             redundant: active.len() > weighed_axes,
@@ -401,6 +416,16 @@ impl IkSolver {
             && within_limits;
         let failure = if success {
             None
+        } else if self.beyond_reach(ws, targets, q_out)? {
+            Some(IkFailure::Unreachable)
+        } else if let Some(cf) = &self.closed_form {
+            // Exact: the closed form has solutions (none of which fits the limits, or it would
+            // have been the answer) or has none.
+            if cf.solve(&targets[0], &mut ws.solutions) > 0 {
+                Some(IkFailure::Limits)
+            } else {
+                Some(IkFailure::Unreachable)
+            }
         } else if out_of_time || search.best_end == End::OutOfIterations {
             Some(IkFailure::Budget)
         } else if self.blocked_by_limits(ws, targets, q_out)? {
@@ -649,6 +674,22 @@ impl IkSolver {
             .zip(self.lower.iter().zip(&self.upper))
             .all(|(v, (lo, hi))| lo <= v && v <= hi);
         Ok((position, orientation, within))
+    }
+
+    /// Whether some task's target lies farther from its chain's first joint axis than the
+    /// chain can reach ([`Reach`]), by more than the position tolerance.
+    /// Leaves in `ws.kinematics` the screws and forward kinematics of `q`.
+    fn beyond_reach(&self, ws: &mut IkWorkspace, targets: &[Se3], q: &[f64]) -> Result<bool> {
+        compute_joint_jacobians(&self.model, &mut ws.kinematics, q)?;
+        for (reach, target) in self.reach.iter().zip(targets) {
+            if let Some(r) = reach {
+                let beyond = r.beyond(&self.model, &ws.kinematics, &target.translation)?;
+                if beyond > self.options.position_tolerance {
+                    return Ok(true);
+                }
+            }
+        }
+        Ok(false)
     }
 
     /// Whether, at `q`, the error's descent direction `Jᵀ W² e` points mostly out of the limits

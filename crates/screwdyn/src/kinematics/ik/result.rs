@@ -3,10 +3,17 @@
 /// Why a solve did not succeed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum IkFailure {
-    /// The nearest pose found is a stationary point of the error: the target is out of reach
-    /// (or every attempt ended in a local minimum). The returned `q` is that nearest pose.
+    /// The target is out of reach: its position lies beyond the frame's reach bound (the
+    /// farthest its origin can get from the chain's first joint axis, the sum of the distances
+    /// between consecutive joint axes and from the last axis to the origin, for chains of
+    /// revolute joints), or the arm's closed form has no solution, or, within that bound and
+    /// without a closed form, the nearest pose found is a stationary point
+    /// of the error that the limits do not block (or every attempt ended in a local minimum).
+    /// The returned `q` is that nearest pose.
     Unreachable,
-    /// The error could only decrease further by moving joints beyond their limits.
+    /// The target is within reach but not within the limits: the arm's closed form has
+    /// solutions, none within the limits, or (without a closed form) at the nearest pose found
+    /// the error could only decrease further by moving joints beyond their limits.
     Limits,
     /// The iteration, restart or time budget ran out while the error was still decreasing.
     Budget,
