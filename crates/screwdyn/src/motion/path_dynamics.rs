@@ -95,7 +95,6 @@ impl PathDynamics {
     /// # Errors
     /// [`Error::InvalidArgument`] for a model other than the one this was made for;
     /// [`Error::NonFinite`] when the path gives NaN or ∞ at `s`.
-    #[inline(never)]
     pub fn at(&mut self, model: &Model, path: &dyn Path, s: f64) -> Result<&PathPoint> {
         let p = &mut self.point;
         path.eval(s, &mut p.q, &mut p.dq, &mut p.ddq);

@@ -258,7 +258,6 @@ pub(crate) struct Infeasible {
 /// Controllable sets backward from `K_N = {0}` (rest at the end), then the greedy forward pass
 /// from `x_0 = 0` (rest at the start): `u_i = max { u : (u, x_i) feasible on interval i,
 /// x_i + 2Δ_i u ∈ K_{i+1} }`, `x_{i+1} = x_i + 2Δ_i u_i`.
-#[inline(never)]
 pub(crate) fn parameterize(
     s: &[f64],
     c: &Constraints,

@@ -499,7 +499,6 @@ fn fill_constraints(
 /// Samples the timing every `step` seconds (and at its end) and returns the largest excess
 /// `|value| / limit − 1` over velocity, acceleration and torque (inverse dynamics plus Coulomb
 /// friction), where it occurs, and the number of samples.
-#[inline(never)]
 fn check_limits(
     model: &Model,
     ws: &mut Workspace,
