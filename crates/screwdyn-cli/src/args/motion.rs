@@ -86,12 +86,18 @@ pub struct SimulateArgs {
     /// BODY:mx,my,mz,fx,fy,fz[@world]@T0-T1. Repeatable.
     #[arg(long, allow_hyphen_values = true, value_name = "BODY:W[@world]@T0-T1")]
     pub disturbance: Vec<String>,
-    /// Initial positions (default: all zero).
+    /// Initial positions (default: all zero, or the start of --target-trajectory).
     #[arg(long, allow_hyphen_values = true)]
     pub q0: Option<String>,
-    /// Initial velocities (default: all zero).
+    /// Initial velocities (default: all zero, or the start of --target-trajectory).
     #[arg(long, allow_hyphen_values = true)]
     pub v0: Option<String>,
+    /// With --controller computed-torque: track the motion of this run file (columns t,
+    /// q.<joint>, v.<joint>, a.<joint>; other columns ignored), e.g. one written by
+    /// `torque-profile --output` for a time-optimal, jerk-limited, linear or circular motion,
+    /// instead of a quintic to --target.
+    #[arg(long, value_name = "RUN.CSV")]
+    pub target_trajectory: Option<PathBuf>,
     /// Record every k-th step.
     #[arg(long, default_value_t = 1)]
     pub record_every: usize,

@@ -1,5 +1,6 @@
 //! Small CSV files with one value column per joint and one key column: `--waypoints PATH.CSV`
-//! (`s`, `q.<joint>`) and `--torque-csv PATH.CSV` (`t`, `tau.<joint>`).
+//! (`s`, `q.<joint>`) and `--torque-csv PATH.CSV` (`t`, `tau.<joint>`); and the motion of a
+//! run file (`t`, `q.<joint>`, `v.<joint>`, `a.<joint>`) for `--target-trajectory`.
 
 use crate::CliError;
 use screwdyn::Model;
@@ -99,4 +100,60 @@ pub fn read_joint_rows(m: &Model, path: &Path, c: &Columns) -> Result<JointRows,
         rows.push(row);
     }
     Ok((has_key.then_some(keys), rows))
+}
+
+/// The samples of a motion: times, and `q`, `q̇`, `q̈` per sample.
+pub type MotionRows = (Vec<f64>, Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<Vec<f64>>);
+
+/// The motion in a run file (`torque-profile --output` or `simulate --output`, CSV): the
+/// columns `t`, `q.<joint>`, `v.<joint>` and `a.<joint>` of every joint, each cell a finite
+/// number; other columns (torques, energies, poses) are ignored.
+pub fn read_motion(m: &Model, path: &Path) -> Result<MotionRows, CliError> {
+    let file = path.display().to_string();
+    let err =
+        |e: csv::Error| CliError::input(format!("{file}: {}", e.to_string().replace('\n', " ")));
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .from_path(path)
+        .map_err(|e| match e.kind() {
+            csv::ErrorKind::Io(io) => CliError::input(format!("{file}: cannot be read ({io})")),
+            _ => err(e),
+        })?;
+    let headers = reader.headers().map_err(err)?.clone();
+    let find = |name: &str| {
+        headers.iter().position(|h| h == name).ok_or_else(|| {
+            CliError::input(format!(
+                "{file}: the column '{name}' is missing (a run file has t, q.<joint>, v.<joint> and a.<joint> for every joint)"
+            ))
+        })
+    };
+    let t_col = find("t")?;
+    let mut cols = [vec![], vec![], vec![]];
+    for name in m.joint_names() {
+        for (prefix, c) in ["q.", "v.", "a."].iter().zip(cols.iter_mut()) {
+            c.push(find(&format!("{prefix}{name}"))?);
+        }
+    }
+    let (mut t, mut q, mut v, mut a) = (vec![], vec![], vec![], vec![]);
+    for record in reader.records() {
+        let record = record.map_err(err)?;
+        let line = record.position().map(|p| p.line()).unwrap_or(0);
+        let cell = |k: usize| -> Result<f64, CliError> {
+            let text = record.get(k).unwrap_or("");
+            text.parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| {
+                    CliError::input(format!(
+                        "{file}:{line}: column '{}': '{text}' is not a finite number",
+                        &headers[k]
+                    ))
+                })
+        };
+        t.push(cell(t_col)?);
+        for (c, rows) in cols.iter().zip([&mut q, &mut v, &mut a]) {
+            rows.push(c.iter().map(|&k| cell(k)).collect::<Result<Vec<_>, _>>()?);
+        }
+    }
+    Ok((t, q, v, a))
 }

@@ -1,7 +1,7 @@
 //! `simulate`: a run over time, streamed as CSV/JSON (docs/cli.md) and plotted.
 
 use super::inputs::{load, names, parse_numbers, parse_per_joint, parse_vector, parse_wrench};
-use super::joint_csv::{read_joint_rows, Columns};
+use super::joint_csv::{read_joint_rows, read_motion, Columns};
 use super::run_files::{
     in_flag_words, joint_series, plot_kind, refuse_onto_inputs, run_file_kind, scalar_series,
     RunWriter,
@@ -12,6 +12,7 @@ use crate::plot::{plot_panels, Panel};
 use crate::write::OutputFile;
 use crate::CliError;
 use screwdyn::dynamics::ForwardMethod;
+use screwdyn::motion::SampledTrajectory;
 use screwdyn::sim::{
     self, BackgroundSink, Controller, ControllerSpec, Disturbance, Integrator, JointEffects,
     LimitEvent, Quintic, Recording, Sample, SampleSink, SimOptions,
@@ -163,6 +164,17 @@ fn read_torque_csv(m: &Model, path: &Path) -> Result<ControllerSpec, CliError> {
     }
 }
 
+/// The motion of `--target-trajectory`, read from its run file.
+fn target_trajectory(a: &SimulateArgs, m: &Model) -> Result<Option<SampledTrajectory>, CliError> {
+    let Some(path) = &a.target_trajectory else {
+        return Ok(None);
+    };
+    let (t, q, v, acc) = read_motion(m, path)?;
+    SampledTrajectory::new(t, q, v, acc)
+        .map(Some)
+        .map_err(|e| CliError::input(format!("{}: {e}", path.display())))
+}
+
 /// Parses `BODY:mx,my,mz,fx,fy,fz[@world]@T0-T1`.
 fn parse_disturbance(m: &Model, text: &str) -> Result<Disturbance, CliError> {
     let bad = || {
@@ -217,7 +229,7 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
     }
     refuse_onto_inputs(
         &a.model.model,
-        a.torque_csv.as_deref(),
+        a.torque_csv.as_deref().or(a.target_trajectory.as_deref()),
         a.output.as_deref(),
         a.plot.as_deref(),
     )?;
@@ -228,9 +240,23 @@ pub fn simulate(a: &SimulateArgs) -> Result<(), CliError> {
         m = m.with_joint_friction(&b, &f)?;
     }
     let opts = sim_options(a, &m)?;
-    let q0 = parse_vector(a.q0.as_deref(), "q0", &m)?;
-    let v0 = parse_vector(a.v0.as_deref(), "v0", &m)?;
-    let (name, mut controller) = controller(a, &m, &q0)?;
+    let reference = target_trajectory(a, &m)?;
+    // Without --q0/--v0 a tracked motion starts where the reference does.
+    let (q0, v0) = match &reference {
+        Some(r) => (
+            a.q0.as_ref().map_or(Ok(r.sample_at(0).0.to_vec()), |t| {
+                parse_vector(Some(t), "q0", &m)
+            })?,
+            a.v0.as_ref().map_or(Ok(r.sample_at(0).1.to_vec()), |t| {
+                parse_vector(Some(t), "v0", &m)
+            })?,
+        ),
+        None => (
+            parse_vector(a.q0.as_deref(), "q0", &m)?,
+            parse_vector(a.v0.as_deref(), "v0", &m)?,
+        ),
+    };
+    let (name, mut controller) = controller(a, &m, &q0, reference)?;
     let disturbances = a
         .disturbance
         .iter()
@@ -296,6 +322,7 @@ fn controller(
     a: &SimulateArgs,
     m: &Model,
     q0: &[f64],
+    reference: Option<SampledTrajectory>,
 ) -> Result<(String, Box<dyn Controller>), CliError> {
     let target = match &a.target {
         Some(t) => parse_vector(Some(t), "target", m)?,
@@ -316,6 +343,13 @@ fn controller(
     if c != ControllerArg::Series {
         unused("--torque-csv", a.torque_csv.is_some(), &name)?;
     }
+    if c != ControllerArg::ComputedTorque {
+        unused("--target-trajectory", reference.is_some(), &name)?;
+    } else if reference.is_some() && a.target.is_some() {
+        return Err(CliError::input(
+            "--target and --target-trajectory are alternatives: computed torque tracks either a quintic to --target or the motion of --target-trajectory",
+        ));
+    }
     let gains = |text: &Option<String>, flag: &str| {
         text.as_deref()
             .map(|t| parse_per_joint(t, flag, m))
@@ -335,13 +369,16 @@ fn controller(
             kd: gains(&a.kd, "kd")?,
         },
         ControllerArg::ComputedTorque => {
-            let reference = Quintic::rest_to_rest(q0, &target, a.duration).map_err(|e| {
-                in_flag_words(e).with_suffix(
-                    " (--controller computed-torque tracks a quintic from --q0 to --target over --duration)",
-                )
-            })?;
+            let reference: Box<dyn sim::Trajectory + Send> = match reference {
+                Some(r) => Box::new(r),
+                None => Box::new(Quintic::rest_to_rest(q0, &target, a.duration).map_err(|e| {
+                    in_flag_words(e).with_suffix(
+                        " (--controller computed-torque tracks a quintic from --q0 to --target over --duration)",
+                    )
+                })?),
+            };
             ControllerSpec::ComputedTorque {
-                reference: Box::new(reference),
+                reference,
                 kp: gains(&a.kp, "kp")?,
                 kd: gains(&a.kd, "kd")?,
             }

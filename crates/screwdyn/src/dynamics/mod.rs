@@ -57,7 +57,6 @@ pub use regressor::{
     armature_torque, body_parameters, inertia_from_parameters, model_parameters, regressor,
     PARAMETERS_PER_BODY, PARAMETER_NAMES,
 };
-pub(crate) use rnea::rnea_passes;
 pub use rnea::{base_acceleration, gravity_torque, inverse_dynamics, nonlinear_effects, rnea};
 pub use trace::{rnea_trace, BackwardStep, ForwardStep, RneaTrace};
 pub use wrenches::{link_wrench_on_body, ExternalWrenches};

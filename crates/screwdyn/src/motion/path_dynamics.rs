@@ -3,11 +3,11 @@
 //! `τ = a(s) s̈ + b(s) ṡ² + c(s)`, linear in `(s̈, ṡ²)`.
 
 use super::spline::Path;
-use crate::dynamics::{base_acceleration, rnea_passes};
+use crate::dynamics::base_acceleration;
 use crate::error::{Error, Result};
 use crate::kinematics::forward_kinematics;
 use crate::model::Model;
-use crate::spatial::Twist;
+use crate::spatial::{ad_transpose, Twist, Wrench};
 use crate::workspace::Workspace;
 
 /// The path and its dynamics at one `s`: `q`, `q'`, `q''` and the coefficients `a`, `b`, `c`
@@ -30,7 +30,8 @@ pub struct PathPoint {
 }
 
 /// Evaluates [`PathPoint`]s of one model along paths, allocating nothing per call: one forward
-/// kinematics and three passes of the recursive Newton–Euler algorithm per point,
+/// kinematics and three passes of the recursive Newton–Euler algorithm per point, run side by
+/// side,
 ///
 /// ```text
 /// c = RNEA_g(q, 0, 0) + f ∘ sign(q'),   a = RNEA_0(q, 0, q'),   b = RNEA_0(q, q', q''),
@@ -53,6 +54,7 @@ pub struct PathPoint {
 #[derive(Clone, Debug)]
 pub struct PathDynamics {
     ws: Workspace,
+    extra: ExtraPasses,
     point: PathPoint,
 }
 
@@ -71,6 +73,12 @@ impl PathDynamics {
         let z = vec![0.0; nq];
         Ok(PathDynamics {
             ws: Workspace::new(model),
+            extra: ExtraPasses {
+                accel_a: vec![Twist::zeros(); model.nbodies()],
+                accel_c: vec![Twist::zeros(); model.nbodies()],
+                wrench_a: vec![Wrench::zeros(); model.nbodies()],
+                wrench_c: vec![Wrench::zeros(); model.nbodies()],
+            },
             point: PathPoint {
                 q: z.clone(),
                 dq: z.clone(),
@@ -92,19 +100,8 @@ impl PathDynamics {
         path.eval(s, &mut p.q, &mut p.dq, &mut p.ddq);
         model.check_vector(&p.dq, "q'")?;
         model.check_vector(&p.ddq, "q''")?;
-        // One forward kinematics for the three passes below (it checks q).
         forward_kinematics(model, &mut self.ws, &p.q)?;
-        let ws = &mut self.ws;
-        // c = g(q): the base accelerating at −g, q̇ = q̈ = 0.
-        rnea_passes(model, ws, None, |_| 0.0, &base_acceleration(model), None);
-        p.c.copy_from_slice(ws.tau.as_slice());
-        // a = M(q) q': no gravity, q̇ = 0, q̈ = q'.
-        let still = Twist::zeros();
-        rnea_passes(model, ws, None, |i| p.dq[i], &still, None);
-        p.a.copy_from_slice(ws.tau.as_slice());
-        // b = M(q) q'' + C(q, q') q': no gravity, q̇ = q', q̈ = q''.
-        rnea_passes(model, ws, Some(&p.dq), |i| p.ddq[i], &still, None);
-        p.b.copy_from_slice(ws.tau.as_slice());
+        three_passes(model, &mut self.ws, &mut self.extra, p);
         // c += f ∘ sign(q'): Coulomb friction moving forward along the path.
         for ((c, j), dq) in p.c.iter_mut().zip(model.joints()).zip(&p.dq) {
             if *dq != 0.0 {
@@ -112,6 +109,81 @@ impl PathDynamics {
             }
         }
         Ok(&self.point)
+    }
+}
+
+/// The accelerations and wrenches of the passes for `a` and `c`, per body (those for `b` are
+/// the workspace's).
+#[derive(Clone, Debug)]
+struct ExtraPasses {
+    accel_a: Vec<Twist>,
+    accel_c: Vec<Twist>,
+    wrench_a: Vec<Wrench>,
+    wrench_c: Vec<Wrench>,
+}
+
+/// The three passes of the recursive Newton–Euler algorithm (Lynch & Park, *Modern Robotics*)
+/// side by side on the poses of one forward kinematics, the velocity terms only in the one
+/// that has a velocity:
+///
+/// ```text
+/// V_i   = Ad V_λ + S_i q'_i                                  (b only)
+/// V̇b_i = Ad V̇b_λ − ad_{S_i q'_i}(Ad V_λ) + S_i q''_i,   W_b = 𝔍 V̇b − ad_Vᵀ 𝔍 V
+/// V̇a_i = Ad V̇a_λ + S_i q'_i,                             W_a = 𝔍 V̇a
+/// V̇c_i = Ad V̇c_λ  (V̇c_base = (0, −g)),                   W_c = 𝔍 V̇c
+/// W_λ += Ad_{H_λ^i}ᵀ W_i,   τ_i = S_iᵀ W_i + I_a,i q̈_i   (q̈ = q'' for b, q' for a, 0 for c)
+/// ```
+fn three_passes(model: &Model, ws: &mut Workspace, x: &mut ExtraPasses, p: &mut PathPoint) {
+    let n = model.nbodies();
+    let (motions, parents, bodies) = (model.motions(), model.parents(), model.bodies());
+    let base_c = base_acceleration(model);
+    for i in 0..n {
+        let h = &ws.pose_in_parent[i];
+        let m = &motions[i];
+        let (mut v, mut vd_b, mut vd_a, vd_c) = match parents[i] {
+            Some(l) => (
+                h.inv_act_twist(&ws.twist[l]),
+                h.inv_act_twist(&ws.twist_dot[l]),
+                h.inv_act_twist(&x.accel_a[l]),
+                h.inv_act_twist(&x.accel_c[l]),
+            ),
+            None => (
+                Twist::zeros(),
+                Twist::zeros(),
+                Twist::zeros(),
+                h.inv_act_twist(&base_c),
+            ),
+        };
+        vd_b -= m.ad_scaled(p.dq[i], &v);
+        m.add_scaled(&mut v, p.dq[i]);
+        m.add_scaled(&mut vd_b, p.ddq[i]);
+        m.add_scaled(&mut vd_a, p.dq[i]);
+        let inertia = &bodies[i].inertia;
+        ws.wrench[i] = inertia.apply(&vd_b) - ad_transpose(&v, &inertia.apply(&v));
+        x.wrench_a[i] = inertia.apply(&vd_a);
+        x.wrench_c[i] = inertia.apply(&vd_c);
+        ws.twist[i] = v;
+        ws.twist_dot[i] = vd_b;
+        x.accel_a[i] = vd_a;
+        x.accel_c[i] = vd_c;
+    }
+    let joints = model.joints();
+    for i in (0..n).rev() {
+        let (m, armature) = (&motions[i], joints[i].armature);
+        p.b[i] = m.dot(&ws.wrench[i]) + armature * p.ddq[i];
+        p.a[i] = m.dot(&x.wrench_a[i]) + armature * p.dq[i];
+        p.c[i] = m.dot(&x.wrench_c[i]);
+        if let Some(l) = parents[i] {
+            let h = &ws.pose_in_parent[i];
+            let back = [
+                h.inv_act_transpose_wrench(&ws.wrench[i]),
+                h.inv_act_transpose_wrench(&x.wrench_a[i]),
+                h.inv_act_transpose_wrench(&x.wrench_c[i]),
+            ];
+            ws.wrench[l] += back[0];
+            x.wrench_a[l] += back[1];
+            x.wrench_c[l] += back[2];
+        }
     }
 }
 
@@ -141,9 +213,14 @@ mod tests {
         let ddq = nalgebra::DVector::from_column_slice(&p.ddq);
         let a = &mm * &dq;
         let b = &mm * &ddq + &cc * &dq;
+        let g = crate::dynamics::gravity_torque(&m, &mut ws, &p.q)
+            .unwrap()
+            .clone();
         for j in 0..6 {
             assert!((p.a[j] - a[j]).abs() < 1e-10, "a[{j}]");
             assert!((p.b[j] - b[j]).abs() < 1e-10, "b[{j}]");
+            let friction = m.joints()[j].friction * p.dq[j].signum();
+            assert!((p.c[j] - g[j] - friction).abs() < 1e-10, "c[{j}]");
         }
         assert!(PathDynamics::new(&m, 2).is_err());
     }

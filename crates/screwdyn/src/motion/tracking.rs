@@ -110,6 +110,14 @@ impl SampledTrajectory {
     pub fn times(&self) -> &[f64] {
         &self.t
     }
+
+    /// Sample `k`'s `(q, q̇, q̈)`.
+    ///
+    /// # Panics
+    /// When `k` is not below the number of samples.
+    pub fn sample_at(&self, k: usize) -> (&[f64], &[f64], &[f64]) {
+        (&self.q[k], &self.v[k], &self.a[k])
+    }
 }
 
 impl Trajectory for SampledTrajectory {
