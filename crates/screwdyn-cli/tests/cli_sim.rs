@@ -773,3 +773,33 @@ fn the_summary_of_a_run_recorded_every_step_is_its_last_sample() {
     let cell = |k: usize| last[k].parse::<f64>().unwrap();
     assert_eq!((cell(0), cell(1), cell(2)), (1.0, q, vec(&v["v"])[0]));
 }
+
+#[test]
+fn info_shows_joint_springs_and_urdf_export_warns_about_them() {
+    // An MJCF spring in degrees: info gives springref in radians; MJCF export keeps it.
+    let model = tmp("spring.xml");
+    std::fs::write(
+        &model,
+        r#"<mujoco><worldbody><body name="b"><geom size="0.1"/>
+  <joint name="j" stiffness="3" springref="90"/></body></worldbody></mujoco>"#,
+    )
+    .unwrap();
+    let m = s_(&model);
+    let v = json(&["info", m]);
+    assert_eq!(v["joints"][0]["stiffness"], 3.0);
+    let springref = v["joints"][0]["springref"].as_f64().unwrap();
+    assert!((springref - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+    let table = ok(&["info", m, "--format", "table"]);
+    assert!(
+        table.contains("stiffness") && table.contains("springref"),
+        "{table}"
+    );
+    assert!(ok(&["export", m, "--to", "mjcf"]).contains("stiffness=\"3\""));
+    let o = bin().args(["export", m, "--to", "urdf"]).output().unwrap();
+    assert!(o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("warning: joint 'j' has a spring (stiffness 3"),
+        "{err}"
+    );
+}

@@ -89,7 +89,11 @@ def test_ur5e_from_menagerie():
 
 
 def test_robotiq_2f85_from_menagerie():
-    compare(GRIPPER)
+    m, mj = compare(GRIPPER)
+    # Its follower joints carry springs (stiffness, springref from a default class).
+    assert np.count_nonzero(mj.jnt_stiffness) == 2
+    np.testing.assert_array_equal(m.stiffness, mj.jnt_stiffness)
+    np.testing.assert_array_equal(m.springref, mj.qpos_spring)
 
 
 def test_ur5e_mesh_inertia(tmp_path):

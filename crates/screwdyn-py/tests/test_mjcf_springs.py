@@ -97,3 +97,11 @@ def test_a_passive_rk4_run_follows_mj_step(tmp_path):
     free = m.simulate(q0, v0, duration=steps * dt, dt=dt, integrator="rk4",
                       effects=dict(ONLY_PASSIVE, springs=False), record_every=50)
     assert np.max(np.abs(free.q[-1] - data.qpos)) > 1e-2
+
+
+def test_the_exported_mjcf_gives_mujoco_the_same_springs(tmp_path):
+    m, mj = load(tmp_path)
+    back = mujoco.MjModel.from_xml_string(m.to_mjcf())
+    np.testing.assert_allclose(back.jnt_stiffness, mj.jnt_stiffness, rtol=0, atol=0)
+    np.testing.assert_allclose(back.qpos_spring, mj.qpos_spring, rtol=1e-15, atol=1e-15)
+    np.testing.assert_allclose(back.dof_damping, mj.dof_damping, rtol=0, atol=0)

@@ -6,11 +6,11 @@
 //! parry3d by the author of the Avian physics engine, MIT/Apache-2.0). It was chosen over
 //! `parry3d` (a whole collision library for one function), `chull` (unmaintained since 2022,
 //! on an old `num-bigint`) and `qhull` (bindings that compile qhull's C sources) because it is
-//! small, pure Rust, maintained, and its dependencies (`glam`, `hashbrown`, `foldhash`,
-//! `approx`) are mostly in the build already. It works in single precision, the precision of
-//! the vertices in the mesh file (and in MuJoCo): the hull's vertices are input points,
-//! unchanged, and the mass properties are then integrated in double precision over its
-//! triangles.
+//! small, pure Rust, maintained, and most of its dependencies (`glam`, `hashbrown`,
+//! `foldhash`, `approx`) were in the workspace's lock file already. It works in single
+//! precision, the precision of the vertices in the mesh file (and in MuJoCo): the hull's
+//! vertices are input points, unchanged, and the mass properties are then integrated in
+//! double precision over its triangles.
 
 use glam::Vec3A;
 use nalgebra::Vector3;
