@@ -217,3 +217,62 @@ fn refining_reuses_the_coarse_grid_exactly() {
         assert_eq!(fixed.duration(), duration, "grid {grid}");
     }
 }
+
+#[test]
+fn coulomb_friction_shifts_the_bang_bang_and_the_profile_shows_it() {
+    // With Coulomb friction f against the motion the motor accelerates at (τmax − f) / I and
+    // brakes at (τmax + f) / I (friction helps): v² = 2 a₁ d₁ = 2 a₂ d₂, d₁ + d₂ = d,
+    // T = v / a₁ + v / a₂.
+    let (d, inertia, limit, f) = (1.2, 0.5, 3.0, 0.8);
+    let tau = limit * (1.0 - 1e-4);
+    let m = free_pendulum().with_joint_friction(&[0.0], &[f]).unwrap();
+    let inf = f64::INFINITY;
+    let timed = time_optimal(&m, line(d), &limits(inf, inf, limit), &Default::default()).unwrap();
+    let (a1, a2) = ((tau - f) / inertia, (tau + f) / inertia);
+    let d1 = d * a2 / (a1 + a2);
+    let v = (2.0 * a1 * d1).sqrt();
+    let expected = v / a1 + v / a2;
+    // The switch at s = a₂ / (a₁ + a₂) is not a grid point: the grid's timing is slower, to
+    // first order in the interval.
+    assert!(
+        timed.duration() >= expected && timed.duration() < expected * (1.0 + 1e-4),
+        "{} vs {expected}",
+        timed.duration()
+    );
+    // The profile's τ is what the motor gives, friction included: +τmax accelerating, −τmax
+    // braking, never over the limit (inverse dynamics alone would show τmax − f and τmax + f).
+    let p = torque_profile(&m, &timed, 1e-3).unwrap();
+    assert!(p.violations.is_empty(), "{:?}", p.violations.first());
+    let switch = v / a1;
+    for k in 0..p.samples.len() {
+        let (t, tau_k) = (p.samples.t[k], p.samples.tau[k][0]);
+        if (t - switch).abs() > 2e-3 && t > 0.0 && t < expected - 1e-9 {
+            assert!((tau_k.abs() - tau).abs() < 1e-6, "t = {t}: τ = {tau_k}");
+            assert_eq!(tau_k > 0.0, t < switch);
+        }
+    }
+}
+
+#[test]
+fn a_joint_spring_is_part_of_the_timing() {
+    // A spring k (q − 0) on the free pendulum needs k q to hold the joint: with k = 10 and
+    // τmax = 3 the line from 0 to 1.2 rad is infeasible from q = 0.3, i.e. s = 0.25.
+    let m = free_pendulum().with_springs(&[10.0], &[0.0]).unwrap();
+    let inf = f64::INFINITY;
+    let err = time_optimal(&m, line(1.2), &limits(inf, inf, 3.0), &Default::default())
+        .unwrap_err()
+        .to_string();
+    let s: f64 = err
+        .split("s = ")
+        .nth(1)
+        .and_then(|r| r.split(|c: char| c != '.' && !c.is_ascii_digit()).next())
+        .and_then(|x| x.parse().ok())
+        .unwrap_or_else(|| panic!("no s in: {err}"));
+    assert!((s - 0.25).abs() < 0.01, "{err}");
+    // Within reach of the spring (0 → 0.25 rad, k q ≤ 2.5 N·m) the profile's torques — spring
+    // included — stay within the limit, and reach it while accelerating.
+    let timed = time_optimal(&m, line(0.25), &limits(inf, inf, 3.0), &Default::default()).unwrap();
+    let p = torque_profile(&m, &timed, 1e-3).unwrap();
+    assert!(p.violations.is_empty(), "{:?}", p.violations.first());
+    assert!((p.peak[0] - 3.0).abs() < 1e-2, "peak {}", p.peak[0]);
+}

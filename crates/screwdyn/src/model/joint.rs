@@ -113,3 +113,23 @@ impl<T: Real> Joint<T> {
         self.home.compose(&Se3::exp_screw(&self.screw, q))
     }
 }
+
+impl Joint<f64> {
+    /// The torque the joint's spring and Coulomb friction take from its motor at position `q`
+    /// moving with speed `qd`: `k (q − q_spring) + f sign(q̇)`, with `sign(0) = 0` (no friction
+    /// at rest). Torque profiles, the time-optimal timing and its check add it to inverse
+    /// dynamics; viscous damping `d q̇` is left to simulation (it is linear in the path speed
+    /// `ṡ`, the timing's constraints are linear in `ṡ²`).
+    ///
+    /// ```
+    /// let m = screwdyn::builtin::pendulum().with_joint_friction(&[0.0], &[0.5]).unwrap();
+    /// let m = m.with_springs(&[2.0], &[0.1]).unwrap();
+    /// let j = &m.joints()[0];
+    /// assert_eq!(j.spring_and_friction_torque(0.6, -3.0), 2.0 * 0.5 - 0.5);
+    /// assert_eq!(j.spring_and_friction_torque(0.1, 0.0), 0.0);
+    /// ```
+    pub fn spring_and_friction_torque(&self, q: f64, qd: f64) -> f64 {
+        let sign = if qd == 0.0 { 0.0 } else { qd.signum() };
+        self.stiffness * (q - self.springref) + self.friction * sign
+    }
+}

@@ -24,8 +24,8 @@ pub struct PathPoint {
     pub a: Vec<f64>,
     /// `b(s) = M(q) q'' + C(q, q') q'`.
     pub b: Vec<f64>,
-    /// `c(s) = g(q) + f ∘ sign(q')`: gravity plus the model's Coulomb friction (moving
-    /// forward along the path, `ṡ > 0`).
+    /// `c(s) = g(q) + k ∘ (q − q_spring) + f ∘ sign(q')`: gravity plus the model's joint
+    /// springs and Coulomb friction (moving forward along the path, `ṡ > 0`).
     pub c: Vec<f64>,
 }
 
@@ -102,11 +102,14 @@ impl PathDynamics {
         model.check_vector(&p.ddq, "q''")?;
         forward_kinematics(model, &mut self.ws, &p.q)?;
         three_passes(model, &mut self.ws, &mut self.extra, p);
-        // c += f ∘ sign(q'): Coulomb friction moving forward along the path.
-        for ((c, j), dq) in p.c.iter_mut().zip(model.joints()).zip(&p.dq) {
-            if *dq != 0.0 {
-                *c += j.friction * dq.signum();
-            }
+        // c += k ∘ (q − q_spring) + f ∘ sign(q'): springs, and Coulomb friction moving forward
+        // along the path (ṡ > 0, so sign(q̇) = sign(q')).
+        for ((c, j), (q, dq)) in
+            p.c.iter_mut()
+                .zip(model.joints())
+                .zip(p.q.iter().zip(&p.dq))
+        {
+            *c += j.spring_and_friction_torque(*q, *dq);
         }
         Ok(&self.point)
     }

@@ -253,7 +253,7 @@ impl<P: Path> Trajectory for TimeOptimal<P> {
 /// `x_{i+1} ∈ K_{i+1}`. The grid is doubled until the duration changes by less than
 /// `duration_tolerance`. The limits used are `(1 − limit_margin)` of those given; the result is
 /// then sampled every `check_step` seconds and its velocities, accelerations and torques
-/// (inverse dynamics plus Coulomb friction) compared with the limits given; while one exceeds
+/// (inverse dynamics plus springs and Coulomb friction) compared with the limits given; while one exceeds
 /// its limit the grid is doubled again.
 ///
 /// # Errors
@@ -497,8 +497,8 @@ fn fill_constraints(
 }
 
 /// Samples the timing every `step` seconds (and at its end) and returns the largest excess
-/// `|value| / limit − 1` over velocity, acceleration and torque (inverse dynamics plus Coulomb
-/// friction), where it occurs, and the number of samples.
+/// `|value| / limit − 1` over velocity, acceleration and torque (inverse dynamics plus springs
+/// and Coulomb friction), where it occurs, and the number of samples.
 fn check_limits(
     model: &Model,
     ws: &mut Workspace,
@@ -519,11 +519,7 @@ fn check_limits(
             return (f64::INFINITY, (LimitKind::Torque, 0, t), k + 1);
         };
         for (j, joint) in model.joints().iter().enumerate() {
-            let friction = if qd[j] != 0.0 {
-                joint.friction * qd[j].signum()
-            } else {
-                0.0
-            };
+            let friction = joint.spring_and_friction_torque(q[j], qd[j]);
             for (kind, value, limit) in [
                 (LimitKind::Velocity, qd[j], limits.velocity[j]),
                 (LimitKind::Acceleration, qdd[j], limits.acceleration[j]),

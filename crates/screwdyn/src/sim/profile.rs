@@ -69,7 +69,9 @@ impl TorqueProfile {
 pub const MAX_PROFILE_SAMPLES: usize = 10_000_000;
 
 /// Inverse dynamics (RNEA with gravity, Lynch & Park, *Modern Robotics*) at every `dt` along `trajectory`, end
-/// included, with peak, RMS and effort-limit statistics per joint — at most
+/// included, plus the torque the joints' springs and Coulomb friction take
+/// ([`Joint::spring_and_friction_torque`](crate::model::Joint::spring_and_friction_torque)), with peak, RMS and
+/// effort-limit statistics per joint — at most
 /// [`MAX_PROFILE_SAMPLES`] samples.
 ///
 /// # Errors
@@ -218,8 +220,11 @@ pub fn torque_profile_into(
     for k in 0..=steps {
         let t = (k as f64 * dt).min(trajectory.duration());
         trajectory.sample(t, &mut q, &mut v, &mut a)?;
-        // τ = M(q) q̈ + C(q, q̇) q̇ + g(q) by RNEA.
+        // τ = M(q) q̈ + C(q, q̇) q̇ + g(q) by RNEA, plus k (q − q_spring) + f sign(q̇).
         tau.copy_from_slice(inverse_dynamics(model, &mut ws, &q, &v, &a, None)?.as_slice());
+        for ((t, j), (qi, vi)) in tau.iter_mut().zip(model.joints()).zip(q.iter().zip(&v)) {
+            *t += j.spring_and_friction_torque(*qi, *vi);
+        }
         for i in 0..n {
             let mag = tau[i].abs();
             if mag > peak[i] {
