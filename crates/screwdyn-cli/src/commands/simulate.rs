@@ -403,7 +403,9 @@ fn run_streamed(
         None => None,
     };
     let mut sinks = RunSinks {
-        file: file.map(|out| BackgroundSink::new(RunWriter::new(kind, out))),
+        file: file
+            .map(|out| BackgroundSink::new(RunWriter::new(kind, out)))
+            .transpose()?,
         plot: a.plot.as_ref().map(|_| Decimated {
             rec: Recording::default(),
             stride: 1,
