@@ -88,7 +88,6 @@ fn main() {
         let csv = flag("--csv").map(|path| {
             let file = std::fs::File::create(path).expect("create the CSV file");
             BackgroundSink::new(CsvSampleWriter::new(std::io::BufWriter::new(file)))
-                .expect("start the CSV writer thread")
         });
         let mut sink = Csv {
             csv,

@@ -32,7 +32,7 @@ fn a_csv_file_written_in_the_background_is_the_same_file() {
         &mut |_| {},
     )
     .unwrap();
-    let mut background = BackgroundSink::new(CsvSampleWriter::new(Vec::new())).unwrap();
+    let mut background = BackgroundSink::new(CsvSampleWriter::new(Vec::new()));
     let run = simulate_into(
         &m,
         &q0,
@@ -91,7 +91,7 @@ fn limit_events_arrive_among_the_samples_in_order() {
         &mut |_| {},
     )
     .unwrap();
-    let mut sink = BackgroundSink::new(Recording::default()).unwrap();
+    let mut sink = BackgroundSink::new(Recording::default());
     simulate_into(
         &m,
         &[0.02],
@@ -142,8 +142,7 @@ fn the_inner_sinks_error_stops_the_run() {
     let mut sink = BackgroundSink::new(FailingSink {
         seen: seen.clone(),
         fail_at: 100,
-    })
-    .unwrap();
+    });
     // 100 000 samples would be sent; the run stops within a few batches of the 100th.
     let opts = SimOptions {
         duration: 100.0,
@@ -169,7 +168,7 @@ fn the_inner_sinks_error_stops_the_run() {
 
 #[test]
 fn a_sample_of_the_wrong_size_is_refused() {
-    let mut sink = BackgroundSink::new(Recording::default()).unwrap();
+    let mut sink = BackgroundSink::new(Recording::default());
     sink.begin(&["j1".into()], &[]).unwrap();
     let e = sink
         .push(&Sample {

@@ -403,9 +403,7 @@ fn run_streamed(
         None => None,
     };
     let mut sinks = RunSinks {
-        file: file
-            .map(|out| BackgroundSink::new(RunWriter::new(kind, out)))
-            .transpose()?,
+        file: file.map(|out| BackgroundSink::new(RunWriter::new(kind, out))),
         plot: a.plot.as_ref().map(|_| Decimated {
             rec: Recording::default(),
             stride: 1,

@@ -42,7 +42,7 @@ enum Message {
 /// use screwdyn::sim::{simulate_into, BackgroundSink, CsvSampleWriter, SimOptions, ZeroTorque};
 /// let m = screwdyn::builtin::pendulum();
 /// let opts = SimOptions { duration: 0.25, dt: 0.1, ..Default::default() };
-/// let mut sink = BackgroundSink::new(CsvSampleWriter::new(Vec::new())).unwrap();
+/// let mut sink = BackgroundSink::new(CsvSampleWriter::new(Vec::new()));
 /// simulate_into(&m, &[0.1], &[0.0], &mut ZeroTorque, &[], &opts, &mut sink, &mut |_| {}).unwrap();
 /// let text = String::from_utf8(sink.finish().unwrap().into_inner()).unwrap();
 /// assert_eq!(text.lines().count(), 5); // the header and samples at 0, 0.1, 0.2, 0.25 s
@@ -60,33 +60,21 @@ pub struct BackgroundSink<S> {
 
 impl<S: SampleSink + Send + 'static> BackgroundSink<S> {
     /// Starts the worker thread that will feed `inner`.
-    ///
-    /// # Errors
-    /// [`Error::Io`] when the system cannot start a thread.
-    pub fn new(inner: S) -> Result<Self> {
+    pub fn new(inner: S) -> Self {
         let (to_worker, from_main) = sync_channel::<Message>(BATCHES_IN_FLIGHT);
         let (to_main, spare) = channel::<Batch>();
-        let worker = std::thread::Builder::new()
-            .name("screwdyn-samples".into())
-            .spawn(move || {
-                let mut inner = inner;
-                let result = feed(&mut inner, &from_main, &to_main);
-                (inner, result)
-            })
-            .map_err(|e| {
-                Error::io(
-                    None,
-                    e.kind(),
-                    format!("cannot start the thread writing the samples ({e})"),
-                )
-            })?;
-        Ok(BackgroundSink {
+        let worker = std::thread::spawn(move || {
+            let mut inner = inner;
+            let result = feed(&mut inner, &from_main, &to_main);
+            (inner, result)
+        });
+        BackgroundSink {
             to_worker: Some(to_worker),
             spare,
             batch: Batch::default(),
             shape: (0, 0),
             worker: Some(worker),
-        })
+        }
     }
 
     /// Waits until the worker has passed every sample and event to `inner`, and returns it.
