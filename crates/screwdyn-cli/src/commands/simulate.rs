@@ -13,8 +13,8 @@ use crate::write::OutputFile;
 use crate::CliError;
 use screwdyn::dynamics::ForwardMethod;
 use screwdyn::sim::{
-    self, BackgroundSink, Controller, ControllerSpec, Disturbance, Integrator, JointEffects,
-    LimitEvent, Quintic, Recording, Sample, SampleSink, SimOptions,
+    self, Controller, ControllerSpec, Disturbance, Integrator, JointEffects, LimitEvent, Quintic,
+    Recording, Sample, SampleSink, SimOptions,
 };
 use screwdyn::Model;
 use std::io::IsTerminal;
@@ -23,8 +23,7 @@ use std::path::Path;
 /// Where a run's samples go as they are recorded: a CSV or JSON file (or stdout), a bounded
 /// copy for the plot, and the first and last samples for the summary.
 struct RunSinks {
-    /// Formatted and written on a second thread, overlapping the integration.
-    file: Option<BackgroundSink<RunWriter>>,
+    file: Option<RunWriter>,
     plot: Option<Decimated>,
     first: Option<Recording>,
     last: Recording,
@@ -70,7 +69,7 @@ impl SampleSink for RunSinks {
     fn begin(&mut self, joints: &[String], frames: &[String]) -> screwdyn::Result<()> {
         self.joints = joints.to_vec();
         if let Some(w) = &mut self.file {
-            w.begin(joints, frames)?;
+            w.sink().begin(joints, frames)?;
         }
         if let Some(p) = &mut self.plot {
             p.rec.begin(joints, frames)?;
@@ -79,7 +78,7 @@ impl SampleSink for RunSinks {
     }
     fn push(&mut self, s: &Sample) -> screwdyn::Result<()> {
         if let Some(w) = &mut self.file {
-            w.push(s)?;
+            w.sink().push(s)?;
         }
         if let Some(p) = &mut self.plot {
             p.push(s)?;
@@ -94,7 +93,7 @@ impl SampleSink for RunSinks {
     }
     fn event(&mut self, e: &LimitEvent) -> screwdyn::Result<()> {
         if let Some(w) = &mut self.file {
-            w.event(e)?;
+            w.sink().event(e)?;
         }
         if self.events.len() < MAX_EVENT_LINES {
             self.events.push(e.clone());
@@ -395,7 +394,7 @@ fn run_streamed(
     // device or FIFO is written directly).
     let target = a.output.as_deref().map(OutputFile::create).transpose()?;
     let direct = target.as_ref().is_some_and(OutputFile::is_direct);
-    let file: Option<Box<dyn std::io::Write + Send>> = match &target {
+    let file: Option<Box<dyn std::io::Write>> = match &target {
         Some(f) => Some(Box::new(f.writer()?)),
         None if format != Format::Table => {
             Some(Box::new(std::io::BufWriter::new(std::io::stdout())))
@@ -403,7 +402,7 @@ fn run_streamed(
         None => None,
     };
     let mut sinks = RunSinks {
-        file: file.map(|out| BackgroundSink::new(RunWriter::new(kind, out))),
+        file: file.map(|out| RunWriter::new(kind, out)),
         plot: a.plot.as_ref().map(|_| Decimated {
             rec: Recording::default(),
             stride: 1,
@@ -434,7 +433,6 @@ fn run_streamed(
     // away (`| head`) ends the command quietly.
     let written = sinks.file.take().map(|w| {
         w.finish()
-            .and_then(RunWriter::finish)
             .and_then(|()| target.map_or(Ok(()), OutputFile::commit))
     });
     let unwritten = |why: &str, p: &Path| {
