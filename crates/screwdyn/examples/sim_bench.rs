@@ -1,7 +1,6 @@
 //! Times a passive simulation: 10 s at 1 kHz with RK4 and ABA, no joint effects, recording
 //! only the end state (or, with `--record-every K --csv PATH`, every K-th step streamed to a CSV
-//! file as `screwdyn simulate --output` does: formatted and written on a second thread by
-//! `BackgroundSink`); prints JSON
+//! file as `screwdyn simulate --output` does); prints JSON
 //! `{"model", "steps", "seconds": [..], "median_s", "final_q"}`. Optionally writes the model as
 //! URDF (for the MuJoCo side of `bench/sim_vs_mujoco.sh`).
 //!
@@ -11,33 +10,26 @@
 //! ```
 
 use screwdyn::sim::{
-    simulate_into, BackgroundSink, CsvSampleWriter, Integrator, JointEffects, Sample, SampleSink,
-    SimOptions, ZeroTorque,
+    simulate_into, CsvSampleWriter, Integrator, JointEffects, Sample, SampleSink, SimOptions,
+    ZeroTorque,
 };
 use std::io::Write;
 use std::time::Instant;
 
-/// Streams the samples to a CSV file (formatted and written on a second thread), if one was
-/// given, and keeps the last `q`.
-struct Csv<W: Write + Send + 'static> {
-    csv: Option<BackgroundSink<CsvSampleWriter<W>>>,
+/// Streams the samples to a CSV writer and keeps the last `q`.
+struct Csv<W: Write> {
+    csv: CsvSampleWriter<W>,
     last_q: Vec<f64>,
 }
 
-impl<W: Write + Send + 'static> SampleSink for Csv<W> {
+impl<W: Write> SampleSink for Csv<W> {
     fn begin(&mut self, joints: &[String], frames: &[String]) -> screwdyn::Result<()> {
-        match &mut self.csv {
-            Some(c) => c.begin(joints, frames),
-            None => Ok(()),
-        }
+        self.csv.begin(joints, frames)
     }
     fn push(&mut self, sample: &Sample) -> screwdyn::Result<()> {
         self.last_q.clear();
         self.last_q.extend_from_slice(sample.q);
-        match &mut self.csv {
-            Some(c) => c.push(sample),
-            None => Ok(()),
-        }
+        self.csv.push(sample)
     }
 }
 
@@ -85,12 +77,14 @@ fn main() {
     let mut seconds = Vec::new();
     let mut final_q = Vec::new();
     for _ in 0..repeat {
-        let csv = flag("--csv").map(|path| {
-            let file = std::fs::File::create(path).expect("create the CSV file");
-            BackgroundSink::new(CsvSampleWriter::new(std::io::BufWriter::new(file)))
-        });
+        let out: Box<dyn Write> = match flag("--csv") {
+            Some(path) => Box::new(std::io::BufWriter::new(
+                std::fs::File::create(path).expect("create the CSV file"),
+            )),
+            None => Box::new(std::io::sink()),
+        };
         let mut sink = Csv {
-            csv,
+            csv: CsvSampleWriter::new(out),
             last_q: Vec::new(),
         };
         let start = Instant::now();
@@ -105,11 +99,7 @@ fn main() {
             &mut |_| {},
         )
         .expect("simulate");
-        if let Some(c) = sink.csv {
-            c.finish()
-                .and_then(|mut c| c.flush())
-                .expect("write the CSV file");
-        }
+        sink.csv.flush().expect("flush the CSV file");
         seconds.push(start.elapsed().as_secs_f64());
         final_q = sink.last_q;
     }

@@ -43,24 +43,12 @@ pub(super) fn plot_kind(path: &Path) -> Result<(), CliError> {
 
 /// A streaming writer of a run.
 pub(super) enum RunWriter {
-    Csv(sim::CsvSampleWriter<Box<dyn std::io::Write + Send>>),
-    Json(sim::JsonSampleWriter<Box<dyn std::io::Write + Send>>),
-}
-
-impl SampleSink for RunWriter {
-    fn begin(&mut self, joints: &[String], frames: &[String]) -> screwdyn::Result<()> {
-        self.sink().begin(joints, frames)
-    }
-    fn push(&mut self, sample: &sim::Sample) -> screwdyn::Result<()> {
-        self.sink().push(sample)
-    }
-    fn event(&mut self, event: &sim::LimitEvent) -> screwdyn::Result<()> {
-        self.sink().event(event)
-    }
+    Csv(sim::CsvSampleWriter<Box<dyn std::io::Write>>),
+    Json(sim::JsonSampleWriter<Box<dyn std::io::Write>>),
 }
 
 impl RunWriter {
-    pub(super) fn new(kind: Format, out: Box<dyn std::io::Write + Send>) -> Self {
+    pub(super) fn new(kind: Format, out: Box<dyn std::io::Write>) -> Self {
         match kind {
             Format::Json => RunWriter::Json(sim::JsonSampleWriter::new(out)),
             _ => RunWriter::Csv(sim::CsvSampleWriter::new(out)),

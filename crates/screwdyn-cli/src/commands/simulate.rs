@@ -14,8 +14,8 @@ use crate::CliError;
 use screwdyn::dynamics::ForwardMethod;
 use screwdyn::motion::SampledTrajectory;
 use screwdyn::sim::{
-    self, BackgroundSink, Controller, ControllerSpec, Disturbance, Integrator, JointEffects,
-    LimitEvent, Quintic, Recording, Sample, SampleSink, SimOptions,
+    self, Controller, ControllerSpec, Disturbance, Integrator, JointEffects, LimitEvent, Quintic,
+    Recording, Sample, SampleSink, SimOptions,
 };
 use screwdyn::Model;
 use std::io::IsTerminal;
@@ -24,8 +24,7 @@ use std::path::Path;
 /// Where a run's samples go as they are recorded: a CSV or JSON file (or stdout), a bounded
 /// copy for the plot, and the first and last samples for the summary.
 struct RunSinks {
-    /// Formatted and written on a second thread, overlapping the integration.
-    file: Option<BackgroundSink<RunWriter>>,
+    file: Option<RunWriter>,
     plot: Option<Decimated>,
     first: Option<Recording>,
     last: Recording,
@@ -71,7 +70,7 @@ impl SampleSink for RunSinks {
     fn begin(&mut self, joints: &[String], frames: &[String]) -> screwdyn::Result<()> {
         self.joints = joints.to_vec();
         if let Some(w) = &mut self.file {
-            w.begin(joints, frames)?;
+            w.sink().begin(joints, frames)?;
         }
         if let Some(p) = &mut self.plot {
             p.rec.begin(joints, frames)?;
@@ -80,7 +79,7 @@ impl SampleSink for RunSinks {
     }
     fn push(&mut self, s: &Sample) -> screwdyn::Result<()> {
         if let Some(w) = &mut self.file {
-            w.push(s)?;
+            w.sink().push(s)?;
         }
         if let Some(p) = &mut self.plot {
             p.push(s)?;
@@ -95,7 +94,7 @@ impl SampleSink for RunSinks {
     }
     fn event(&mut self, e: &LimitEvent) -> screwdyn::Result<()> {
         if let Some(w) = &mut self.file {
-            w.event(e)?;
+            w.sink().event(e)?;
         }
         if self.events.len() < MAX_EVENT_LINES {
             self.events.push(e.clone());
@@ -432,7 +431,7 @@ fn run_streamed(
     // device or FIFO is written directly).
     let target = a.output.as_deref().map(OutputFile::create).transpose()?;
     let direct = target.as_ref().is_some_and(OutputFile::is_direct);
-    let file: Option<Box<dyn std::io::Write + Send>> = match &target {
+    let file: Option<Box<dyn std::io::Write>> = match &target {
         Some(f) => Some(Box::new(f.writer()?)),
         None if format != Format::Table => {
             Some(Box::new(std::io::BufWriter::new(std::io::stdout())))
@@ -440,7 +439,7 @@ fn run_streamed(
         None => None,
     };
     let mut sinks = RunSinks {
-        file: file.map(|out| BackgroundSink::new(RunWriter::new(kind, out))),
+        file: file.map(|out| RunWriter::new(kind, out)),
         plot: a.plot.as_ref().map(|_| Decimated {
             rec: Recording::default(),
             stride: 1,
@@ -471,7 +470,6 @@ fn run_streamed(
     // away (`| head`) ends the command quietly.
     let written = sinks.file.take().map(|w| {
         w.finish()
-            .and_then(RunWriter::finish)
             .and_then(|()| target.map_or(Ok(()), OutputFile::commit))
     });
     let unwritten = |why: &str, p: &Path| {

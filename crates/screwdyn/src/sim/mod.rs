@@ -12,7 +12,6 @@
 //! assert!((q[0] - 0.5).abs() < 1e-3 && (q[1] + 0.3).abs() < 1e-3);
 //! ```
 
-mod background;
 mod controller;
 mod controller_spec;
 mod effects;
@@ -25,7 +24,6 @@ mod setting;
 mod simulate;
 mod trajectory;
 
-pub use background::BackgroundSink;
 pub use controller::{
     ComputedTorque, ConstantTorque, Controller, PdGravity, TorqueSeries, ZeroTorque,
     DEFAULT_NATURAL_FREQUENCY,
