@@ -4,7 +4,8 @@ Protocol (issue "Inverse kinematics"): POSES targets made by forward kinematics 
 configurations within the joint limits; every answer of every solver is checked by screwdyn's
 forward kinematics (1e-6 m, 1e-6 rad) and against the URDF's <limit> values; verified success
 %, mean / median / p99 µs per solve on one thread. screwdyn is timed per call through Python
-(the call overhead, ~1–2 µs, included), and as one batch on 1 and 2 threads. Run by
+(the call overhead, ~1–2 µs, included), and as one batch on 1 and 2 threads (median of 5
+alternating rounds). Run by
 bench/ik_compare.sh. Usage: python ik_compare.py ROBOTS_DIR [POSES]
 """
 
@@ -117,13 +118,14 @@ def main():
             ok += good
             false_ok += r.success and not good
         rows.append(stats(f"screwdyn (false successes: {false_ok})", times, ok, poses))
-        # screwdyn batches.
-        t = time.perf_counter()
-        m.inverse_kinematics(tip, targets, q0, threads=1)
-        one = time.perf_counter() - t
-        t = time.perf_counter()
-        m.inverse_kinematics(tip, targets, q0, threads=2)
-        two = time.perf_counter() - t
+        # screwdyn batches: the median of 5 alternating rounds on 1 and 2 threads.
+        rounds = {1: [], 2: []}
+        for _ in range(5):
+            for threads in (1, 2):
+                t = time.perf_counter()
+                m.inverse_kinematics(tip, targets, q0, threads=threads)
+                rounds[threads].append(time.perf_counter() - t)
+        one, two = (float(np.median(rounds[k])) for k in (1, 2))
         batch = (f"| | screwdyn batch | {poses} targets: {one * 1e6 / poses:.1f} µs each on 1 "
                  f"thread, {two * 1e6 / poses:.1f} on 2 ({one / two:.2f}×) | | | |")
         # Robotics Toolbox ik_LM (C++), joint limits on.

@@ -68,10 +68,31 @@ fn fill<'py>(d: &Bound<'py, PyDict>, results: &[IkResult]) -> PyResult<()> {
     Ok(())
 }
 
+/// What makes two solvers the same: the frame, the task and every option the Python call sets.
+#[derive(Clone, Copy, PartialEq)]
+struct SolverKey {
+    frame: usize,
+    position_only: bool,
+    seed: u64,
+    position_tolerance: f64,
+    orientation_tolerance: f64,
+    max_iterations: usize,
+    max_restarts: usize,
+}
+
+/// A solver kept by the model between calls, with its workspace.
+pub(crate) struct CachedSolver {
+    key: SolverKey,
+    solver: IkSolver,
+    ws: IkWorkspace,
+}
+
 impl PyModel {
-    /// The solver of `frame` (full pose, or position only) with the keyword options.
+    /// Runs `f` with the solver of `frame` (full pose, or position only) and the keyword
+    /// options, and a workspace: the model's cached one when the frame and options match the
+    /// last call's (and no other thread holds it), else a new one, kept for the next call.
     #[allow(clippy::too_many_arguments)]
-    fn ik_solver(
+    fn with_ik_solver<R>(
         &self,
         frame: &Bound<'_, PyAny>,
         position_only: bool,
@@ -80,23 +101,50 @@ impl PyModel {
         orientation_tolerance: Option<f64>,
         max_iterations: Option<usize>,
         max_restarts: Option<usize>,
-    ) -> PyResult<IkSolver> {
-        let f = self.frame(frame)?;
-        let task = if position_only {
-            IkTask::position(f)
-        } else {
-            IkTask::pose(f)
-        };
+        f: impl FnOnce(&IkSolver, &mut IkWorkspace) -> PyResult<R>,
+    ) -> PyResult<R> {
         let d = IkOptions::default();
-        let options = IkOptions {
+        let key = SolverKey {
+            frame: self.frame(frame)?,
+            position_only,
             seed,
             position_tolerance: position_tolerance.unwrap_or(d.position_tolerance),
             orientation_tolerance: orientation_tolerance.unwrap_or(d.orientation_tolerance),
             max_iterations: max_iterations.unwrap_or(d.max_iterations),
             max_restarts: max_restarts.unwrap_or(d.max_restarts),
-            ..d
         };
-        IkSolver::new(&self.model, &[task], options).map_err(call_err)
+        let build = || -> PyResult<CachedSolver> {
+            let task = if key.position_only {
+                IkTask::position(key.frame)
+            } else {
+                IkTask::pose(key.frame)
+            };
+            let options = IkOptions {
+                seed: key.seed,
+                position_tolerance: key.position_tolerance,
+                orientation_tolerance: key.orientation_tolerance,
+                max_iterations: key.max_iterations,
+                max_restarts: key.max_restarts,
+                ..IkOptions::default()
+            };
+            let solver = IkSolver::new(&self.model, &[task], options).map_err(call_err)?;
+            let ws = IkWorkspace::new(&solver);
+            Ok(CachedSolver { key, solver, ws })
+        };
+        match self.ik_cache.try_lock() {
+            Ok(mut cache) => {
+                if !cache.as_ref().is_some_and(|c| c.key == key) {
+                    *cache = Some(build()?);
+                }
+                let c = cache.as_mut().expect("filled above");
+                f(&c.solver, &mut c.ws)
+            }
+            // Another thread is solving with the cached solver: a fresh one for this call.
+            Err(_) => {
+                let mut c = build()?;
+                f(&c.solver, &mut c.ws)
+            }
+        }
     }
 
     /// `q0` as given (`(nq,)`, or `(N, nq)` for `count` stacked targets), or the default start.
@@ -164,7 +212,36 @@ impl PyModel {
         max_restarts: Option<usize>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
-            let solver = self.ik_solver(
+            let (poses, stacked) = targets(&target)?;
+            let n = self.model.nq();
+            let d = PyDict::new(py);
+            let solve = |solver: &IkSolver, ws: &mut IkWorkspace| -> PyResult<()> {
+                if !stacked {
+                    let start = self.ik_start(q0.as_ref(), None)?;
+                    let mut q = vec![0.0; n];
+                    let result = py
+                        .detach(|| solver.solve(ws, &poses, &start, &mut q))
+                        .map_err(call_err)?;
+                    d.set_item("q", convert::vector(py, &q)?)?;
+                    fill(&d, &[result])?;
+                    d.set_item("batch", false)?;
+                } else {
+                    let k = poses.len();
+                    let start = self.ik_start(q0.as_ref(), Some(k))?;
+                    let mut q = vec![0.0; k * n];
+                    let results = py
+                        .detach(|| solver.solve_batch(&poses, &start, &mut q, threads.unwrap_or(0)))
+                        .map_err(call_err)?
+                        .into_iter()
+                        .collect::<screwdyn::Result<Vec<_>>>()
+                        .map_err(call_err)?;
+                    d.set_item("q", convert::array(py, q, &[k, n])?)?;
+                    fill(&d, &results)?;
+                    d.set_item("batch", true)?;
+                }
+                Ok(())
+            };
+            self.with_ik_solver(
                 frame,
                 position_only,
                 seed,
@@ -172,36 +249,8 @@ impl PyModel {
                 orientation_tolerance,
                 max_iterations,
                 max_restarts,
+                solve,
             )?;
-            let (poses, stacked) = targets(&target)?;
-            let n = self.model.nq();
-            let d = PyDict::new(py);
-            if !stacked {
-                let start = self.ik_start(q0.as_ref(), None)?;
-                let mut q = vec![0.0; n];
-                let result = py
-                    .detach(|| {
-                        let mut ws = IkWorkspace::new(&solver);
-                        solver.solve(&mut ws, &poses, &start, &mut q)
-                    })
-                    .map_err(call_err)?;
-                d.set_item("q", convert::vector(py, &q)?)?;
-                fill(&d, &[result])?;
-                d.set_item("batch", false)?;
-            } else {
-                let k = poses.len();
-                let start = self.ik_start(q0.as_ref(), Some(k))?;
-                let mut q = vec![0.0; k * n];
-                let results = py
-                    .detach(|| solver.solve_batch(&poses, &start, &mut q, threads.unwrap_or(0)))
-                    .map_err(call_err)?
-                    .into_iter()
-                    .collect::<screwdyn::Result<Vec<_>>>()
-                    .map_err(call_err)?;
-                d.set_item("q", convert::array(py, q, &[k, n])?)?;
-                fill(&d, &results)?;
-                d.set_item("batch", true)?;
-            }
             python_class(py, "screwdyn._results", "IkResult")?.call1((d,))
         })
     }
@@ -220,7 +269,6 @@ impl PyModel {
         q0: Option<ArrayIn<'py>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
-            let solver = self.ik_solver(frame, false, 0, None, None, None, None)?;
             let (poses, stacked) = targets(&target)?;
             if stacked {
                 return Err(PyValueError::new_err(
@@ -228,12 +276,11 @@ impl PyModel {
                 ));
             }
             let start = self.ik_start(q0.as_ref(), None)?;
-            let all = py
-                .detach(|| {
-                    let mut ws = IkWorkspace::new(&solver);
-                    solver.solve_all(&mut ws, &poses[0], &start)
-                })
-                .map_err(call_err)?;
+            let all =
+                self.with_ik_solver(frame, false, 0, None, None, None, None, |solver, ws| {
+                    py.detach(|| solver.solve_all(ws, &poses[0], &start))
+                        .map_err(call_err)
+                })?;
             let n = self.model.nq();
             let flat: Vec<f64> = all.iter().flat_map(|s| s.q.iter().copied()).collect();
             convert::array(py, flat, &[all.len(), n])

@@ -39,6 +39,9 @@ pub(crate) struct PyModel {
     joint_friction: Option<(Vec<f64>, Vec<f64>)>,
     /// A workspace reused by single-state calls (batches make one per thread).
     pub(crate) scratch: Mutex<Option<Scratch>>,
+    /// The last inverse-kinematics solver and its workspace, reused while the frame and the
+    /// options stay the same (building one copies the model and looks for a closed form).
+    pub(crate) ik_cache: Mutex<Option<crate::ik::CachedSolver>>,
 }
 
 /// Adds the class and the loading functions to the native module.
@@ -87,6 +90,7 @@ impl PyModel {
             gravity,
             joint_friction,
             scratch: Mutex::new(None),
+            ik_cache: Mutex::new(None),
         })
     }
 
@@ -145,6 +149,7 @@ fn load(path_or_builtin: &Bound<'_, PyAny>, strict: bool) -> PyResult<PyModel> {
             gravity: None,
             joint_friction: None,
             scratch: Mutex::new(None),
+            ik_cache: Mutex::new(None),
         })
     })
 }

@@ -128,3 +128,30 @@ def test_dask_batches_match_one_call():
     for k in range(10):
         dp_k, dr_k = _pose_errors(m.frame_pose(q[k], "tool0"), targets[k])
         assert dp_k <= 1e-6 and dr_k <= 1e-6
+
+
+def test_calls_that_change_frame_or_options_between_them():
+    # The model keeps the last solver for the next call: alternating frames, tasks and
+    # tolerances, every answer is still confirmed by forward kinematics of its own frame.
+    m = screwdyn.load("builtin:ur5")
+    for k, q_true in enumerate(_random_q(m, 6, seed=11)):
+        frame = ["tool0", "wrist_2_link"][k % 2]
+        target = m.frame_pose(q_true, frame)
+        if k % 3 == 2:
+            r = m.inverse_kinematics(frame, target, position_only=True, position_tolerance=1e-9)
+            assert r.success
+            assert np.linalg.norm(m.frame_pose(r.q, frame)[:3, 3] - target[:3, 3]) <= 1e-9
+        else:
+            r = m.inverse_kinematics(frame, target, seed=k)
+            assert r.success and _within(m, r.q)
+            dp, dr = _pose_errors(m.frame_pose(r.q, frame), target)
+            assert dp <= 1e-6 and dr <= 1e-6
+        # The same call again gives the same answer (a cached solver starts afresh).
+        again = m.inverse_kinematics(
+            frame, target, position_only=(k % 3 == 2), seed=0 if k % 3 == 2 else k,
+            position_tolerance=1e-9 if k % 3 == 2 else None,
+        )
+        np.testing.assert_array_equal(again.q, r.q)
+        for q in m.inverse_kinematics_all("tool0", m.frame_pose(q_true, "tool0")):
+            dp, dr = _pose_errors(m.frame_pose(q, "tool0"), m.frame_pose(q_true, "tool0"))
+            assert dp <= 1e-6 and dr <= 1e-6
