@@ -33,15 +33,8 @@ pub fn read_waypoints(m: &Model, path: &Path) -> Result<JointRows, CliError> {
 /// the file, line and column otherwise.
 pub fn read_joint_rows(m: &Model, path: &Path, c: &Columns) -> Result<JointRows, CliError> {
     let file = path.display().to_string();
-    let err =
-        |e: csv::Error| CliError::input(format!("{file}: {}", e.to_string().replace('\n', " ")));
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .from_path(path)
-        .map_err(|e| match e.kind() {
-            csv::ErrorKind::Io(io) => CliError::input(format!("{file}: cannot be read ({io})")),
-            _ => err(e),
-        })?;
+    let err = |e: csv::Error| csv_error(&file, e);
+    let mut reader = open_csv(path, &file)?;
     let names = m.joint_names();
     let headers = reader.headers().map_err(err)?.clone();
     let mut cols = Vec::new(); // None = the key, Some(j) = joint j
@@ -110,15 +103,8 @@ pub type MotionRows = (Vec<f64>, Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<Vec<f64>>);
 /// number; other columns (torques, energies, poses) are ignored.
 pub fn read_motion(m: &Model, path: &Path) -> Result<MotionRows, CliError> {
     let file = path.display().to_string();
-    let err =
-        |e: csv::Error| CliError::input(format!("{file}: {}", e.to_string().replace('\n', " ")));
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .from_path(path)
-        .map_err(|e| match e.kind() {
-            csv::ErrorKind::Io(io) => CliError::input(format!("{file}: cannot be read ({io})")),
-            _ => err(e),
-        })?;
+    let err = |e: csv::Error| csv_error(&file, e);
+    let mut reader = open_csv(path, &file)?;
     let headers = reader.headers().map_err(err)?.clone();
     let find = |name: &str| {
         headers.iter().position(|h| h == name).ok_or_else(|| {
@@ -156,4 +142,20 @@ pub fn read_motion(m: &Model, path: &Path) -> Result<MotionRows, CliError> {
         }
     }
     Ok((t, q, v, a))
+}
+
+/// A CSV error as one sentence naming the file (the csv crate's message names line and field).
+fn csv_error(file: &str, e: csv::Error) -> CliError {
+    CliError::input(format!("{file}: {}", e.to_string().replace('\n', " ")))
+}
+
+/// `path` opened as CSV with a header row, cells trimmed.
+fn open_csv(path: &Path, file: &str) -> Result<csv::Reader<std::fs::File>, CliError> {
+    csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .from_path(path)
+        .map_err(|e| match e.kind() {
+            csv::ErrorKind::Io(io) => CliError::input(format!("{file}: cannot be read ({io})")),
+            _ => csv_error(file, e),
+        })
 }
