@@ -22,7 +22,8 @@ pub struct Sample<'a> {
     pub tau: &'a [f64],
     /// Kinetic energy `½ q̇ᵀ M q̇` (J).
     pub kinetic_energy: f64,
-    /// Potential energy in gravity (J).
+    /// Potential energy in gravity, plus the joint springs' `½ k (q − q_spring)²` in a
+    /// simulation where they act (J).
     pub potential_energy: f64,
     /// Poses `H_f^0` of the recorded frames.
     pub poses: &'a [Se3],
@@ -106,7 +107,8 @@ pub struct Recording {
     pub tau: Vec<Vec<f64>>,
     /// Kinetic energy `½ q̇ᵀ M q̇` (J).
     pub kinetic_energy: Vec<f64>,
-    /// Potential energy in gravity (J).
+    /// Potential energy in gravity, plus the joint springs' `½ k (q − q_spring)²` in a
+    /// simulation where they act (J).
     pub potential_energy: Vec<f64>,
     /// Their sum (J).
     pub total_energy: Vec<f64>,

@@ -76,6 +76,21 @@ impl RecordedEvaluation {
 }
 
 impl Plant<'_> {
+    /// The energy stored in the joint springs, `Σ ½ k_i (q_i − q_spring,i)²`, when they act
+    /// (MuJoCo counts it in its potential energy too): with undamped springs the recorded total
+    /// energy is conserved.
+    fn spring_energy(&self, q: &[f64]) -> f64 {
+        if !self.effects.springs {
+            return 0.0;
+        }
+        self.model
+            .joints()
+            .iter()
+            .zip(q)
+            .map(|(j, qi)| 0.5 * j.stiffness * (qi - j.springref).powi(2))
+            .sum()
+    }
+
     /// `q̈ = FD(q, q̇, τ(t, q, q̇))`, the state equation the integrator steps. The first call
     /// after [`Plant::accel_for_sample`], when it has the same `(t, q, q̇)` (the first stage of
     /// the step that starts at the sample), returns the recorder's result: the controller, a
@@ -147,8 +162,8 @@ impl Plant<'_> {
                 "a fixed step too large for the robot's fastest motion, or a controller with \
                  gains too high for the step, does this"
             } else {
-                "a fixed step too large for stiff joint effects — limit stops, damping or \
-                 smoothed Coulomb friction on a light link — does this"
+                "a fixed step too large for stiff joint effects — limit stops, damping, \
+                 stiff springs or smoothed Coulomb friction on a light link — does this"
             };
             return Err(Error::Numerical(format!(
                 "the acceleration of joint '{}' became non-finite at t = {t:.6} s: the \
@@ -416,7 +431,8 @@ impl<'m> Recorder<'m> {
             a,
             tau: &plant.tau,
             kinetic_energy: kinetic_energy_given_twists(self.model, &self.ws, v),
-            potential_energy: potential_energy_given_poses(self.model, &self.ws),
+            potential_energy: potential_energy_given_poses(self.model, &self.ws)
+                + plant.spring_energy(q),
             poses: &self.poses,
         })?;
         self.samples += 1;
