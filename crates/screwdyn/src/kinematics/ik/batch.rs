@@ -5,12 +5,33 @@ use super::result::IkResult;
 use super::workspace::IkWorkspace;
 use crate::error::{Error, Result};
 use crate::spatial::Se3;
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// The most problems a thread takes at a time from a batch.
 const BLOCK: usize = 16;
 /// Batches of fewer problems are solved on the calling thread.
 const SPAWN_MIN: usize = 8;
+
+/// The pool of `threads` threads batches run on: made on first use and kept for later calls;
+/// `None` when the threads cannot be started.
+fn pool(threads: usize) -> Option<Arc<rayon::ThreadPool>> {
+    static POOLS: OnceLock<Mutex<Vec<Arc<rayon::ThreadPool>>>> = OnceLock::new();
+    let mut pools = POOLS
+        .get_or_init(|| Mutex::new(Vec::new()))
+        .lock()
+        .unwrap_or_else(|e| e.into_inner());
+    if let Some(p) = pools.iter().find(|p| p.current_num_threads() == threads) {
+        return Some(Arc::clone(p));
+    }
+    let made = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .thread_name(|i| format!("screwdyn-ik-{i}"))
+        .build()
+        .ok()
+        .map(Arc::new)?;
+    pools.push(Arc::clone(&made));
+    Some(made)
+}
 
 /// A joint that moved more than the threshold between two consecutive points of a path.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -167,22 +188,29 @@ impl IkSolver {
             }
         };
         let threads = threads.min(k);
-        if threads <= 1 || k < SPAWN_MIN {
-            // Starting threads would cost more than the problems.
+        let pool = if threads <= 1 || k < SPAWN_MIN {
+            // Handing out the problems would cost more than they do.
+            None
+        } else {
+            pool(threads)
+        };
+        let Some(pool) = pool else {
             let mut ws = IkWorkspace::new(self);
             solve_range(&mut ws, 0, q_out, results);
             return Ok(());
-        }
+        };
         // Guided scheduling: each free thread takes a share of what is left, at most BLOCK
         // problems and fewer toward the end, so that a problem that needs many restarts (it
         // costs hundreds of ordinary ones) does not leave the other threads idle while the
         // last block finishes. Each problem draws from its own seed stream, so the answers
         // do not depend on which thread solves it.
+        // The workers run on a pool whose threads outlive the call (starting threads and their
+        // allocator arenas took a sizeable part of a batch of a few milliseconds).
         let rest = Mutex::new((0, q_out, results));
-        std::thread::scope(|scope| {
+        pool.scope(|scope| {
             for _ in 0..threads {
                 let (solve_range, rest) = (&solve_range, &rest);
-                scope.spawn(move || {
+                scope.spawn(move |_| {
                     let mut ws = IkWorkspace::new(self);
                     loop {
                         let (offset, q, r) = {
