@@ -4,8 +4,8 @@ Protocol (issue "Inverse kinematics"): POSES targets made by forward kinematics 
 configurations within the joint limits; every answer of every solver is checked by screwdyn's
 forward kinematics (1e-6 m, 1e-6 rad) and against the URDF's <limit> values; verified success
 %, mean / median / p99 µs per solve on one thread. screwdyn is timed per call through Python
-(the call overhead, ~1–2 µs, included), and as one batch on 1 and 2 threads (median of 5
-alternating rounds). Run by
+(the call overhead, ~1–2 µs, included), and as one batch on 1 and 2 threads (after 0.1 s of
+warm-up calls, the median of 7). Run by
 bench/ik_compare.sh. Usage: python ik_compare.py ROBOTS_DIR [POSES]
 """
 
@@ -118,10 +118,15 @@ def main():
             ok += good
             false_ok += r.success and not good
         rows.append(stats(f"screwdyn (false successes: {false_ok})", times, ok, poses))
-        # screwdyn batches: the median of 5 alternating rounds on 1 and 2 threads.
+        # screwdyn batches: on 1, then 2 threads, calls for 0.1 s first (the pool's threads, and
+        # on a virtual machine an idle core that takes 20-30 ms to come up to speed), then the
+        # median of 7 calls.
         rounds = {1: [], 2: []}
-        for _ in range(5):
-            for threads in (1, 2):
+        for threads in (1, 2):
+            warm = time.perf_counter()
+            while time.perf_counter() - warm < 0.1:
+                m.inverse_kinematics(tip, targets, q0, threads=threads)
+            for _ in range(7):
                 t = time.perf_counter()
                 m.inverse_kinematics(tip, targets, q0, threads=threads)
                 rounds[threads].append(time.perf_counter() - t)
