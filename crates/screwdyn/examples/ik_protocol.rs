@@ -15,23 +15,10 @@
 
 use screwdyn::kinematics::ik::{default_start, IkOptions, IkSolver, IkTask, IkWorkspace};
 use screwdyn::kinematics::{forward_kinematics, frame_pose};
+use screwdyn::model::SplitMix64;
 use screwdyn::spatial::{log_so3, Se3};
 use screwdyn::Workspace;
 use std::time::Instant;
-
-/// SplitMix64, for the random configurations.
-struct Rng(u64);
-
-impl Rng {
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        lo + (hi - lo) * ((z >> 11) as f64 / (1u64 << 53) as f64)
-    }
-}
 
 /// The median of `rounds` timings of `f`, in seconds.
 fn median_of(rounds: usize, mut f: impl FnMut()) -> f64 {
@@ -69,7 +56,7 @@ fn main() {
         .map(|j| (j.limits.lower, j.limits.upper))
         .collect();
     let q0 = default_start(&model);
-    let mut rng = Rng(2026);
+    let mut rng = SplitMix64::new(2026);
     let mut truths = Vec::with_capacity(poses);
     let targets: Vec<Se3> = (0..poses)
         .map(|_| {

@@ -13,6 +13,7 @@ use screwdyn::dynamics::{aba, coriolis_matrix, crba, forward_dynamics, gravity_t
 use screwdyn::dynamics::{aba_derivatives, rnea_derivatives};
 use screwdyn::dynamics::{mass_matrix_inverse, nonlinear_effects, rnea, ForwardMethod};
 use screwdyn::kinematics::{compute_joint_jacobians, forward_kinematics};
+use screwdyn::model::SplitMix64;
 use screwdyn::{Model, Workspace};
 use std::hint::black_box;
 use std::time::Instant;
@@ -35,23 +36,6 @@ const ALGORITHMS: &[&str] = &[
 
 const STATES: usize = 1000;
 
-/// SplitMix64: a small deterministic generator (no dependency, same states every run).
-struct Rng(u64);
-
-impl Rng {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next_f64()
-    }
-}
-
 struct States {
     q: Vec<Vec<f64>>,
     v: Vec<Vec<f64>>,
@@ -61,7 +45,8 @@ struct States {
 
 fn random_states(model: &Model) -> States {
     let pi = std::f64::consts::PI;
-    let mut rng = Rng(12345);
+    // The library's SplitMix64: the same states every run.
+    let mut rng = SplitMix64::new(12345);
     let mut s = States {
         q: Vec::new(),
         v: Vec::new(),
@@ -69,7 +54,7 @@ fn random_states(model: &Model) -> States {
         tau: Vec::new(),
     };
     for _ in 0..STATES {
-        let mut row = |f: &mut dyn FnMut(&mut Rng, usize) -> f64| {
+        let mut row = |f: &mut dyn FnMut(&mut SplitMix64, usize) -> f64| {
             (0..model.nq()).map(|i| f(&mut rng, i)).collect::<Vec<_>>()
         };
         s.q.push(row(&mut |r, i| {

@@ -1,31 +1,25 @@
 //! Deterministic random restarts: a SplitMix64 generator and the range each joint is drawn
 //! from.
 
-/// SplitMix64 (Steele, Lea & Flood 2014): 64 bits of state, the same stream for the same seed
-/// on every machine.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct SplitMix(u64);
+use crate::model::SplitMix64;
+
+/// The model's SplitMix64 generator ([`SplitMix64`]), started from a seed mixed with a stream:
+/// the same draws for the same seed and stream on every machine.
+#[derive(Clone, Debug)]
+pub(super) struct SplitMix(SplitMix64);
 
 impl SplitMix {
     /// The generator of `seed`, mixed with `stream` (a batch's target index), so that nearby
     /// seeds and streams give unrelated sequences.
     pub(super) fn new(seed: u64, stream: u64) -> SplitMix {
-        let mut g = SplitMix(seed ^ stream.wrapping_mul(0xD1B5_4A32_D192_ED03));
-        g.next();
-        g
-    }
-
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        let mut g = SplitMix64::new(seed ^ stream.wrapping_mul(0xD1B5_4A32_D192_ED03));
+        g.next_u64();
+        SplitMix(g)
     }
 
     /// Uniform in `[lo, hi)`.
     pub(super) fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * ((self.next() >> 11) as f64 / (1u64 << 53) as f64)
+        self.0.uniform(lo, hi)
     }
 }
 
