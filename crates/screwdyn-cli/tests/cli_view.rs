@@ -177,11 +177,17 @@ fn planar2_run_plays_in_the_browser() {
     let later = screenshot(&page, "t=0.5&grid=0&path=0&size=700x450", "p2-late");
     assert_drawn(&later, probe(&d));
     let early = screenshot(&page, "t=0&grid=0&path=0&size=700x450", "p2-early");
-    // Playing: after about a second of (virtual) time the shown time has moved on.
+    // Playing: after about a second of (virtual) time the shown time has moved on. Without
+    // --run-all-compositor-stages-before-draw headless Chromium sometimes drew no animation
+    // frame within the budget (about 1 run in 6 showed t = 0 or 0.05).
     let playing = browse_with(
         &page,
         "play=1",
-        &["--virtual-time-budget=1000", "--dump-dom"],
+        &[
+            "--virtual-time-budget=1000",
+            "--run-all-compositor-stages-before-draw",
+            "--dump-dom",
+        ],
         "p2-play",
     );
     assert!(playing.contains("<div id=\"errors\"></div>"), "{playing}");
