@@ -31,6 +31,49 @@ use crate::workspace::Workspace;
     "x86_64+avx2+fma"
 ))]
 pub fn forward_kinematics<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) -> Result<()> {
+    // With fused multiply–adds, the sines and cosines of a block's joint angles side by side
+    // in vector registers before the joints that use them; without (a portable build's
+    // baseline clone, where `mul_add` is a library call) one scalar `sin_cos` per joint.
+    let lanes = multiversion::target::target_cfg_f!(target_feature = "fma");
+    poses::<T, true>(model, ws, q, lanes)
+}
+
+/// The poses of all bodies in their parents' frames only, `H_i^{λ(i)}(q_i) = H_i^{λ(i)}(0)
+/// e^{[S_i^{i,λ(i)}] q_i}`: [`forward_kinematics`] without the compositions `H_i^0 = H_{λ(i)}^0
+/// H_i^{λ(i)}`, for the algorithms that work in the body frames (the recursive Newton–Euler
+/// passes). Writes `ws.pose_in_parent` and leaves `ws.pose_in_world` as it was.
+///
+/// # Errors
+/// As [`forward_kinematics`].
+///
+/// ```
+/// use screwdyn::{builtin, kinematics::{forward_kinematics, poses_in_parent}, Workspace};
+/// let m = builtin::load("ur5").unwrap();
+/// let q = [0.1, -0.7, 1.2, 0.4, -0.3, 2.0];
+/// let (mut full, mut local) = (Workspace::new(&m), Workspace::new(&m));
+/// forward_kinematics(&m, &mut full, &q).unwrap();
+/// poses_in_parent(&m, &mut local, &q).unwrap();
+/// assert_eq!(local.pose_in_parent, full.pose_in_parent);
+/// assert_eq!(local.pose_in_world[5], screwdyn::spatial::Se3::identity()); // not written
+/// ```
+#[multiversion::multiversion(targets(
+    "x86_64+avx512f+avx512vl+avx512dq+avx512bw+avx2+fma",
+    "x86_64+avx2+fma"
+))]
+pub fn poses_in_parent<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) -> Result<()> {
+    let lanes = multiversion::target::target_cfg_f!(target_feature = "fma");
+    poses::<T, false>(model, ws, q, lanes)
+}
+
+/// The body poses in the parents' frames, and in the world frame when `WORLD`; the sines and
+/// cosines by lanes when `lanes` (see [`sin_cos_packed`]).
+#[inline(always)]
+fn poses<T: Real, const WORLD: bool>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    q: &[T],
+    lanes: bool,
+) -> Result<()> {
     ws.check(model)?;
     model.check_vector(q, "q")?;
     // `check_vector` made `q.len() == n`; `check` that the workspace was made for this model.
@@ -43,10 +86,6 @@ pub fn forward_kinematics<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &
     );
     let q = &q[..n];
     let (pip, piw) = (&mut ws.pose_in_parent[..n], &mut ws.pose_in_world[..n]);
-    // With fused multiply–adds, the sines and cosines of a block's joint angles side by side
-    // in vector registers before the joints that use them; without (a portable build's
-    // baseline clone, where `mul_add` is a library call) one scalar `sin_cos` per joint.
-    let lanes = multiversion::target::target_cfg_f!(target_feature = "fma");
     for start in (0..n).step_by(BLOCK) {
         let end = n.min(start + BLOCK);
         // The angles θ = ±q of the block's turning joints, packed.
@@ -70,10 +109,12 @@ pub fn forward_kinematics<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &
             // H_i^λ = H_i^λ(0) e^{[S_i] q_i},  H_i^0 = H_λ^0 H_i^λ.
             let h = motions[i].pose_in_parent_given(&joints[i].home, q[i], sc);
             pip[i] = h;
-            piw[i] = match parents[i] {
-                Some(p) => piw[p].compose(&h),
-                None => h,
-            };
+            if WORLD {
+                piw[i] = match parents[i] {
+                    Some(p) => piw[p].compose(&h),
+                    None => h,
+                };
+            }
         }
     }
     Ok(())
