@@ -6,9 +6,10 @@ use crate::error::Result;
 use crate::kinematics::forward_kinematics;
 use crate::model::{JointMotion, Model};
 use crate::scalar::Real;
-use crate::spatial::{CompositeInertia, Wrench};
+use crate::spatial::{CompositeInertia, Se3, Wrench};
 use crate::workspace::Workspace;
 use nalgebra::DMatrix;
+use nalgebra::Vector3;
 
 /// The mass matrix `M(q)` by the composite-rigid-body algorithm: composite inertias
 /// `𝔍ᶜ_i = 𝔍_i + Σ_children 𝔍ᶜ_c` (backward), then `M_ij = S_iᵀ 𝔍ᶜ_j S_j` for every `i`
@@ -161,6 +162,102 @@ fn inertia_times_axis<T: Real>(c: &CompositeInertia<T>, motion: &JointMotion<T>)
     }
 }
 
+/// `(c, s)` of the turn `R = Rot_K(θ)` about the coordinate axis `K` whose plane is `(I, J)`:
+/// `R ê_I = c ê_I + s ê_J`.
+#[inline(always)]
+fn cos_sin<T: Real, const I: usize, const J: usize>(r: &nalgebra::Matrix3<T>) -> (T, T) {
+    (r[(I, I)], r[(J, I)])
+}
+
+/// `v ↦ Rot_K(θ) v` in the plane `(I, J)`.
+#[inline(always)]
+fn turn<T: Real, const I: usize, const J: usize>(v: &mut [T; 6], c: T, s: T) {
+    for half in [0, 3] {
+        let (a, b) = (v[half + I], v[half + J]);
+        v[half + I] = c * a - s * b;
+        v[half + J] = s * a + c * b;
+    }
+}
+
+/// A wrench `W = (m, f)` in frame {i} written in the parent's frame, `Ad_{H_i^λ}⁻ᵀ W =
+/// (R m + p × R f, R f)` with `H_i^λ = (R, p)`. When the joint's home has no rotation, an axis
+/// joint's `R` is a turn about a coordinate axis (revolute) or the identity (prismatic): then
+/// `R` only mixes two entries of each half.
+#[inline(always)]
+fn wrench_to_parent<T: Real>(
+    h: &Se3<T>,
+    motion: &JointMotion<T>,
+    unrotated: bool,
+    w: &Wrench<T>,
+) -> Wrench<T> {
+    if unrotated {
+        let mut v = [w[0], w[1], w[2], w[3], w[4], w[5]];
+        let r = &h.rotation;
+        let turned = match *motion {
+            JointMotion::RevoluteAxis { axis: 0, .. } => {
+                let (c, s) = cos_sin::<T, 1, 2>(r);
+                turn::<T, 1, 2>(&mut v, c, s);
+                true
+            }
+            JointMotion::RevoluteAxis { axis: 1, .. } => {
+                let (c, s) = cos_sin::<T, 2, 0>(r);
+                turn::<T, 2, 0>(&mut v, c, s);
+                true
+            }
+            JointMotion::RevoluteAxis { .. } => {
+                let (c, s) = cos_sin::<T, 0, 1>(r);
+                turn::<T, 0, 1>(&mut v, c, s);
+                true
+            }
+            JointMotion::PrismaticAxis { .. } => true,
+            _ => false,
+        };
+        if turned {
+            // m' = R m + p × f'
+            let p = &h.translation;
+            let f = Vector3::new(v[3], v[4], v[5]);
+            let pf = p.cross(&f);
+            return Wrench::new(v[0] + pf.x, v[1] + pf.y, v[2] + pf.z, f.x, f.y, f.z);
+        }
+    }
+    h.inv_act_transpose_wrench(w)
+}
+
+/// A composite inertia in frame {i} written in the parent's frame (`h = H_i^λ`), by the turn
+/// about a coordinate axis and the shift when the joint's home has no rotation (see
+/// [`wrench_to_parent`]), else by the general change of frame.
+#[inline(always)]
+fn composite_to_parent<T: Real>(
+    c: &CompositeInertia<T>,
+    h: &Se3<T>,
+    motion: &JointMotion<T>,
+    unrotated: bool,
+) -> CompositeInertia<T> {
+    if unrotated {
+        let r = &h.rotation;
+        let turned = match *motion {
+            JointMotion::RevoluteAxis { axis: 0, .. } => {
+                let (cos, sin) = cos_sin::<T, 1, 2>(r);
+                Some(c.turned::<1, 2, 0>(cos, sin))
+            }
+            JointMotion::RevoluteAxis { axis: 1, .. } => {
+                let (cos, sin) = cos_sin::<T, 2, 0>(r);
+                Some(c.turned::<2, 0, 1>(cos, sin))
+            }
+            JointMotion::RevoluteAxis { .. } => {
+                let (cos, sin) = cos_sin::<T, 0, 1>(r);
+                Some(c.turned::<0, 1, 2>(cos, sin))
+            }
+            JointMotion::PrismaticAxis { .. } => Some(*c),
+            _ => None,
+        };
+        if let Some(t) = turned {
+            return t.shifted(&h.translation);
+        }
+    }
+    c.transformed(h)
+}
+
 fn local_given_q<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) {
     let n = model.nbodies();
     let (joints, motions, parents, bodies) = (
@@ -170,6 +267,7 @@ fn local_given_q<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) {
         &model.body_composite[..n],
     );
     let q = &q[..n];
+    let unrotated = &model.home_unrotated[..n];
     let (pip, ci) = (&mut ws.pose_in_parent[..n], &mut ws.composite_inertia[..n]);
     // H_i^{λ(i)} = H_i^{λ(i)}(0) e^{[S_i] q_i}; 𝔍ᶜ_i starts as body i's own inertia.
     for i in 0..n {
@@ -191,13 +289,13 @@ fn local_given_q<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) {
         let mut k = i;
         while let Some(p) = parents[k] {
             // F in {λ(k)} = Ad_{H_k^{λ(k)}}⁻ᵀ F = (R m + p × R f, R f); M_{λ(k) i} = S_{λ(k)}ᵀ F
-            f = pip[k].inv_act_transpose_wrench(&f);
+            f = wrench_to_parent(&pip[k], &motions[k], unrotated[k], &f);
             k = p;
             column[k] = motions[k].dot(&f);
         }
-        // 𝔍ᶜ_{λ(i)} += 𝔍ᶜ_i written in {λ(i)}
+        // 𝔍ᶜ_{λ(i)} += 𝔍ᶜ_i written in {λ(i)}: Ad_{H_{λ(i)}^i}ᵀ 𝔍ᶜ_i Ad_{H_{λ(i)}^i}
         if let Some(p) = parents[i] {
-            let c = ci[i].transformed(&pip[i]);
+            let c = composite_to_parent(&ci[i], &pip[i], &motions[i], unrotated[i]);
             ci[p].add(&c);
         }
     }

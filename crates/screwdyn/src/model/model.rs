@@ -68,6 +68,9 @@ pub struct Model<T: Real = f64> {
     pub(crate) body_composite: Vec<crate::spatial::CompositeInertia<T>>,
     /// Derived: the tree is a single chain (`λ(i) = i − 1`).
     pub(crate) is_chain: bool,
+    /// Derived: joint `i`'s home pose has no rotation (`H_i^{λ(i)}(0) = (1, p)`), so that for an
+    /// axis joint `R_i^{λ(i)}(q)` is a turn about a coordinate axis (CRBA's local form).
+    pub(crate) home_unrotated: Vec<bool>,
     /// Derived: the index of each body's frame in `frames`.
     pub(crate) body_frames: Vec<usize>,
     /// Frame name → index in `frames`.
@@ -227,6 +230,11 @@ impl<T: Real> Model<T> {
             .iter()
             .enumerate()
             .all(|(i, p)| *p == i.checked_sub(1));
+        self.home_unrotated = self
+            .joints
+            .iter()
+            .map(|j| j.home.rotation == nalgebra::Matrix3::identity())
+            .collect();
         self.body_frames = vec![0; self.bodies.len()];
         for (k, f) in self.frames.iter().enumerate() {
             if let (FrameKind::Body, Some(b)) = (f.kind, f.body) {
@@ -685,6 +693,7 @@ impl Model<f64> {
             inertia_scale: U::zero(),
             body_composite: Vec::new(),
             is_chain: false,
+            home_unrotated: Vec::new(),
             body_frames: Vec::new(),
             frame_index: self.frame_index.clone(),
             findings: self.findings.clone(),
