@@ -2,7 +2,8 @@
 //! own body frame, no forward kinematics) against `crba_in_base_frame` (everything in {0}, the
 //! form the Pinocchio fixtures were checked with), on random trees with branches and on long
 //! chains, with every kind of joint axis (coordinate axes with either sign, axes off the origin,
-//! general screws) and armatures. Both are also checked against `Σ_i J_iᵀ 𝔍_i J_i` built from
+//! general screws), home rotations that are the identity, quarter turns about x or general, and
+//! armatures. Both are also checked against `Σ_i J_iᵀ 𝔍_i J_i` built from
 //! the body Jacobians of forward kinematics, an independent formula.
 mod common;
 
@@ -55,15 +56,18 @@ fn mixed_axes(rng: &mut StdRng, n: usize, branch: f64) -> Model {
         } else {
             JointSpec::revolute(&format!("j{i}"))
         };
-        // Half the home rotations are the identity, as on real arms.
-        let rotation = if rng.gen_bool(0.5) {
-            nalgebra::Matrix3::identity()
-        } else {
-            exp_so3(&Vector3::new(
+        // Home rotations as on real arms: the identity, a quarter turn about x written as
+        // `rpy = (±π/2, 0, 0)` (entries within rounding of 0 and ±1), or anything.
+        let quarter = std::f64::consts::FRAC_PI_2;
+        let rotation = match rng.gen_range(0..4) {
+            0 => nalgebra::Matrix3::identity(),
+            1 => Se3::from_rpy(quarter, 0.0, 0.0).rotation,
+            2 => Se3::from_rpy(-quarter, 0.0, 0.0).rotation,
+            _ => exp_so3(&Vector3::new(
                 rng.gen_range(-2.0..2.0),
                 rng.gen_range(-2.0..2.0),
                 rng.gen_range(-2.0..2.0),
-            ))
+            )),
         };
         let home = Se3::new(
             rotation,
