@@ -5,6 +5,7 @@ use super::inputs::checked_poses;
 use super::rnea::base_acceleration;
 use super::wrenches::ExternalWrenches;
 use crate::error::{Error, Result};
+use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::Real;
 use crate::spatial::{ang, lin, twist, Se3, SpatialInertia, Twist, Wrench};
@@ -64,10 +65,6 @@ pub(crate) fn singular<T: Real>(model: &Model<T>, i: usize, d: T) -> Error {
 
 /// [`aba`] with external wrenches on the bodies (and tip wrenches); public as
 /// [`forward_dynamics`](super::forward_dynamics) with [`ForwardMethod::Aba`](super::ForwardMethod::Aba).
-#[multiversion::multiversion(targets(
-    "x86_64+avx512f+avx512vl+avx512dq+avx512bw+avx2+fma",
-    "x86_64+avx2+fma"
-))]
 pub(crate) fn articulated_body<'w, T: Real>(
     model: &Model<T>,
     ws: &'w mut Workspace<T>,
@@ -77,6 +74,45 @@ pub(crate) fn articulated_body<'w, T: Real>(
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<&'w DVector<T>> {
     checked_poses(model, ws, q, &[(v, "v"), (tau, "tau")], fext)?;
+    aba_passes(model, ws, v, tau, fext)?;
+    Ok(&ws.qdd)
+}
+
+/// [`articulated_body`] for a caller that guarantees that `v` and `tau` have one finite entry
+/// per joint: the simulator, whose plant checks every torque it passes and whose stepper
+/// integrates a state it has already checked (a non-finite acceleration stops the run before it
+/// reaches the state). Only `q` and the wrenches are checked, `q` by forward kinematics.
+pub(crate) fn articulated_body_for_stepper<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+    tau: &[T],
+    fext: Option<&ExternalWrenches<T>>,
+) -> Result<&'w DVector<T>> {
+    debug_assert!(v.len() == model.nq() && tau.len() == model.nq());
+    debug_assert!(v.iter().chain(tau).all(|x| x.is_finite()));
+    if let Some(f) = fext {
+        f.check(model)?;
+    }
+    forward_kinematics(model, ws, q)?;
+    aba_passes(model, ws, v, tau, fext)?;
+    Ok(&ws.qdd)
+}
+
+/// The three passes of [`aba`] on the poses of the last forward kinematics, for `v` and `tau`
+/// of the model's length (checked by the callers). Writes `ws.qdd`.
+#[multiversion::multiversion(targets(
+    "x86_64+avx512f+avx512vl+avx512dq+avx512bw+avx2+fma",
+    "x86_64+avx2+fma"
+))]
+fn aba_passes<T: Real>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    v: &[T],
+    tau: &[T],
+    fext: Option<&ExternalWrenches<T>>,
+) -> Result<()> {
     let n = model.nbodies();
     let (motions, parents, bodies, joints) = (
         &model.motions()[..n],
@@ -112,10 +148,9 @@ pub(crate) fn articulated_body<'w, T: Real>(
     let d_joint = &mut articulated_joint_inertia.as_mut_slice()[..n];
     let small_u_over_d = &mut articulated_joint_force.as_mut_slice()[..n];
     let qdd_out = &mut qdd.as_mut_slice()[..n];
-    // Pass 1: twists, velocity-product accelerations, rigid-body inertias and bias wrenches.
+    // Pass 1: joint screws, twists and velocity-product accelerations (root to leaves)...
     for i in 0..n {
-        let h = &poses[i];
-        let s = motions[i].act(h);
+        let s = motions[i].act(&poses[i]);
         let sv = s * v[i];
         let (vi, ci) = match parents[i] {
             Some(p) => {
@@ -124,14 +159,18 @@ pub(crate) fn articulated_body<'w, T: Real>(
             }
             None => (sv, Twist::zeros()),
         };
-        // 𝔍_i^0 = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i} written into 𝔍ᴬ_i, and pᴬ_i = −ad_{V_i}ᵀ 𝔍_i^0 V_i.
-        let mut p = rigid_in_world(&bodies[i].inertia, h, &vi, &mut inertias[i]);
-        if let Some(f) = fext {
-            p -= f.in_world_at(h, i);
-        }
         screws[i] = s;
         twists[i] = vi;
         bias_acc[i] = ci;
+    }
+    // ... then, body by body (each on its own), 𝔍_i^0 = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i} written into
+    // 𝔍ᴬ_i, and pᴬ_i = −ad_{V_i}ᵀ 𝔍_i^0 V_i − W_ext,i.
+    for i in 0..n {
+        let h = &poses[i];
+        let mut p = rigid_in_world(&bodies[i].inertia, h, &twists[i], &mut inertias[i]);
+        if let Some(f) = fext {
+            p -= f.in_world_at(h, i);
+        }
         biases[i] = p;
     }
     // Pass 2: articulated inertias, from the leaves to the root.
@@ -186,7 +225,7 @@ pub(crate) fn articulated_body<'w, T: Real>(
         let s = &screws[i];
         accels[i] = Twist::from_fn(|r, _| s[r].mul_add(qdd_i, a_par[r]));
     }
-    Ok(&ws.qdd)
+    Ok(())
 }
 
 // Products that are added are fused (`mul_add`: one instruction where the CPU has FMA, which the
