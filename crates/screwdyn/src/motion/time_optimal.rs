@@ -167,11 +167,27 @@ impl Timing {
     /// `(s, ṡ, s̈)` at time `t`: on interval `k`, `s = s_k + ṡ_k τ + u_k τ²/2` with `τ = t − t_k`.
     fn state(&self, t: f64) -> (f64, f64, f64) {
         let n = self.s.len() - 1;
+        let k = (self.t.partition_point(|&x| x <= t).max(1) - 1).min(n - 1);
+        self.state_on(t, k)
+    }
+
+    /// [`state`](Self::state) for times that only increase from call to call: the interval is
+    /// found by stepping on from the previous one (`k`, 0 at first) instead of a binary search.
+    fn state_after(&self, t: f64, k: &mut usize) -> (f64, f64, f64) {
+        let last = self.s.len() - 2;
+        while *k < last && self.t[*k + 1] <= t {
+            *k += 1;
+        }
+        self.state_on(t, *k)
+    }
+
+    /// The state at `t` on interval `k` (which holds `t` unless `t` is outside the motion).
+    fn state_on(&self, t: f64, k: usize) -> (f64, f64, f64) {
+        let n = self.s.len() - 1;
         if t >= self.t[n] {
             return (self.s[n], 0.0, 0.0);
         }
         let t = t.max(0.0);
-        let k = (self.t.partition_point(|&x| x <= t).max(1) - 1).min(n - 1);
         let tau = t - self.t[k];
         let (u, v0) = (self.u[k], self.x[k].sqrt());
         let s = (self.s[k] + v0 * tau + 0.5 * u * tau * tau).clamp(self.s[k], self.s[k + 1]);
@@ -180,7 +196,18 @@ impl Timing {
 
     /// `q`, `q̇ = q' ṡ`, `q̈ = q' s̈ + q'' ṡ²` at time `t`.
     fn eval(&self, path: &dyn Path, t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) {
-        let (s, sd, sdd) = self.state(t);
+        let state = self.state(t);
+        Self::to_joints(path, state, q, qd, qdd);
+    }
+
+    /// `q(s)`, `q'(s) ṡ` and `q'(s) s̈ + q''(s) ṡ²` from the path state `(s, ṡ, s̈)`.
+    fn to_joints(
+        path: &dyn Path,
+        (s, sd, sdd): (f64, f64, f64),
+        q: &mut [f64],
+        qd: &mut [f64],
+        qdd: &mut [f64],
+    ) {
         path.eval(s, q, qd, qdd);
         for j in 0..q.len() {
             let d = qd[j];
@@ -444,8 +471,9 @@ fn fill_constraints(
     coarse: &Constraints,
     c: &mut Constraints,
 ) -> Result<()> {
-    let n = path.nq();
-    c.rows_per_point = 4 * n;
+    // Only the rows of finite limits are kept (the others never bind), two per limit.
+    let finite = |l: &[f64]| l.iter().filter(|x| x.is_finite()).count();
+    c.rows_per_point = 2 * (finite(&limits.acceleration) + finite(&limits.effort));
     c.rows.clear();
     c.x_max.clear();
     let doubled = s.len() % 2 == 1
@@ -486,10 +514,14 @@ fn fill_constraints(
             }
             // ±(q' u + q'' x) ≤ amax,  ±(a u + b x + c) ≤ τmax
             let amax = keep * limits.acceleration[j];
-            c.rows.push([p.dq[j], p.ddq[j], amax]);
-            c.rows.push([-p.dq[j], -p.ddq[j], amax]);
-            c.rows.push([p.a[j], p.b[j], effort - p.c[j]]);
-            c.rows.push([-p.a[j], -p.b[j], effort + p.c[j]]);
+            if amax.is_finite() {
+                c.rows.push([p.dq[j], p.ddq[j], amax]);
+                c.rows.push([-p.dq[j], -p.ddq[j], amax]);
+            }
+            if effort.is_finite() {
+                c.rows.push([p.a[j], p.b[j], effort - p.c[j]]);
+                c.rows.push([-p.a[j], -p.b[j], effort + p.c[j]]);
+            }
         }
         c.x_max.push(x_max);
     }
@@ -512,9 +544,16 @@ fn check_limits(
     let duration = timing.duration();
     let samples = (duration / step).ceil() as usize + 1;
     let mut worst = (f64::NEG_INFINITY, (LimitKind::Torque, 0, 0.0));
+    let mut interval = 0;
     for k in 0..samples {
         let t = (k as f64 * step).min(duration);
-        timing.eval(path, t, &mut q, &mut qd, &mut qdd);
+        Timing::to_joints(
+            path,
+            timing.state_after(t, &mut interval),
+            &mut q,
+            &mut qd,
+            &mut qdd,
+        );
         let Ok(tau) = rnea(model, ws, &q, &qd, &qdd) else {
             return (f64::INFINITY, (LimitKind::Torque, 0, t), k + 1);
         };
