@@ -8,7 +8,7 @@ use super::spline::Path;
 use crate::dynamics::rnea;
 use crate::error::{Error, Result};
 use crate::model::Model;
-use crate::sim::Trajectory;
+use crate::sim::{ProfileSummary, Trajectory, ViolationSummary};
 use crate::workspace::Workspace;
 
 /// Per-joint limits of a timing; `f64::INFINITY` where a joint has none.
@@ -152,6 +152,11 @@ pub struct TimingReport {
     pub worst: (LimitKind, usize, f64),
     /// Number of samples checked.
     pub samples_checked: usize,
+    /// The torques of the final check's samples summarised against the model's effort limits:
+    /// what [`torque_profile_into`](crate::sim::torque_profile_into) reports for this timing
+    /// every `check_step` seconds, the same samples and the same inverse dynamics, so a
+    /// profile at that step need not compute them again.
+    pub profile: ProfileSummary,
 }
 
 /// The timing on one grid: `s_i`, `x_i = ṡ_i²`, `u_i` and the times `t_i`.
@@ -356,6 +361,7 @@ pub fn time_optimal<P: Path>(
                         max_excess: check.0,
                         worst: check.1,
                         samples_checked: check.2,
+                        profile: check.3,
                     },
                 });
             }
@@ -530,7 +536,7 @@ fn fill_constraints(
 
 /// Samples the timing every `step` seconds (and at its end) and returns the largest excess
 /// `|value| / limit − 1` over velocity, acceleration and torque (inverse dynamics plus springs
-/// and Coulomb friction), where it occurs, and the number of samples.
+/// and Coulomb friction), where it occurs, the number of samples and their torque statistics.
 fn check_limits(
     model: &Model,
     ws: &mut Workspace,
@@ -538,12 +544,13 @@ fn check_limits(
     timing: &Timing,
     limits: &TimingLimits,
     step: f64,
-) -> (f64, (LimitKind, usize, f64), usize) {
+) -> (f64, (LimitKind, usize, f64), usize, ProfileSummary) {
     let n = path.nq();
     let (mut q, mut qd, mut qdd) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let duration = timing.duration();
     let samples = (duration / step).ceil() as usize + 1;
     let mut worst = (f64::NEG_INFINITY, (LimitKind::Torque, 0, 0.0));
+    let mut stats = TorqueStatistics::new(model);
     let mut interval = 0;
     for k in 0..samples {
         let t = (k as f64 * step).min(duration);
@@ -555,14 +562,20 @@ fn check_limits(
             &mut qdd,
         );
         let Ok(tau) = rnea(model, ws, &q, &qd, &qdd) else {
-            return (f64::INFINITY, (LimitKind::Torque, 0, t), k + 1);
+            return (
+                f64::INFINITY,
+                (LimitKind::Torque, 0, t),
+                k + 1,
+                stats.summary(k + 1),
+            );
         };
         for (j, joint) in model.joints().iter().enumerate() {
-            let friction = joint.spring_and_friction_torque(q[j], qd[j]);
+            let tau_j = tau[j] + joint.spring_and_friction_torque(q[j], qd[j]);
+            stats.add(j, t, tau_j);
             for (kind, value, limit) in [
                 (LimitKind::Velocity, qd[j], limits.velocity[j]),
                 (LimitKind::Acceleration, qdd[j], limits.acceleration[j]),
-                (LimitKind::Torque, tau[j] + friction, limits.effort[j]),
+                (LimitKind::Torque, tau_j, limits.effort[j]),
             ] {
                 let excess = value.abs() / limit - 1.0;
                 if excess > worst.0 {
@@ -571,5 +584,62 @@ fn check_limits(
             }
         }
     }
-    (worst.0, worst.1, samples)
+    (worst.0, worst.1, samples, stats.summary(samples))
+}
+
+/// Per joint `max |τ|` (the first time on ties), `Σ τ²` and the samples over the model's
+/// effort limit, as a torque profile keeps them.
+struct TorqueStatistics {
+    peak: Vec<f64>,
+    peak_time: Vec<f64>,
+    sum_of_squares: Vec<f64>,
+    effort_limit: Vec<f64>,
+    over: Vec<Option<ViolationSummary>>,
+}
+
+impl TorqueStatistics {
+    fn new(model: &Model) -> Self {
+        let n = model.nq();
+        TorqueStatistics {
+            peak: vec![0.0; n],
+            peak_time: vec![0.0; n],
+            sum_of_squares: vec![0.0; n],
+            effort_limit: model.joints().iter().map(|j| j.limits.effort).collect(),
+            over: vec![None; n],
+        }
+    }
+
+    fn add(&mut self, j: usize, t: f64, tau: f64) {
+        let magnitude = tau.abs();
+        if magnitude > self.peak[j] {
+            (self.peak[j], self.peak_time[j]) = (magnitude, t);
+        }
+        self.sum_of_squares[j] += tau * tau;
+        if magnitude > self.effort_limit[j] {
+            let s = self.over[j].get_or_insert(ViolationSummary {
+                count: 0,
+                first_time: t,
+                worst: 0.0,
+            });
+            s.count += 1;
+            s.worst = s.worst.max(magnitude);
+        }
+    }
+
+    /// The statistics of `samples` samples; RMS `= √(Σ τ² / samples)`.
+    fn summary(self, samples: usize) -> ProfileSummary {
+        let count = samples as f64;
+        ProfileSummary {
+            samples,
+            rms: self
+                .sum_of_squares
+                .iter()
+                .map(|s| (s / count).sqrt())
+                .collect(),
+            peak: self.peak,
+            peak_time: self.peak_time,
+            effort_limit: self.effort_limit,
+            violation_summary: self.over,
+        }
+    }
 }
