@@ -33,24 +33,29 @@ impl Constraints {
 }
 
 /// Lines `m(x) = c0 + c1 x`, stored as two columns so that [`max_line`] runs down them in
-/// independent lanes.
+/// independent lanes; the first `len` entries are in use.
 #[derive(Default)]
 struct Lines {
     c0: Vec<f64>,
     c1: Vec<f64>,
+    len: usize,
 }
 
 impl Lines {
-    fn clear(&mut self) {
-        self.c0.clear();
-        self.c1.clear();
+    /// Room for `n` lines, none in use.
+    fn clear(&mut self, n: usize) {
+        if self.c0.len() < n {
+            self.c0.resize(n, 0.0);
+            self.c1.resize(n, 0.0);
+        }
+        self.len = 0;
     }
-    fn push(&mut self, c0: f64, c1: f64) {
-        self.c0.push(c0);
-        self.c1.push(c1);
+    /// The lines in use: `(c0, c1)`.
+    fn columns(&self) -> (&[f64], &[f64]) {
+        (&self.c0[..self.len], &self.c1[..self.len])
     }
     fn is_empty(&self) -> bool {
-        self.c0.is_empty()
+        self.len == 0
     }
 }
 
@@ -77,8 +82,11 @@ fn split_rows(
     next: (f64, f64),
     scratch: &mut Scratch,
 ) -> (f64, f64) {
-    scratch.upper.clear();
-    scratch.lower.clear();
+    let room = 2 * c.rows_per_point + 2;
+    scratch.upper.clear(room);
+    scratch.lower.clear(room);
+    let (upper, lower) = (&mut scratch.upper, &mut scratch.lower);
+    let (mut n_upper, mut n_lower) = (0, 0);
     let (mut x_lo, mut x_hi) = (0.0_f64, c.x_max[i]);
     let here = c.at(i).iter().copied();
     let there = c
@@ -91,13 +99,14 @@ fn split_rows(
             continue;
         }
         if r[0] != 0.0 {
+            // Written to both columns, kept by the one its sign picks: no branch to mispredict.
             let per_alpha = 1.0 / r[0];
             let (c0, c1) = (r[2] * per_alpha, -r[1] * per_alpha);
-            if r[0] > 0.0 {
-                scratch.upper.push(-c0, -c1);
-            } else {
-                scratch.lower.push(c0, c1);
-            }
+            (upper.c0[n_upper], upper.c1[n_upper]) = (-c0, -c1);
+            (lower.c0[n_lower], lower.c1[n_lower]) = (c0, c1);
+            let is_upper = r[0] > 0.0;
+            n_upper += usize::from(is_upper);
+            n_lower += usize::from(!is_upper);
         } else if r[1] > 0.0 {
             x_hi = x_hi.min(r[2] / r[1]);
         } else if r[1] < 0.0 {
@@ -106,6 +115,7 @@ fn split_rows(
             x_lo = f64::INFINITY;
         }
     }
+    (upper.len, lower.len) = (n_upper, n_lower);
     (x_lo, x_hi)
 }
 
@@ -193,7 +203,7 @@ fn gap(upper: &Lines, lower: &Lines, x: f64) -> (f64, f64, f64) {
 /// `max_k (c0_k + c1_k x)` and the slope `c1_k` of a line attaining it, in four independent
 /// lanes (the lines are many and each step is short: one chain would wait on every compare).
 fn max_line(lines: &Lines, x: f64) -> (f64, f64) {
-    let (c0, c1) = (&lines.c0[..], &lines.c1[..lines.c0.len()]);
+    let (c0, c1) = lines.columns();
     let (mut best, mut slope) = ([f64::NEG_INFINITY; 4], [0.0; 4]);
     let (c0_4, c1_4) = (c0.chunks_exact(4), c1.chunks_exact(4));
     let tail = c0_4.remainder().iter().zip(c1_4.remainder());
@@ -266,9 +276,9 @@ fn newton(f: impl Fn(f64) -> (f64, f64, f64), mut x: f64, direction: Direction) 
 /// The projection by Fourier–Motzkin elimination of `u`: each upper bound `u ≤ p0 + p1 x` and
 /// lower bound `u ≥ n0 + n1 x` combine into `(n1 − p1) x ≤ p0 − n0`; `O(m²)` for `m` rows.
 fn project_pairwise(scratch: &Scratch, (mut lo, mut hi): (f64, f64)) -> Option<(f64, f64)> {
-    let (upper, lower) = (&scratch.upper, &scratch.lower);
-    for (p0, p1) in upper.c0.iter().zip(&upper.c1) {
-        for (n0, n1) in lower.c0.iter().zip(&lower.c1) {
+    let ((u0, u1), (l0, l1)) = (scratch.upper.columns(), scratch.lower.columns());
+    for (p0, p1) in u0.iter().zip(u1) {
+        for (n0, n1) in l0.iter().zip(l1) {
             // The upper bound is u ≤ −p0 − p1 x (stored negated).
             let k = n1 + p1;
             let r = -p0 - n0;
@@ -348,20 +358,21 @@ pub(crate) fn parameterize(
 }
 
 /// The largest `u` allowed on interval `i` at `x_i = x`: `min (γ − β x) / α` over the rows of
-/// [`split_rows`] with `α > 0` (the same rows in the same order, without collecting them).
+/// [`split_rows`] with `α > 0` (the same rows, without collecting them).
 fn largest_u(c: &Constraints, i: usize, delta: f64, next: (f64, f64), x: f64) -> f64 {
     let mut u_hi = f64::INFINITY;
-    let mut bound = |r: [f64; 3]| {
-        if r[0] > 0.0 && r[2].is_finite() {
-            u_hi = u_hi.min((r[2] - r[1] * x) / r[0]);
-        }
-    };
-    c.at(i).iter().for_each(|&r| bound(r));
-    c.at(i + 1)
+    let here = c.at(i).iter().copied();
+    let there = c
+        .at(i + 1)
         .iter()
-        .for_each(|r| bound([r[0] + 2.0 * delta * r[1], r[1], r[2]]));
-    bound([2.0 * delta, 1.0, next.1]);
-    bound([-2.0 * delta, -1.0, -next.0]);
+        .map(|r| [r[0] + 2.0 * delta * r[1], r[1], r[2]]);
+    let ahead = [[2.0 * delta, 1.0, next.1], [-2.0 * delta, -1.0, -next.0]];
+    for r in here.chain(there).chain(ahead) {
+        let u = (r[2] - r[1] * x) / r[0];
+        if r[0] > 0.0 && r[2].is_finite() && u < u_hi {
+            u_hi = u;
+        }
+    }
     u_hi
 }
 
