@@ -33,15 +33,28 @@ pub(crate) fn rnea_passes<T: Real>(
     //   V_i = Ad_{H_λ^i} V_λ + S_i q̇_i,  V̇_i = Ad_{H_λ^i} V̇_λ − ad_{S_i q̇_i}(Ad_{H_λ^i} V_λ) + S_i q̈_i
     // and the Newton–Euler equation of each body W_i = 𝔍_i V̇_i − ad_{V_i}ᵀ 𝔍_i V_i − W_ext,i.
     let n = model.nbodies();
-    let (motions, parents, bodies) = (model.motions(), model.parents(), model.bodies());
+    // Everything as slices of length n, so that the loops' bounds checks go (parents come
+    // before their children, so `p < i` for the parent `p` of `i`).
+    let (motions, parents, bodies, joints) = (
+        &model.motions()[..n],
+        &model.parents()[..n],
+        &model.bodies()[..n],
+        &model.joints()[..n],
+    );
+    let pip = &ws.pose_in_parent[..n];
+    let piw = &ws.pose_in_world[..n];
+    let (twist, twist_dot, wrench, tau) = (
+        &mut ws.twist[..n],
+        &mut ws.twist_dot[..n],
+        &mut ws.wrench[..n],
+        &mut ws.tau.as_mut_slice()[..n],
+    );
+    let v = v.map(|v| &v[..n]);
     for i in 0..n {
-        let h = &ws.pose_in_parent[i];
+        let h = &pip[i];
         let m = &motions[i];
         let (mut vi, mut vdi) = match parents[i] {
-            Some(p) => (
-                h.inv_act_twist(&ws.twist[p]),
-                h.inv_act_twist(&ws.twist_dot[p]),
-            ),
+            Some(p) => (h.inv_act_twist(&twist[p]), h.inv_act_twist(&twist_dot[p])),
             None => (Twist::zeros(), h.inv_act_twist(base)),
         };
         if let Some(v) = v {
@@ -53,20 +66,20 @@ pub(crate) fn rnea_passes<T: Real>(
         let inertia = &bodies[i].inertia;
         let mut w = inertia.apply(&vdi) - ad_transpose(&vi, &inertia.apply(&vi));
         if let Some(f) = fext {
-            w -= f.on_body_at(&ws.pose_in_world[i], i);
+            w -= f.on_body_at(&piw[i], i);
         }
-        ws.twist[i] = vi;
-        ws.twist_dot[i] = vdi;
-        ws.wrench[i] = w;
+        twist[i] = vi;
+        twist_dot[i] = vdi;
+        wrench[i] = w;
     }
     // Backward pass (Lynch & Park, *Modern Robotics*): W_λ += Ad_{H_λ^i}ᵀ W_i, τ_i = S_iᵀ W_i + I_a,i q̈_i (the
     // armature, the rotor inertia reflected to joint i, accelerates with the joint alone).
-    let joints = model.joints();
     for i in (0..n).rev() {
-        ws.tau[i] = motions[i].dot(&ws.wrench[i]) + joints[i].armature * qdd(i);
+        let w = wrench[i];
+        tau[i] = motions[i].dot(&w) + joints[i].armature * qdd(i);
         if let Some(p) = parents[i] {
-            let back = ws.pose_in_parent[i].inv_act_transpose_wrench(&ws.wrench[i]);
-            ws.wrench[p] += back;
+            let back = pip[i].inv_act_transpose_wrench(&w);
+            wrench[p] += back;
         }
     }
 }
