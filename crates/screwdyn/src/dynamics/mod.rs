@@ -47,6 +47,7 @@ pub use energy::{
     center_of_mass, kinetic_energy, kinetic_energy_mass_matrix, potential_energy, power,
     total_energy,
 };
+pub(crate) use forward::forward_dynamics_for_stepper;
 pub use forward::{
     forward_dynamics, forward_dynamics_crba, forward_dynamics_walker_orin, ForwardMethod,
 };
