@@ -3,7 +3,7 @@
 
 use super::cholesky::{singular_error, with_small_size};
 use crate::error::Result;
-use crate::kinematics::forward_kinematics;
+use crate::kinematics::{forward_kinematics, poses_in_parent};
 use crate::model::{JointMotion, Model};
 use crate::scalar::Real;
 use crate::spatial::{CompositeInertia, Se3, Wrench};
@@ -125,10 +125,10 @@ pub fn crba_local<'w, T: Real>(
     ws: &'w mut Workspace<T>,
     q: &[T],
 ) -> Result<&'w DMatrix<T>> {
-    ws.check(model)?;
-    model.check_vector(q, "q")?;
+    // H_i^{λ(i)} = H_i^{λ(i)}(0) e^{[S_i] q_i} (checks `ws` and `q`).
+    poses_in_parent(model, ws, q)?;
     ws.ensure_square()?;
-    local_given_q(model, ws, q);
+    local_given_poses(model, ws);
     Ok(&ws.mass_matrix)
 }
 
@@ -263,7 +263,7 @@ fn composite_to_parent<T: Real>(
     c.transformed(h)
 }
 
-fn local_given_q<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) {
+fn local_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) {
     let n = model.nbodies();
     let (joints, motions, parents, bodies) = (
         &model.joints()[..n],
@@ -271,14 +271,10 @@ fn local_given_q<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) {
         &model.parents()[..n],
         &model.body_composite[..n],
     );
-    let q = &q[..n];
     let unrotated = &model.home_unrotated[..n];
-    let (pip, ci) = (&mut ws.pose_in_parent[..n], &mut ws.composite_inertia[..n]);
-    // H_i^{λ(i)} = H_i^{λ(i)}(0) e^{[S_i] q_i}; 𝔍ᶜ_i starts as body i's own inertia.
-    for i in 0..n {
-        pip[i] = motions[i].pose_in_parent(&joints[i].home, q[i]);
-        ci[i] = bodies[i];
-    }
+    let (pip, ci) = (&ws.pose_in_parent[..n], &mut ws.composite_inertia[..n]);
+    // 𝔍ᶜ_i starts as body i's own inertia.
+    ci.copy_from_slice(bodies);
     let data = &mut ws.mass_matrix.as_mut_slice()[..n * n];
     if !model.is_chain {
         // Bodies on different branches do not couple.
