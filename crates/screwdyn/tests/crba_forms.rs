@@ -151,7 +151,7 @@ fn check(model: &Model, rng: &mut StdRng, states: usize) {
 #[test]
 fn local_and_base_frame_agree_on_random_trees() {
     let mut rng = StdRng::seed_from_u64(31);
-    for n in [1, 2, 3, 5, 8, 13, 16, 17, 25] {
+    for n in [1, 2, 3, 5, 6, 7, 8, 13, 25] {
         for _ in 0..4 {
             let model = mixed_axes(&mut rng, n, 0.25);
             check(&model, &mut rng, 5);
@@ -167,7 +167,7 @@ fn local_and_base_frame_agree_on_random_trees() {
 #[test]
 fn local_and_base_frame_agree_on_chains() {
     let mut rng = StdRng::seed_from_u64(200);
-    for n in [6, 16, 17, 60, 200] {
+    for n in [6, 7, 16, 60, 200] {
         let model = mixed_axes(&mut rng, n, 0.0);
         check(&model, &mut rng, 2);
     }

@@ -3,13 +3,13 @@
 
 use super::cholesky::{singular_error, with_small_size};
 use crate::error::Result;
-use crate::kinematics::forward_kinematics;
-use crate::model::{HomeTurn, JointMotion, Model};
+use crate::kinematics::{forward_kinematics, poses_in_parent};
+use crate::model::{JointMotion, Model};
 use crate::scalar::Real;
 use crate::spatial::{CompositeInertia, Se3, Wrench};
 use crate::workspace::Workspace;
 use nalgebra::DMatrix;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::Vector3;
 
 /// The mass matrix `M(q)` by the composite-rigid-body algorithm: composite inertias
 /// `𝔍ᶜ_i = 𝔍_i + Σ_children 𝔍ᶜ_c` (backward), then `M_ij = S_iᵀ 𝔍ᶜ_j S_j` for every `i`
@@ -21,7 +21,8 @@ use nalgebra::{Matrix3, Vector3};
 /// Two equivalent forms, chosen by the size of the model:
 /// [`crba_local`] (every quantity in its own body frame, no forward kinematics) for models of at
 /// most [`CRBA_LOCAL_MAX_BODIES`] bodies, [`crba_in_base_frame`] (everything in {0}) beyond, where
-/// its six-term dot products beat the `n(n−1)/2` changes of frame of the local form. Which
+/// its six-term dot products beat the changes of frame of the local form (one per body and
+/// ancestor: `n(n−1)/2` on a chain). Which
 /// workspace entries each one writes besides `ws.mass_matrix` is listed on each; use
 /// [`forward_kinematics`] for world poses.
 ///
@@ -61,11 +62,15 @@ pub fn mass_matrix<'w, T: Real>(
 }
 
 /// The largest model (in bodies) for which [`crba`] uses the local form [`crba_local`]; larger
-/// models use [`crba_in_base_frame`]. Chosen by instruction counts (callgrind) of both forms on
-/// serial chains: the local form's `O(n²)` term is a change of frame of a wrench (~45 flops),
-/// the base frame's a six-term dot product (11 flops), so the base frame wins on long chains
-/// despite its forward kinematics and its per-body change of frame to {0}.
-pub const CRBA_LOCAL_MAX_BODIES: usize = 16;
+/// models use [`crba_in_base_frame`]. Chosen by instruction counts (callgrind, per call, AVX2
+/// build): UR5 (6 bodies, a chain) 3876 local against 4224 in {0}; Panda (9 bodies, a chain of
+/// 7 and two fingers) about 7250 local against 6510 in {0}. Fitted, the local form costs about
+/// 420 instructions a body (`sin_cos`, the composite's change of frame) plus 100 for each
+/// (body, ancestor) pair (a wrench's change of frame), the base frame 670 a body (forward
+/// kinematics, the change of frame to {0}, the screw in {0}) plus 14 a pair (a six-term dot
+/// product): the local form wins while the pairs are fewer than about 2.9 per body, i.e. on
+/// every tree of up to 6 bodies and on no chain longer than 6.
+pub const CRBA_LOCAL_MAX_BODIES: usize = 6;
 
 /// [`crba`] with everything in the base frame {0}: `𝔍ᶜ_i` is summed from the bodies' inertias
 /// `Ad_{H_0^i}ᵀ 𝔍^{i,i} Ad_{H_0^i}`, and `S_i` is the space-Jacobian column
@@ -120,10 +125,10 @@ pub fn crba_local<'w, T: Real>(
     ws: &'w mut Workspace<T>,
     q: &[T],
 ) -> Result<&'w DMatrix<T>> {
-    ws.check(model)?;
-    model.check_vector(q, "q")?;
+    // H_i^{λ(i)} = H_i^{λ(i)}(0) e^{[S_i] q_i} (checks `ws` and `q`).
+    poses_in_parent(model, ws, q)?;
     ws.ensure_square()?;
-    local_given_q(model, ws, q);
+    local_given_poses(model, ws);
     Ok(&ws.mass_matrix)
 }
 
@@ -162,27 +167,14 @@ fn inertia_times_axis<T: Real>(c: &CompositeInertia<T>, motion: &JointMotion<T>)
     }
 }
 
-/// `(c, s)` of the turn `Rot_K(θ)` about the coordinate axis `K` whose plane is `(I, J)`
-/// (`Rot_K ê_I = c ê_I + s ê_J`), read out of `R = R(0) Rot_K(θ)`: rows of `Rot_K` are rows of
-/// `R(0)ᵀ R`.
+/// `(c, s)` of the turn `R = Rot_K(θ)` about the coordinate axis `K` whose plane is `(I, J)`:
+/// `R ê_I = c ê_I + s ê_J`.
 #[inline(always)]
-fn cos_sin<T: Real, const I: usize, const J: usize>(r: &Matrix3<T>, home: HomeTurn) -> (T, T) {
-    match home {
-        HomeTurn::QuarterX(plus) => {
-            // R(0) = Rot_x(±π/2): Rot_K's rows 0, 1, 2 are R's rows 0, ±2, ∓1.
-            let sign = if plus { T::one() } else { -T::one() };
-            let row = |k: usize| match k {
-                0 => r[(0, I)],
-                1 => r[(2, I)] * sign,
-                _ => -r[(1, I)] * sign,
-            };
-            (row(I), row(J))
-        }
-        _ => (r[(I, I)], r[(J, I)]),
-    }
+fn cos_sin<T: Real, const I: usize, const J: usize>(r: &nalgebra::Matrix3<T>) -> (T, T) {
+    (r[(I, I)], r[(J, I)])
 }
 
-/// `v ↦ Rot_K(θ) v` on both halves of a 6-vector, in the plane `(I, J)`.
+/// `v ↦ Rot_K(θ) v` in the plane `(I, J)`.
 #[inline(always)]
 fn turn<T: Real, const I: usize, const J: usize>(v: &mut [T; 6], c: T, s: T) {
     for half in [0, 3] {
@@ -193,121 +185,85 @@ fn turn<T: Real, const I: usize, const J: usize>(v: &mut [T; 6], c: T, s: T) {
 }
 
 /// A wrench `W = (m, f)` in frame {i} written in the parent's frame, `Ad_{H_i^λ}⁻ᵀ W =
-/// (R m + p × R f, R f)` with `H_i^λ = (R, p)`. For an axis joint whose home rotation `R(0)` is
-/// the identity or a quarter turn, `R = R(0) Rot_K(θ)` (revolute) or `R(0)` (prismatic) only
-/// mixes and moves entries: the turn in one plane, then `R(0)`'s signed permutation.
+/// (R m + p × R f, R f)` with `H_i^λ = (R, p)`. When the joint's home has no rotation, an axis
+/// joint's `R` is a turn about a coordinate axis (revolute) or the identity (prismatic): then
+/// `R` only mixes two entries of each half.
 #[inline(always)]
 fn wrench_to_parent<T: Real>(
     h: &Se3<T>,
     motion: &JointMotion<T>,
-    home: HomeTurn,
+    unrotated: bool,
     w: &Wrench<T>,
 ) -> Wrench<T> {
-    if home != HomeTurn::General {
+    if unrotated {
         let mut v = [w[0], w[1], w[2], w[3], w[4], w[5]];
         let r = &h.rotation;
-        let special = match *motion {
+        let turned = match *motion {
             JointMotion::RevoluteAxis { axis: 0, .. } => {
-                let (c, s) = cos_sin::<T, 1, 2>(r, home);
+                let (c, s) = cos_sin::<T, 1, 2>(r);
                 turn::<T, 1, 2>(&mut v, c, s);
                 true
             }
             JointMotion::RevoluteAxis { axis: 1, .. } => {
-                let (c, s) = cos_sin::<T, 2, 0>(r, home);
+                let (c, s) = cos_sin::<T, 2, 0>(r);
                 turn::<T, 2, 0>(&mut v, c, s);
                 true
             }
             JointMotion::RevoluteAxis { .. } => {
-                let (c, s) = cos_sin::<T, 0, 1>(r, home);
+                let (c, s) = cos_sin::<T, 0, 1>(r);
                 turn::<T, 0, 1>(&mut v, c, s);
                 true
             }
             JointMotion::PrismaticAxis { .. } => true,
             _ => false,
         };
-        if special {
-            if let HomeTurn::QuarterX(plus) = home {
-                // (a, b, c) ↦ (a, ∓c, ±b) on both halves
-                for half in [0, 3] {
-                    let (b, c) = (v[half + 1], v[half + 2]);
-                    (v[half + 1], v[half + 2]) = if plus { (-c, b) } else { (c, -b) };
-                }
-            }
+        if turned {
             // m' = R m + p × f'
+            let p = &h.translation;
             let f = Vector3::new(v[3], v[4], v[5]);
-            let pf = h.translation.cross(&f);
+            let pf = p.cross(&f);
             return Wrench::new(v[0] + pf.x, v[1] + pf.y, v[2] + pf.z, f.x, f.y, f.z);
         }
     }
     h.inv_act_transpose_wrench(w)
 }
 
-/// A composite inertia in frame {i} written in the parent's frame (`h = H_i^λ`): for the joints
-/// of [`wrench_to_parent`]'s special case, turned in one plane, moved by `R(0)`'s signed
-/// permutation and shifted by `p`; else the general change of frame.
+/// A composite inertia in frame {i} written in the parent's frame (`h = H_i^λ`), by the turn
+/// about a coordinate axis and the shift when the joint's home has no rotation (see
+/// [`wrench_to_parent`]), else by the general change of frame.
 #[inline(always)]
 fn composite_to_parent<T: Real>(
     c: &CompositeInertia<T>,
     h: &Se3<T>,
     motion: &JointMotion<T>,
-    home: HomeTurn,
+    unrotated: bool,
 ) -> CompositeInertia<T> {
-    if home != HomeTurn::General {
+    if unrotated {
         let r = &h.rotation;
         let turned = match *motion {
             JointMotion::RevoluteAxis { axis: 0, .. } => {
-                let (cos, sin) = cos_sin::<T, 1, 2>(r, home);
+                let (cos, sin) = cos_sin::<T, 1, 2>(r);
                 Some(c.turned::<1, 2, 0>(cos, sin))
             }
             JointMotion::RevoluteAxis { axis: 1, .. } => {
-                let (cos, sin) = cos_sin::<T, 2, 0>(r, home);
+                let (cos, sin) = cos_sin::<T, 2, 0>(r);
                 Some(c.turned::<2, 0, 1>(cos, sin))
             }
             JointMotion::RevoluteAxis { .. } => {
-                let (cos, sin) = cos_sin::<T, 0, 1>(r, home);
+                let (cos, sin) = cos_sin::<T, 0, 1>(r);
                 Some(c.turned::<0, 1, 2>(cos, sin))
             }
             JointMotion::PrismaticAxis { .. } => Some(*c),
             _ => None,
         };
-        if let Some(mut t) = turned {
-            if let HomeTurn::QuarterX(plus) = home {
-                t = quarter_x(&t, plus);
-            }
+        if let Some(t) = turned {
             return t.shifted(&h.translation);
         }
     }
     c.transformed(h)
 }
 
-/// `R 𝔍 Rᵀ` for `R = Rot_x(±π/2)`, `(v_x, v_y, v_z) ↦ (v_x, ∓v_z, ±v_y)`: `I_o'` has
-/// `I_xx`, `∓I_xz`, `±I_xy` in its first row, `I_zz`, `−I_yz`, `I_yy` on the rest.
-#[inline(always)]
-fn quarter_x<T: Real>(c: &CompositeInertia<T>, plus: bool) -> CompositeInertia<T> {
-    let (io, h) = (&c.inertia_origin, &c.first_moment);
-    let (xy, xz, hy, hz) = if plus {
-        (-io[(0, 2)], io[(0, 1)], -h.z, h.y)
-    } else {
-        (io[(0, 2)], -io[(0, 1)], h.z, -h.y)
-    };
-    CompositeInertia {
-        mass: c.mass,
-        first_moment: Vector3::new(h.x, hy, hz),
-        inertia_origin: Matrix3::new(
-            io[(0, 0)],
-            xy,
-            xz,
-            xy,
-            io[(2, 2)],
-            -io[(1, 2)],
-            xz,
-            -io[(1, 2)],
-            io[(1, 1)],
-        ),
-    }
-}
-
-fn local_given_q<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) {
+fn local_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) {
     let n = model.nbodies();
     let (joints, motions, parents, bodies) = (
         &model.joints()[..n],
@@ -315,14 +271,10 @@ fn local_given_q<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) {
         &model.parents()[..n],
         &model.body_composite[..n],
     );
-    let q = &q[..n];
-    let home_turn = &model.home_turn[..n];
-    let (pip, ci) = (&mut ws.pose_in_parent[..n], &mut ws.composite_inertia[..n]);
-    // H_i^{λ(i)} = H_i^{λ(i)}(0) e^{[S_i] q_i}; 𝔍ᶜ_i starts as body i's own inertia.
-    for i in 0..n {
-        pip[i] = motions[i].pose_in_parent(&joints[i].home, q[i]);
-        ci[i] = bodies[i];
-    }
+    let unrotated = &model.home_unrotated[..n];
+    let (pip, ci) = (&ws.pose_in_parent[..n], &mut ws.composite_inertia[..n]);
+    // 𝔍ᶜ_i starts as body i's own inertia.
+    ci.copy_from_slice(bodies);
     let data = &mut ws.mass_matrix.as_mut_slice()[..n * n];
     if !model.is_chain {
         // Bodies on different branches do not couple.
@@ -338,13 +290,13 @@ fn local_given_q<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) {
         let mut k = i;
         while let Some(p) = parents[k] {
             // F in {λ(k)} = Ad_{H_k^{λ(k)}}⁻ᵀ F = (R m + p × R f, R f); M_{λ(k) i} = S_{λ(k)}ᵀ F
-            f = wrench_to_parent(&pip[k], &motions[k], home_turn[k], &f);
+            f = wrench_to_parent(&pip[k], &motions[k], unrotated[k], &f);
             k = p;
             column[k] = motions[k].dot(&f);
         }
         // 𝔍ᶜ_{λ(i)} += 𝔍ᶜ_i written in {λ(i)}: Ad_{H_{λ(i)}^i}ᵀ 𝔍ᶜ_i Ad_{H_{λ(i)}^i}
         if let Some(p) = parents[i] {
-            let c = composite_to_parent(&ci[i], &pip[i], &motions[i], home_turn[i]);
+            let c = composite_to_parent(&ci[i], &pip[i], &motions[i], unrotated[i]);
             ci[p].add(&c);
         }
     }

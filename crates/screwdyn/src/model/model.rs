@@ -18,46 +18,6 @@ pub struct Body<T: Real = f64> {
     pub inertia: SpatialInertia<T>,
 }
 
-/// The shape of a joint's home rotation `R_i^{λ(i)}(0)`, classified at build time so that CRBA's
-/// local form can change frames by moving entries instead of 3×3 products.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum HomeTurn {
-    /// `R(0) = 1` exactly.
-    Identity,
-    /// `R(0) = Rot_x(±π/2)` to rounding (every entry within `4 ε` of it, as `rpy="±π/2 0 0"`
-    /// gives): `(v_x, v_y, v_z) ↦ (v_x, ∓v_z, ±v_y)`. `true` for `+π/2`.
-    QuarterX(bool),
-    /// Anything else.
-    General,
-}
-
-impl HomeTurn {
-    fn classify<T: Real>(r: &nalgebra::Matrix3<T>) -> Self {
-        if *r == nalgebra::Matrix3::identity() {
-            return HomeTurn::Identity;
-        }
-        let tol = T::default_epsilon() * crate::scalar::real(4.0);
-        for plus in [true, false] {
-            let sign = if plus { T::one() } else { -T::one() };
-            let quarter = nalgebra::Matrix3::new(
-                T::one(),
-                T::zero(),
-                T::zero(),
-                T::zero(),
-                T::zero(),
-                -sign,
-                T::zero(),
-                sign,
-                T::zero(),
-            );
-            if (r - quarter).amax() <= tol {
-                return HomeTurn::QuarterX(plus);
-            }
-        }
-        HomeTurn::General
-    }
-}
-
 /// What a frame marks.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FrameKind {
@@ -108,8 +68,9 @@ pub struct Model<T: Real = f64> {
     pub(crate) body_composite: Vec<crate::spatial::CompositeInertia<T>>,
     /// Derived: the tree is a single chain (`λ(i) = i − 1`).
     pub(crate) is_chain: bool,
-    /// Derived: the shape of joint `i`'s home rotation `R_i^{λ(i)}(0)` (CRBA's local form).
-    pub(crate) home_turn: Vec<HomeTurn>,
+    /// Derived: joint `i`'s home pose has no rotation (`H_i^{λ(i)}(0) = (1, p)`), so that for an
+    /// axis joint `R_i^{λ(i)}(q)` is a turn about a coordinate axis (CRBA's local form).
+    pub(crate) home_unrotated: Vec<bool>,
     /// Derived: the index of each body's frame in `frames`.
     pub(crate) body_frames: Vec<usize>,
     /// Frame name → index in `frames`.
@@ -269,10 +230,10 @@ impl<T: Real> Model<T> {
             .iter()
             .enumerate()
             .all(|(i, p)| *p == i.checked_sub(1));
-        self.home_turn = self
+        self.home_unrotated = self
             .joints
             .iter()
-            .map(|j| HomeTurn::classify(&j.home.rotation))
+            .map(|j| j.home.rotation == nalgebra::Matrix3::identity())
             .collect();
         self.body_frames = vec![0; self.bodies.len()];
         for (k, f) in self.frames.iter().enumerate() {
@@ -732,7 +693,7 @@ impl Model<f64> {
             inertia_scale: U::zero(),
             body_composite: Vec::new(),
             is_chain: false,
-            home_turn: Vec::new(),
+            home_unrotated: Vec::new(),
             body_frames: Vec::new(),
             frame_index: self.frame_index.clone(),
             findings: self.findings.clone(),
