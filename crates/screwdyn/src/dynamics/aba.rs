@@ -311,17 +311,24 @@ fn rigid_in_world<T: Real>(
     // −m[c][c] = m (cᵀc 1 − c cᵀ).
     let (xx, yy, zz) = (mx * c0.x, my * c0.y, mz * c0.z);
     let (xy, xz, yz) = (mx * c0.y, mx * c0.z, my * c0.z);
+    // Written entry by entry in place (column-major order), with no 6×6 temporary to copy.
     let zero = T::zero();
+    let (a00, a11, a22) = (i00 + yy + zz, i11 + xx + zz, i22 + xx + yy);
+    let (a01, a02, a12) = (i01 - xy, i02 - xz, i12 - yz);
     #[rustfmt::skip]
-    let j = Matrix6::new(
-        i00 + yy + zz, i01 - xy,      i02 - xz,      zero, -mz,  my,
-        i01 - xy,      i11 + xx + zz, i12 - yz,      mz,   zero, -mx,
-        i02 - xz,      i12 - yz,      i22 + xx + yy, -my,  mx,   zero,
-        zero,          mz,            -my,           m,    zero, zero,
-        -mz,           zero,          mx,            zero, m,    zero,
-        my,            -mx,           zero,          zero, zero, m,
-    );
-    *out = j;
+    let columns = [
+        [a00, a01, a02, zero, -mz, my],
+        [a01, a11, a12, mz, zero, -mx],
+        [a02, a12, a22, -my, mx, zero],
+        [zero, mz, -my, m, zero, zero],
+        [-mz, zero, mx, zero, m, zero],
+        [my, -mx, zero, zero, zero, m],
+    ];
+    for (c, column) in columns.iter().enumerate() {
+        for (r, x) in column.iter().enumerate() {
+            out[(r, c)] = *x;
+        }
+    }
     let (w, v) = (ang(vel), lin(vel));
     let f = (v - cross(&c0, &w)) * m;
     let l = Vector3::new(
