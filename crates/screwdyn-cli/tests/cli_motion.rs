@@ -107,6 +107,28 @@ fn time_optimal_output_stays_within_the_limits_by_inverse_dynamics() {
         "inf",
     ]);
     assert!(f(&free["duration"]) <= duration);
+    // The report alone takes its statistics from the timing's check (the same samples every
+    // --dt): they equal those of the profile computed while writing --output, to the bit.
+    let alone = json(&[
+        "torque-profile",
+        "builtin:ur5",
+        "--trajectory",
+        "time-optimal",
+        "--waypoints",
+        &path,
+        "--amax",
+        "10",
+    ]);
+    for key in [
+        "duration",
+        "peak",
+        "peak_time",
+        "rms",
+        "violations",
+        "effort_limit",
+    ] {
+        assert_eq!(alone[key], out[key], "{key}");
+    }
 }
 
 #[test]

@@ -154,6 +154,30 @@ fn ur5_within_its_limits_with_one_limit_active_at_every_instant() {
 }
 
 #[test]
+fn the_check_reports_the_torque_profile_at_its_step() {
+    // The check's statistics are those of sim's torque profile of the result every
+    // `check_step` (the same samples through Trajectory::sample and the same inverse
+    // dynamics), bit for bit. Timed within twice the model's effort limits, the motion goes
+    // over the model's own limits, which both count against.
+    let m = builtin::load("ur5").unwrap();
+    let mut limits = TimingLimits::from_model(&m);
+    limits.effort.iter_mut().for_each(|e| *e *= 2.0);
+    limits.velocity = vec![f64::INFINITY; 6];
+    let timed = time_optimal(&m, ur5_path(), &limits, &Default::default()).unwrap();
+    let report = timed.report();
+    let p = torque_profile(&m, &timed, TimeOptimalOptions::default().check_step).unwrap();
+    let s = &report.profile;
+    assert_eq!(s.samples, p.samples.len());
+    assert_eq!(
+        (&s.peak, &s.peak_time, &s.rms),
+        (&p.peak, &p.peak_time, &p.rms)
+    );
+    assert_eq!(s.effort_limit, p.effort_limit);
+    assert_eq!(s.violation_summary, p.violation_summary);
+    assert!(s.violation_summary.iter().any(Option::is_some));
+}
+
+#[test]
 fn bad_input_is_one_sentence_naming_where() {
     let m = builtin::load("ur5").unwrap();
     let ok = TimingLimits::from_model(&m);

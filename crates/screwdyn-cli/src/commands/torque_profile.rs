@@ -26,6 +26,9 @@ struct Motion {
     trajectory: Box<dyn Trajectory>,
     what: String,
     timing: Option<(TimingLimits, screwdyn::motion::TimingReport)>,
+    /// The torque statistics of a time-optimal timing's check, sampled every `--dt` as the
+    /// profile would be (`None` when its step is another).
+    checked: Option<sim::ProfileSummary>,
 }
 
 /// `screwdyn torque-profile MODEL --trajectory trapezoid|quintic|time-optimal|jerk-limited ...`.
@@ -53,6 +56,14 @@ pub fn torque_profile(a: &TorqueProfileArgs) -> Result<(), CliError> {
         };
         let r = profile_report(a, &m, &summary, &motion);
         return crate::output::print(&[r], format, false);
+    }
+    // A report alone, of a timing whose check sampled the torques every --dt already: its
+    // statistics are the profile's.
+    if let Some(summary) = &motion.checked {
+        if a.plot.is_none() && a.output.is_none() && summary.samples <= a.max_samples {
+            let r = profile_report(a, &m, summary, &motion);
+            return crate::output::print(&[r], format, false);
+        }
     }
     // A plot needs every sample: the profile is held, or refused up front with the memory it
     // would need.
@@ -182,6 +193,7 @@ fn trajectory(a: &TorqueProfileArgs, m: &Model) -> Result<Motion, CliError> {
         trajectory,
         what,
         timing: None,
+        checked: None,
     };
     let q0 = || parse_vector(a.q0.as_deref(), "q0", m);
     let kind = a.trajectory.name();
@@ -286,6 +298,7 @@ fn trajectory(a: &TorqueProfileArgs, m: &Model) -> Result<Motion, CliError> {
             };
             let timed = time_optimal(m, path, &limits, &options)?;
             let report = timed.report().clone();
+            let checked = (a.dt == options.check_step).then(|| report.profile.clone());
             let &(grid, _) = report.durations.last().expect("one grid at least");
             let check = if report.max_excess <= 0.0 {
                 "every checked sample within the limits".to_string()
@@ -303,6 +316,7 @@ fn trajectory(a: &TorqueProfileArgs, m: &Model) -> Result<Motion, CliError> {
                 trajectory: Box::new(timed),
                 what,
                 timing: Some((limits, report)),
+                checked,
             }
         }
     })
@@ -370,6 +384,7 @@ fn cartesian_motion(a: &TorqueProfileArgs, m: &Model) -> Result<Motion, CliError
         trajectory: Box::new(motion),
         what,
         timing: Some((limits, report)),
+        checked: None,
     })
 }
 

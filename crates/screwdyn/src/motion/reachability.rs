@@ -32,11 +32,40 @@ impl Constraints {
     }
 }
 
-/// Scratch space of the projections, reused from interval to interval.
+/// Lines `m(x) = c0 + c1 x`, stored as two columns so that [`max_line`] runs down them in
+/// independent lanes; the first `len` entries are in use.
+#[derive(Default)]
+struct Lines {
+    c0: Vec<f64>,
+    c1: Vec<f64>,
+    len: usize,
+}
+
+impl Lines {
+    /// Room for `n` lines, none in use.
+    fn clear(&mut self, n: usize) {
+        if self.c0.len() < n {
+            self.c0.resize(n, 0.0);
+            self.c1.resize(n, 0.0);
+        }
+        self.len = 0;
+    }
+    /// The lines in use: `(c0, c1)`.
+    fn columns(&self) -> (&[f64], &[f64]) {
+        (&self.c0[..self.len], &self.c1[..self.len])
+    }
+    fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+}
+
+/// Scratch space of the projections, reused from interval to interval: the bounds on `u` as
+/// lines in `x`, the upper ones negated (`u ≤ −m(x)`) and the lower ones as they are
+/// (`u ≥ m(x)`), so that both envelopes are maxima.
 #[derive(Default)]
 struct Scratch {
-    upper: Vec<[f64; 3]>,
-    lower: Vec<[f64; 3]>,
+    upper: Lines,
+    lower: Lines,
 }
 
 /// The constraints of interval `i` (from `s_i` to `s_{i+1}`, step `Δ`), on `(u, x_i)`: the rows
@@ -44,7 +73,8 @@ struct Scratch {
 /// (`α u + β (x + 2Δu) ≤ γ`, TOPP-RA's first-order interpolation, which keeps the constant
 /// `u` of the interval within the limits at both of its ends), and
 /// `lo ≤ x + 2Δu ≤ hi` for the next controllable set. Sorted into upper bounds on `u`
-/// (`α > 0`), lower bounds (`α < 0`); rows free of `u` narrow `[x_lo, x_hi]` directly.
+/// (`α > 0`: `u ≤ γ/α − (β/α) x`, kept negated), lower bounds (`α < 0`:
+/// `u ≥ γ/α − (β/α) x`); rows free of `u` narrow `[x_lo, x_hi]` directly.
 fn split_rows(
     c: &Constraints,
     i: usize,
@@ -52,8 +82,11 @@ fn split_rows(
     next: (f64, f64),
     scratch: &mut Scratch,
 ) -> (f64, f64) {
-    scratch.upper.clear();
-    scratch.lower.clear();
+    let room = 2 * c.rows_per_point + 2;
+    scratch.upper.clear(room);
+    scratch.lower.clear(room);
+    let (upper, lower) = (&mut scratch.upper, &mut scratch.lower);
+    let (mut n_upper, mut n_lower) = (0, 0);
     let (mut x_lo, mut x_hi) = (0.0_f64, c.x_max[i]);
     let here = c.at(i).iter().copied();
     let there = c
@@ -65,10 +98,15 @@ fn split_rows(
         if !r[2].is_finite() {
             continue;
         }
-        if r[0] > 0.0 {
-            scratch.upper.push(r);
-        } else if r[0] < 0.0 {
-            scratch.lower.push(r);
+        if r[0] != 0.0 {
+            // Written to both columns, kept by the one its sign picks: no branch to mispredict.
+            let per_alpha = 1.0 / r[0];
+            let (c0, c1) = (r[2] * per_alpha, -r[1] * per_alpha);
+            (upper.c0[n_upper], upper.c1[n_upper]) = (-c0, -c1);
+            (lower.c0[n_lower], lower.c1[n_lower]) = (c0, c1);
+            let is_upper = r[0] > 0.0;
+            n_upper += usize::from(is_upper);
+            n_lower += usize::from(!is_upper);
         } else if r[1] > 0.0 {
             x_hi = x_hi.min(r[2] / r[1]);
         } else if r[1] < 0.0 {
@@ -77,6 +115,7 @@ fn split_rows(
             x_lo = f64::INFINITY;
         }
     }
+    (upper.len, lower.len) = (n_upper, n_lower);
     (x_lo, x_hi)
 }
 
@@ -99,11 +138,17 @@ fn project(
     if scratch.upper.is_empty() || scratch.lower.is_empty() {
         return close_enough(x_lo, x_hi);
     }
-    // Each row as the line u = u0 + u1 x it bounds u by.
-    for r in scratch.upper.iter_mut().chain(scratch.lower.iter_mut()) {
-        *r = [r[2] / r[0], -r[1] / r[0], 0.0];
-    }
-    let f = |x: f64| gap(&scratch.upper, &scratch.lower, x);
+    // F at the last point evaluated is kept: the upper end starts where the lower one settled.
+    let last = std::cell::Cell::new((f64::NAN, (0.0, 0.0, 0.0)));
+    let f = |x: f64| {
+        let (at, value) = last.get();
+        if at == x {
+            return value;
+        }
+        let value = gap(&scratch.upper, &scratch.lower, x);
+        last.set((x, value));
+        value
+    };
     // The lower end: Newton rightwards from x_lo while F > 0 there.
     let lo = match newton(f, x_lo, Direction::Right) {
         Settled::At(x) => x,
@@ -147,24 +192,42 @@ fn upper_end(f: impl Fn(f64) -> (f64, f64, f64), lo: f64, x_hi: f64) -> Settled 
 /// (`K_N = {0}` pins `u = −x / 2Δ` on the last interval) their difference is round-off.
 const ROUND_OFF: f64 = 1e-12;
 
-/// `F(x) = L(x) − U(x)`, its slope on the active pieces, and `max(|L|, |U|)`, for bounds
-/// `u = u0 + u1 x`.
-fn gap(upper: &[[f64; 3]], lower: &[[f64; 3]], x: f64) -> (f64, f64, f64) {
-    let (mut l, mut dl) = (f64::NEG_INFINITY, 0.0);
-    for r in lower {
-        let v = r[0] + r[1] * x;
-        if v > l {
-            (l, dl) = (v, r[1]);
+/// `F(x) = L(x) − U(x)`, its slope on the active pieces, and `max(|L|, |U|)`: with the upper
+/// bounds negated, `L = max m_lower(x)` and `U = −max m_upper(x)`.
+fn gap(upper: &Lines, lower: &Lines, x: f64) -> (f64, f64, f64) {
+    let (l, dl) = max_line(lower, x);
+    let (minus_u, minus_du) = max_line(upper, x);
+    (l + minus_u, dl + minus_du, l.abs().max(minus_u.abs()))
+}
+
+/// `max_k (c0_k + c1_k x)` and the slope `c1_k` of a line attaining it, in four independent
+/// lanes (the lines are many and each step is short: one chain would wait on every compare).
+fn max_line(lines: &Lines, x: f64) -> (f64, f64) {
+    let (c0, c1) = lines.columns();
+    let (mut best, mut slope) = ([f64::NEG_INFINITY; 4], [0.0; 4]);
+    let (c0_4, c1_4) = (c0.chunks_exact(4), c1.chunks_exact(4));
+    let tail = c0_4.remainder().iter().zip(c1_4.remainder());
+    for (a, b) in c0_4.zip(c1_4) {
+        for lane in 0..4 {
+            let v = a[lane] + b[lane] * x;
+            if v > best[lane] {
+                (best[lane], slope[lane]) = (v, b[lane]);
+            }
         }
     }
-    let (mut u, mut du) = (f64::INFINITY, 0.0);
-    for r in upper {
-        let v = r[0] + r[1] * x;
-        if v < u {
-            (u, du) = (v, r[1]);
+    for (a, b) in tail {
+        let v = a + b * x;
+        if v > best[0] {
+            (best[0], slope[0]) = (v, *b);
         }
     }
-    (l - u, dl - du, l.abs().max(u.abs()))
+    let mut top = 0;
+    for lane in 1..4 {
+        if best[lane] > best[top] {
+            top = lane;
+        }
+    }
+    (best[top], slope[top])
 }
 
 /// Where Newton's method on a convex `F` stops.
@@ -213,10 +276,12 @@ fn newton(f: impl Fn(f64) -> (f64, f64, f64), mut x: f64, direction: Direction) 
 /// The projection by Fourier–Motzkin elimination of `u`: each upper bound `u ≤ p0 + p1 x` and
 /// lower bound `u ≥ n0 + n1 x` combine into `(n1 − p1) x ≤ p0 − n0`; `O(m²)` for `m` rows.
 fn project_pairwise(scratch: &Scratch, (mut lo, mut hi): (f64, f64)) -> Option<(f64, f64)> {
-    for p in &scratch.upper {
-        for n in &scratch.lower {
-            let k = n[1] - p[1];
-            let r = p[0] - n[0];
+    let ((u0, u1), (l0, l1)) = (scratch.upper.columns(), scratch.lower.columns());
+    for (p0, p1) in u0.iter().zip(u1) {
+        for (n0, n1) in l0.iter().zip(l1) {
+            // The upper bound is u ≤ −p0 − p1 x (stored negated).
+            let k = n1 + p1;
+            let r = -p0 - n0;
             if k > 0.0 {
                 hi = hi.min(r / k);
             } else if k < 0.0 {
@@ -283,18 +348,32 @@ pub(crate) fn parameterize(
     for i in 0..n {
         let delta = s[i + 1] - s[i];
         let next = sets[i + 1];
-        let (_, _) = split_rows(c, i, delta, next, &mut scratch);
-        let u_hi = scratch
-            .upper
-            .iter()
-            .map(|r| (r[2] - r[1] * x) / r[0])
-            .fold(f64::INFINITY, f64::min);
+        let u_hi = largest_u(c, i, delta, next, x);
         let x_next = (x + 2.0 * delta * u_hi).clamp(next.0, next.1).max(0.0);
         out.u.push((x_next - x) / (2.0 * delta));
         out.x.push(x_next);
         x = x_next;
     }
     Ok(())
+}
+
+/// The largest `u` allowed on interval `i` at `x_i = x`: `min (γ − β x) / α` over the rows of
+/// [`split_rows`] with `α > 0` (the same rows, without collecting them).
+fn largest_u(c: &Constraints, i: usize, delta: f64, next: (f64, f64), x: f64) -> f64 {
+    let mut u_hi = f64::INFINITY;
+    let here = c.at(i).iter().copied();
+    let there = c
+        .at(i + 1)
+        .iter()
+        .map(|r| [r[0] + 2.0 * delta * r[1], r[1], r[2]]);
+    let ahead = [[2.0 * delta, 1.0, next.1], [-2.0 * delta, -1.0, -next.0]];
+    for r in here.chain(there).chain(ahead) {
+        let u = (r[2] - r[1] * x) / r[0];
+        if r[0] > 0.0 && r[2].is_finite() && u < u_hi {
+            u_hi = u;
+        }
+    }
+    u_hi
 }
 
 /// The time on each interval, `Δt_i = 2 Δ_i / (√x_i + √x_{i+1})` (constant `s̈`), summed.
@@ -375,9 +454,6 @@ mod tests {
             let mut scratch = Scratch::default();
             let newton = project(&c, 0, delta, next, &mut scratch);
             let (x_lo, x_hi) = split_rows(&c, 0, delta, next, &mut scratch);
-            for r in scratch.upper.iter_mut().chain(scratch.lower.iter_mut()) {
-                *r = [r[2] / r[0], -r[1] / r[0], 0.0];
-            }
             let pairwise = project_pairwise(&scratch, (x_lo, x_hi));
             match (newton, pairwise) {
                 (Some(a), Some(b)) => {

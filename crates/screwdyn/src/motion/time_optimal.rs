@@ -8,7 +8,7 @@ use super::spline::Path;
 use crate::dynamics::rnea;
 use crate::error::{Error, Result};
 use crate::model::Model;
-use crate::sim::Trajectory;
+use crate::sim::{ProfileSummary, Trajectory, ViolationSummary};
 use crate::workspace::Workspace;
 
 /// Per-joint limits of a timing; `f64::INFINITY` where a joint has none.
@@ -152,6 +152,11 @@ pub struct TimingReport {
     pub worst: (LimitKind, usize, f64),
     /// Number of samples checked.
     pub samples_checked: usize,
+    /// The torques of the final check's samples summarised against the model's effort limits:
+    /// what [`torque_profile_into`](crate::sim::torque_profile_into) reports for this timing
+    /// every `check_step` seconds, the same samples and the same inverse dynamics, so a
+    /// profile at that step need not compute them again.
+    pub profile: ProfileSummary,
 }
 
 /// The timing on one grid: `s_i`, `x_i = ṡ_i²`, `u_i` and the times `t_i`.
@@ -167,11 +172,27 @@ impl Timing {
     /// `(s, ṡ, s̈)` at time `t`: on interval `k`, `s = s_k + ṡ_k τ + u_k τ²/2` with `τ = t − t_k`.
     fn state(&self, t: f64) -> (f64, f64, f64) {
         let n = self.s.len() - 1;
+        let k = (self.t.partition_point(|&x| x <= t).max(1) - 1).min(n - 1);
+        self.state_on(t, k)
+    }
+
+    /// [`state`](Self::state) for times that only increase from call to call: the interval is
+    /// found by stepping on from the previous one (`k`, 0 at first) instead of a binary search.
+    fn state_after(&self, t: f64, k: &mut usize) -> (f64, f64, f64) {
+        let last = self.s.len() - 2;
+        while *k < last && self.t[*k + 1] <= t {
+            *k += 1;
+        }
+        self.state_on(t, *k)
+    }
+
+    /// The state at `t` on interval `k` (which holds `t` unless `t` is outside the motion).
+    fn state_on(&self, t: f64, k: usize) -> (f64, f64, f64) {
+        let n = self.s.len() - 1;
         if t >= self.t[n] {
             return (self.s[n], 0.0, 0.0);
         }
         let t = t.max(0.0);
-        let k = (self.t.partition_point(|&x| x <= t).max(1) - 1).min(n - 1);
         let tau = t - self.t[k];
         let (u, v0) = (self.u[k], self.x[k].sqrt());
         let s = (self.s[k] + v0 * tau + 0.5 * u * tau * tau).clamp(self.s[k], self.s[k + 1]);
@@ -180,7 +201,18 @@ impl Timing {
 
     /// `q`, `q̇ = q' ṡ`, `q̈ = q' s̈ + q'' ṡ²` at time `t`.
     fn eval(&self, path: &dyn Path, t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) {
-        let (s, sd, sdd) = self.state(t);
+        let state = self.state(t);
+        Self::to_joints(path, state, q, qd, qdd);
+    }
+
+    /// `q(s)`, `q'(s) ṡ` and `q'(s) s̈ + q''(s) ṡ²` from the path state `(s, ṡ, s̈)`.
+    fn to_joints(
+        path: &dyn Path,
+        (s, sd, sdd): (f64, f64, f64),
+        q: &mut [f64],
+        qd: &mut [f64],
+        qdd: &mut [f64],
+    ) {
         path.eval(s, q, qd, qdd);
         for j in 0..q.len() {
             let d = qd[j];
@@ -329,6 +361,7 @@ pub fn time_optimal<P: Path>(
                         max_excess: check.0,
                         worst: check.1,
                         samples_checked: check.2,
+                        profile: check.3,
                     },
                 });
             }
@@ -444,8 +477,9 @@ fn fill_constraints(
     coarse: &Constraints,
     c: &mut Constraints,
 ) -> Result<()> {
-    let n = path.nq();
-    c.rows_per_point = 4 * n;
+    // Only the rows of finite limits are kept (the others never bind), two per limit.
+    let finite = |l: &[f64]| l.iter().filter(|x| x.is_finite()).count();
+    c.rows_per_point = 2 * (finite(&limits.acceleration) + finite(&limits.effort));
     c.rows.clear();
     c.x_max.clear();
     let doubled = s.len() % 2 == 1
@@ -486,10 +520,14 @@ fn fill_constraints(
             }
             // ±(q' u + q'' x) ≤ amax,  ±(a u + b x + c) ≤ τmax
             let amax = keep * limits.acceleration[j];
-            c.rows.push([p.dq[j], p.ddq[j], amax]);
-            c.rows.push([-p.dq[j], -p.ddq[j], amax]);
-            c.rows.push([p.a[j], p.b[j], effort - p.c[j]]);
-            c.rows.push([-p.a[j], -p.b[j], effort + p.c[j]]);
+            if amax.is_finite() {
+                c.rows.push([p.dq[j], p.ddq[j], amax]);
+                c.rows.push([-p.dq[j], -p.ddq[j], amax]);
+            }
+            if effort.is_finite() {
+                c.rows.push([p.a[j], p.b[j], effort - p.c[j]]);
+                c.rows.push([-p.a[j], -p.b[j], effort + p.c[j]]);
+            }
         }
         c.x_max.push(x_max);
     }
@@ -498,7 +536,7 @@ fn fill_constraints(
 
 /// Samples the timing every `step` seconds (and at its end) and returns the largest excess
 /// `|value| / limit − 1` over velocity, acceleration and torque (inverse dynamics plus springs
-/// and Coulomb friction), where it occurs, and the number of samples.
+/// and Coulomb friction), where it occurs, the number of samples and their torque statistics.
 fn check_limits(
     model: &Model,
     ws: &mut Workspace,
@@ -506,24 +544,38 @@ fn check_limits(
     timing: &Timing,
     limits: &TimingLimits,
     step: f64,
-) -> (f64, (LimitKind, usize, f64), usize) {
+) -> (f64, (LimitKind, usize, f64), usize, ProfileSummary) {
     let n = path.nq();
     let (mut q, mut qd, mut qdd) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let duration = timing.duration();
     let samples = (duration / step).ceil() as usize + 1;
     let mut worst = (f64::NEG_INFINITY, (LimitKind::Torque, 0, 0.0));
+    let mut stats = TorqueStatistics::new(model);
+    let mut interval = 0;
     for k in 0..samples {
         let t = (k as f64 * step).min(duration);
-        timing.eval(path, t, &mut q, &mut qd, &mut qdd);
+        Timing::to_joints(
+            path,
+            timing.state_after(t, &mut interval),
+            &mut q,
+            &mut qd,
+            &mut qdd,
+        );
         let Ok(tau) = rnea(model, ws, &q, &qd, &qdd) else {
-            return (f64::INFINITY, (LimitKind::Torque, 0, t), k + 1);
+            return (
+                f64::INFINITY,
+                (LimitKind::Torque, 0, t),
+                k + 1,
+                stats.summary(k + 1),
+            );
         };
         for (j, joint) in model.joints().iter().enumerate() {
-            let friction = joint.spring_and_friction_torque(q[j], qd[j]);
+            let tau_j = tau[j] + joint.spring_and_friction_torque(q[j], qd[j]);
+            stats.add(j, t, tau_j);
             for (kind, value, limit) in [
                 (LimitKind::Velocity, qd[j], limits.velocity[j]),
                 (LimitKind::Acceleration, qdd[j], limits.acceleration[j]),
-                (LimitKind::Torque, tau[j] + friction, limits.effort[j]),
+                (LimitKind::Torque, tau_j, limits.effort[j]),
             ] {
                 let excess = value.abs() / limit - 1.0;
                 if excess > worst.0 {
@@ -532,5 +584,62 @@ fn check_limits(
             }
         }
     }
-    (worst.0, worst.1, samples)
+    (worst.0, worst.1, samples, stats.summary(samples))
+}
+
+/// Per joint `max |τ|` (the first time on ties), `Σ τ²` and the samples over the model's
+/// effort limit, as a torque profile keeps them.
+struct TorqueStatistics {
+    peak: Vec<f64>,
+    peak_time: Vec<f64>,
+    sum_of_squares: Vec<f64>,
+    effort_limit: Vec<f64>,
+    over: Vec<Option<ViolationSummary>>,
+}
+
+impl TorqueStatistics {
+    fn new(model: &Model) -> Self {
+        let n = model.nq();
+        TorqueStatistics {
+            peak: vec![0.0; n],
+            peak_time: vec![0.0; n],
+            sum_of_squares: vec![0.0; n],
+            effort_limit: model.joints().iter().map(|j| j.limits.effort).collect(),
+            over: vec![None; n],
+        }
+    }
+
+    fn add(&mut self, j: usize, t: f64, tau: f64) {
+        let magnitude = tau.abs();
+        if magnitude > self.peak[j] {
+            (self.peak[j], self.peak_time[j]) = (magnitude, t);
+        }
+        self.sum_of_squares[j] += tau * tau;
+        if magnitude > self.effort_limit[j] {
+            let s = self.over[j].get_or_insert(ViolationSummary {
+                count: 0,
+                first_time: t,
+                worst: 0.0,
+            });
+            s.count += 1;
+            s.worst = s.worst.max(magnitude);
+        }
+    }
+
+    /// The statistics of `samples` samples; RMS `= √(Σ τ² / samples)`.
+    fn summary(self, samples: usize) -> ProfileSummary {
+        let count = samples as f64;
+        ProfileSummary {
+            samples,
+            rms: self
+                .sum_of_squares
+                .iter()
+                .map(|s| (s / count).sqrt())
+                .collect(),
+            peak: self.peak,
+            peak_time: self.peak_time,
+            effort_limit: self.effort_limit,
+            violation_summary: self.over,
+        }
+    }
 }
