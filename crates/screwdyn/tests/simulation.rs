@@ -591,3 +591,75 @@ fn recording_every_step_adds_no_dynamics_evaluation_and_changes_nothing() {
     assert_eq!(all.q.last(), ends.q.last());
     assert_eq!(all.a.last(), ends.a.last());
 }
+
+/// A controller that returns `value` for joint `joint` (and 0 elsewhere) from `from` seconds on.
+struct Bad {
+    joint: usize,
+    value: f64,
+    from: f64,
+}
+
+impl Controller for Bad {
+    fn torque(&mut self, t: f64, _q: &[f64], _v: &[f64], tau: &mut [f64]) -> screwdyn::Result<()> {
+        tau.fill(0.0);
+        if t >= self.from {
+            tau[self.joint] = self.value;
+        }
+        Ok(())
+    }
+}
+
+#[test]
+fn a_non_finite_torque_or_acceleration_stops_the_run_naming_the_joint() {
+    // The plant checks every torque and every acceleration it hands the stepper (ABA then does
+    // not check them again): for each length of the vectorised check (1, 4 and 7 joints), a NaN
+    // or infinite torque in any joint stops the run with an error naming that joint.
+    for name in ["pendulum", "ur5", "panda"] {
+        let m = builtin::load(name).unwrap();
+        let n = m.nq();
+        let opts = passive(0.1, 1e-3, Integrator::Rk4, 1);
+        for joint in 0..n {
+            for value in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+                let mut c = Bad {
+                    joint,
+                    value,
+                    from: 0.05,
+                };
+                let q0 = vec![0.1; n];
+                let err = simulate(&m, &q0, &vec![0.0; n], &mut c, &[], &opts, &mut |_| {})
+                    .unwrap_err()
+                    .to_string();
+                let name = &m.joints()[joint].name;
+                assert!(
+                    err.contains("non-finite torque") && err.contains(&format!("'{name}'")),
+                    "{err}"
+                );
+            }
+        }
+        // A finite torque of 1e300 N·m makes the accelerations overflow: the run stops with
+        // the divergence error, naming a joint, instead of integrating infinities.
+        let mut c = Bad {
+            joint: 0,
+            value: 1e300,
+            from: 0.0,
+        };
+        let err = simulate(
+            &m,
+            &vec![0.1; n],
+            &vec![0.0; n],
+            &mut c,
+            &[],
+            &opts,
+            &mut |_| {},
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            err.contains("became non-finite")
+                && m.joints()
+                    .iter()
+                    .any(|j| err.contains(&format!("'{}'", j.name))),
+            "{err}"
+        );
+    }
+}
