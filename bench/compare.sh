@@ -14,8 +14,11 @@
 # 3. Builds `screwdyn` in release (lto = "fat", codegen-units = 1) with
 #    RUSTFLAGS="-C target-cpu=native" into target/bench-native (the normal build stays
 #    portable: target-cpu=native is only used here, so both sides get the same CPU flags).
-# 4. Runs, ROUNDS times and alternating, `pinocchio_bench` and `screwdyn bench` on UR5 and Panda
-#    (fixed base), then prints per-call medians (median over rounds of the per-round medians)
+# 4. Runs, ROUNDS times and alternating, `pinocchio_bench` and `screwdyn bench` on UR5, Panda
+#    (fixed base) and chain200, a 200-joint serial chain whose URDF bench/chain_urdf.py writes
+#    (revolute joints about alternating axes, varied offsets, masses and inertias; loaded by each
+#    library's own URDF parser like the arms; CHAIN_BATCHES, default 5, batches of CHAIN_CALLS,
+#    default 100, calls, as one call there costs up to milliseconds), then prints per-call medians (median over rounds of the per-round medians)
 #    and the ratio ours / Pinocchio for fk, jacobians, rnea, crba, aba, rnea_derivatives
 #    (computeRNEADerivatives) and aba_derivatives (computeABADerivatives). The ratio is the
 #    median of the per-round ratios: each round's two numbers were taken seconds apart, so a
@@ -32,7 +35,12 @@ ROOT=$PWD
 ROUNDS=${1:-3}
 BATCHES=${BATCHES:-21}
 CALLS=${CALLS:-20000}
+CHAIN_BATCHES=${CHAIN_BATCHES:-5}
+CHAIN_CALLS=${CHAIN_CALLS:-100}
 source bench/pinocchio_setup.sh
+URDF[chain200]=$OUT/chain200.urdf
+"$VENV/bin/python" bench/chain_urdf.py 200 "${URDF[chain200]}"
+"$VENV/bin/python" bench/export_model.py "${URDF[chain200]}" "$OUT/chain200.txt"
 
 echo "building screwdyn (release, target-cpu=native) ..." >&2
 RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR=$ROOT/target/bench-native \
@@ -52,13 +60,15 @@ fi
 
 : > "$OUT/runs.jsonl"
 for round in $(seq 1 "$ROUNDS"); do
-    for r in ur5 panda; do
+    for r in ur5 panda chain200; do
         echo "round $round/$ROUNDS: $r" >&2
-        p=$("$PINBENCH" "$OUT/$r.txt" "$BATCHES" "$CALLS")
-        o=$("$OURS" bench "${URDF[$r]}" --format json --batches "$BATCHES" --calls "$CALLS")
+        nb=$BATCHES nc=$CALLS
+        if [ "$r" = chain200 ]; then nb=$CHAIN_BATCHES nc=$CHAIN_CALLS; fi
+        p=$("$PINBENCH" "$OUT/$r.txt" "$nb" "$nc")
+        o=$("$OURS" bench "${URDF[$r]}" --format json --batches "$nb" --calls "$nc")
         b=null
         if [ -n "$BASE" ]; then
-            b=$("$BASE" bench "${URDF[$r]}" --format json --batches "$BATCHES" --calls "$CALLS")
+            b=$("$BASE" bench "${URDF[$r]}" --format json --batches "$nb" --calls "$nc")
         fi
         echo "{\"robot\": \"$r\", \"round\": $round, \"pinocchio\": $p, \"screwdyn\": $o, \"baseline\": $b}" >> "$OUT/runs.jsonl"
     done
@@ -71,7 +81,7 @@ algos = ["fk", "jacobians", "rnea", "crba", "aba", "rnea_derivatives", "aba_deri
 base = runs[0]["baseline"] is not None
 extra = f"{'baseline ns':>13}{'vs baseline':>13}" if base else ""
 print(f"{'robot (nq)':<11}{'algorithm':<17}{'screwdyn ns':>13}{'Pinocchio ns':>14}{'ratio':>8}{extra}   per-round ratios")
-for robot in ["ur5", "panda"]:
+for robot in ["ur5", "panda", "chain200"]:
     rs = [r for r in runs if r["robot"] == robot]
     nq = rs[0]["screwdyn"]["nq"]
     assert nq == rs[0]["pinocchio"]["nq"], "both sides must load the same joints"

@@ -13,7 +13,10 @@ use screwdyn::dynamics::{
     kinetic_energy, kinetic_energy_mass_matrix, lagrange_coefficients, mass_matrix_inverse,
     nonlinear_effects, potential_energy, rnea, ExternalWrenches, ForwardMethod,
 };
-use screwdyn::kinematics::{compute_joint_jacobians, frame_jacobian, link_jacobian, Reference};
+use screwdyn::kinematics::{
+    compute_joint_jacobians, forward_kinematics, forward_kinematics_poe, frame_jacobian,
+    link_jacobian, Reference,
+};
 use screwdyn::spatial::twist;
 use screwdyn::{Model, Workspace};
 
@@ -357,6 +360,60 @@ fn gravity_by_jacobian_transpose_equals_gravity_by_base_acceleration() {
             1e-9,
             "g: Jᵀ W_grv vs base acceleration",
         );
+    }
+}
+
+/// RNEA, `g` and `C q̇ + g` need only the poses in the parents' frames (they leave
+/// `ws.pose_in_world` unwritten): in a workspace whose world poses are from another `q` they
+/// still equal the closed form at `q`; with external wrenches, which need the world poses,
+/// `inverse_dynamics` computes them (the space product of exponentials at `q`).
+#[test]
+fn rnea_is_right_in_a_workspace_with_world_poses_of_another_state() {
+    let mut all = models(13);
+    for name in ["ur5", "panda"] {
+        all.push((
+            screwdyn::builtin::load(name).unwrap(),
+            StdRng::seed_from_u64(13),
+        ));
+    }
+    for (model, mut rng) in all {
+        let n = model.nq();
+        let mut ws = Workspace::new(&model);
+        let (q, v, a) = (
+            random_vec(&mut rng, n, 2.0),
+            random_vec(&mut rng, n, 2.0),
+            random_vec(&mut rng, n, 2.0),
+        );
+        let cf = closed_form(&model, &q, &v).unwrap();
+        let stale = |ws: &mut Workspace, rng: &mut StdRng| {
+            let other = random_vec(rng, n, 2.0);
+            forward_kinematics(&model, ws, &other).unwrap();
+        };
+        stale(&mut ws, &mut rng);
+        let tau = rnea(&model, &mut ws, &q, &v, &a).unwrap().clone();
+        let expected = cf.inverse_dynamics(&a, None).unwrap();
+        assert_close(tau.as_slice(), expected.as_slice(), 1e-9, "τ");
+        stale(&mut ws, &mut rng);
+        let g = gravity_torque(&model, &mut ws, &q).unwrap().clone();
+        assert_close(g.as_slice(), cf.g.as_slice(), 1e-9, "g");
+        stale(&mut ws, &mut rng);
+        let h = nonlinear_effects(&model, &mut ws, &q, &v).unwrap().clone();
+        let h_cf = &cf.c * &cf.qdot + &cf.g;
+        assert_close(h.as_slice(), h_cf.as_slice(), 1e-9, "C q̇ + g");
+        let mut ext = ExternalWrenches::new(&model);
+        ext.add_world(n - 1, Vector6::from_vec(random_vec(&mut rng, 6, 2.0)))
+            .unwrap();
+        stale(&mut ws, &mut rng);
+        let tau = inverse_dynamics(&model, &mut ws, &q, &v, &a, Some(&ext))
+            .unwrap()
+            .clone();
+        let expected = cf.inverse_dynamics(&a, Some(&ext)).unwrap();
+        assert_close(tau.as_slice(), expected.as_slice(), 1e-9, "τ with W_ext");
+        let poe = forward_kinematics_poe(&model, &q).unwrap();
+        for (i, (p, w)) in poe.iter().zip(&ws.pose_in_world).enumerate() {
+            let d = (p.to_matrix() - w.to_matrix()).amax();
+            assert!(d < 1e-12, "world pose of body {i} after τ with W_ext: {d}");
+        }
     }
 }
 

@@ -14,7 +14,6 @@
 //! build is SSE2; plain arrays inlined into run-time-dispatched clones reach AVX-512 without
 //! giving up portable builds.
 
-use crate::scalar::Reduction;
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 /// `L` doubles, one per state, with element-wise arithmetic (see the module documentation).
@@ -49,34 +48,15 @@ impl<const L: usize> Lanes<L> {
         Self::splat(0.0)
     }
 
-    /// `(sin x, cos x)` of every lane, each within one unit in the last place: the Cody–Waite
-    /// reduction and fdlibm polynomials of [`crate::scalar::sin_cos_f64`], lane by lane, with
-    /// fused multiply–adds, and its branches taken for the whole group: the second and third
-    /// pieces of `π/2` only when some lane's first-piece remainder cancelled (an angle within
-    /// about 2⁻¹⁶ of a multiple of `π/2`), and then kept only in those lanes, so every lane's
-    /// result depends on that lane alone. Angles beyond `|x| ≥ 2²⁰ π/2` (≈ 1.6·10⁶ rad), ±∞
-    /// and NaN go to `f64::sin_cos`.
+    /// `(sin x, cos x)` of every lane, each within one unit in the last place
+    /// ([`crate::scalar::sin_cos_array`]: the Cody–Waite reduction and fdlibm polynomials of
+    /// [`crate::scalar::sin_cos_f64`] lane by lane, with fused multiply–adds; the further
+    /// pieces of `π/2` only for the lanes that need them). Angles beyond `|x| ≥ 2²⁰ π/2`
+    /// (≈ 1.6·10⁶ rad), ±∞ and NaN go to `f64::sin_cos`.
     #[inline(always)]
     pub fn sin_cos(self) -> (Self, Self) {
-        let mut red = Reductions::<L>::default();
-        let (mut cancelled, mut outside) = (false, false);
-        for (l, &x) in self.0.iter().enumerate() {
-            let r = Reduction::first::<true>(x);
-            cancelled |= r.cancelled(x);
-            outside |= beyond_fast_range(x);
-            red.set(l, r);
-        }
-        if cancelled {
-            further_pieces(self, &mut red);
-        }
-        let (mut s, mut c) = (Self::zero(), Self::zero());
-        for (l, (s, c)) in s.0.iter_mut().zip(&mut c.0).enumerate() {
-            (*s, *c) = red.get(l).sin_cos();
-        }
-        if outside {
-            fix_large(self, &mut s, &mut c);
-        }
-        (s, c)
+        let (s, c) = crate::scalar::sin_cos_array(self.0);
+        (Lanes(s), Lanes(c))
     }
 
     /// `self a + b` in every lane, rounded once (a fused multiply–add, as [`f64::mul_add`]):
@@ -98,74 +78,6 @@ impl<const L: usize> Lanes<L> {
             f64::INFINITY,
             |m, &x| if x < m || x.is_nan() { x } else { m },
         )
-    }
-}
-
-/// `|x| ≥ 2²⁰ π/2`, ±∞ or NaN: beyond the branch-free reduction.
-#[inline(always)]
-fn beyond_fast_range(x: f64) -> bool {
-    x.abs() >= crate::scalar::SIN_COS_MEDIUM || x.is_nan()
-}
-
-/// The second and third pieces of `π/2` for the lanes of `x` whose first-piece remainder
-/// cancelled.
-#[cold]
-#[inline(never)]
-fn further_pieces<const L: usize>(x: Lanes<L>, red: &mut Reductions<L>) {
-    for (l, &x) in x.0.iter().enumerate() {
-        let r = red.get(l);
-        if r.cancelled(x) {
-            red.set(l, r.rest());
-        }
-    }
-}
-
-/// The [`Reduction`]s of `L` lanes, field by field, so that each field stays in one vector
-/// register (an array of the structs made the compiler shuffle them in and out).
-struct Reductions<const L: usize> {
-    shifted: [f64; L],
-    n: [f64; L],
-    r: [f64; L],
-    w: [f64; L],
-}
-
-impl<const L: usize> Default for Reductions<L> {
-    #[inline(always)]
-    fn default() -> Self {
-        Reductions {
-            shifted: [0.0; L],
-            n: [0.0; L],
-            r: [0.0; L],
-            w: [0.0; L],
-        }
-    }
-}
-
-impl<const L: usize> Reductions<L> {
-    #[inline(always)]
-    fn get(&self, l: usize) -> Reduction {
-        Reduction {
-            shifted: self.shifted[l],
-            n: self.n[l],
-            r: self.r[l],
-            w: self.w[l],
-        }
-    }
-
-    #[inline(always)]
-    fn set(&mut self, l: usize, red: Reduction) {
-        (self.shifted[l], self.n[l], self.r[l], self.w[l]) = (red.shifted, red.n, red.r, red.w);
-    }
-}
-
-/// The lanes of `x` too large for the fast reduction, through `f64::sin_cos`.
-#[cold]
-#[inline(never)]
-fn fix_large<const L: usize>(x: Lanes<L>, s: &mut Lanes<L>, c: &mut Lanes<L>) {
-    for l in 0..L {
-        if beyond_fast_range(x.0[l]) {
-            (s.0[l], c.0[l]) = x.0[l].sin_cos();
-        }
     }
 }
 

@@ -5,11 +5,12 @@ use super::inputs::checked_poses;
 use super::rnea::base_acceleration;
 use super::wrenches::ExternalWrenches;
 use crate::error::{Error, Result};
+use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::Real;
-use crate::spatial::{ad, ad_transpose, Twist};
+use crate::spatial::{ang, lin, twist, Se3, SpatialInertia, Twist, Wrench};
 use crate::workspace::Workspace;
-use nalgebra::DVector;
+use nalgebra::{DVector, Matrix3, Matrix6, Vector3};
 
 /// Forward dynamics `q̈ = M⁻¹(τ − C q̇ − g)` by the articulated-body algorithm (Featherstone),
 /// written with the operators and every spatial quantity in the base frame {0}
@@ -64,10 +65,6 @@ pub(crate) fn singular<T: Real>(model: &Model<T>, i: usize, d: T) -> Error {
 
 /// [`aba`] with external wrenches on the bodies (and tip wrenches); public as
 /// [`forward_dynamics`](super::forward_dynamics) with [`ForwardMethod::Aba`](super::ForwardMethod::Aba).
-#[multiversion::multiversion(targets(
-    "x86_64+avx512f+avx512vl+avx512dq+avx512bw+avx2+fma",
-    "x86_64+avx2+fma"
-))]
 pub(crate) fn articulated_body<'w, T: Real>(
     model: &Model<T>,
     ws: &'w mut Workspace<T>,
@@ -77,11 +74,51 @@ pub(crate) fn articulated_body<'w, T: Real>(
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<&'w DVector<T>> {
     checked_poses(model, ws, q, &[(v, "v"), (tau, "tau")], fext)?;
+    aba_passes(model, ws, v, tau, fext)?;
+    Ok(&ws.qdd)
+}
+
+/// [`articulated_body`] for a caller that guarantees that `v` and `tau` have one finite entry
+/// per joint: the simulator, whose plant checks every torque it passes and whose stepper
+/// integrates a state it has already checked (a non-finite acceleration stops the run before it
+/// reaches the state). Only `q` and the wrenches are checked, `q` by forward kinematics.
+pub(crate) fn articulated_body_for_stepper<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+    tau: &[T],
+    fext: Option<&ExternalWrenches<T>>,
+) -> Result<&'w DVector<T>> {
+    debug_assert!(v.len() == model.nq() && tau.len() == model.nq());
+    debug_assert!(v.iter().chain(tau).all(|x| x.is_finite()));
+    if let Some(f) = fext {
+        f.check(model)?;
+    }
+    forward_kinematics(model, ws, q)?;
+    aba_passes(model, ws, v, tau, fext)?;
+    Ok(&ws.qdd)
+}
+
+/// The three passes of [`aba`] on the poses of the last forward kinematics, for `v` and `tau`
+/// of the model's length (checked by the callers). Writes `ws.qdd`.
+#[multiversion::multiversion(targets(
+    "x86_64+avx512f+avx512vl+avx512dq+avx512bw+avx2+fma",
+    "x86_64+avx2+fma"
+))]
+fn aba_passes<T: Real>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    v: &[T],
+    tau: &[T],
+    fext: Option<&ExternalWrenches<T>>,
+) -> Result<()> {
     let n = model.nbodies();
-    let (motions, parents, bodies) = (
+    let (motions, parents, bodies, joints) = (
         &model.motions()[..n],
         &model.parents()[..n],
         &model.bodies()[..n],
+        &model.joints()[..n],
     );
     let (v, tau) = (&v[..n], &tau[..n]);
     // The workspace's buffers borrowed once, as slices of length n: their addresses and lengths
@@ -111,46 +148,46 @@ pub(crate) fn articulated_body<'w, T: Real>(
     let d_joint = &mut articulated_joint_inertia.as_mut_slice()[..n];
     let small_u_over_d = &mut articulated_joint_force.as_mut_slice()[..n];
     let qdd_out = &mut qdd.as_mut_slice()[..n];
-    // Pass 1: twists, velocity-product accelerations, rigid-body inertias and bias wrenches.
+    // Pass 1: joint screws, twists and velocity-product accelerations (root to leaves)...
     for i in 0..n {
-        let h = &poses[i];
-        let s = motions[i].act(h);
+        let s = motions[i].act(&poses[i]);
         let sv = s * v[i];
         let (vi, ci) = match parents[i] {
             Some(p) => {
                 let vp = twists[p];
-                (vp + sv, ad(&vp, &sv))
+                (vp + sv, ad_fused(&vp, &sv))
             }
             None => (sv, Twist::zeros()),
         };
-        // 𝔍_i^0 = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i}, by its ten parameters (c ↦ R c + p, I_c ↦ R I_c Rᵀ).
-        let inertia = bodies[i].inertia.transformed(h);
-        inertias[i] = inertia.matrix();
-        let mut p = -ad_transpose(&vi, &inertia.apply(&vi));
-        if let Some(f) = fext {
-            p -= f.in_world_at(h, i);
-        }
         screws[i] = s;
         twists[i] = vi;
         bias_acc[i] = ci;
+    }
+    // ... then, body by body (each on its own), 𝔍_i^0 = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i} written into
+    // 𝔍ᴬ_i, and pᴬ_i = −ad_{V_i}ᵀ 𝔍_i^0 V_i − W_ext,i.
+    for i in 0..n {
+        let h = &poses[i];
+        let mut p = rigid_in_world(&bodies[i].inertia, h, &twists[i], &mut inertias[i]);
+        if let Some(f) = fext {
+            p -= f.in_world_at(h, i);
+        }
         biases[i] = p;
     }
     // Pass 2: articulated inertias, from the leaves to the root.
     let tiny = singular_threshold(model.inertia_scale());
-    let joints = &model.joints()[..n];
     for i in (0..n).rev() {
         let s = screws[i];
         // 𝔍ᴬ_i read in place, next to its parent's (whose index is below i) being written.
         let (before, from_i) = inertias.split_at_mut(i);
         let ia = &from_i[0];
-        let u = ia * s;
+        let u = mat6_vec(ia, &s);
         // D_i = s_iᵀ 𝔍ᴬ_i s_i + I_a,i: the armature is inertia only joint i's coordinate sees.
-        let d = s.dot(&u) + joints[i].armature;
+        let d = dot6(&s, &u) + joints[i].armature;
         // Written to also catch NaN.
         if d.partial_cmp(&tiny) != Some(std::cmp::Ordering::Greater) {
             return Err(singular(model, i, d));
         }
-        let small_u = tau[i] - s.dot(&biases[i]);
+        let small_u = tau[i] - dot6(&s, &biases[i]);
         // One division per joint: U / D and u / D are what pass 3 and the parent need.
         let inv_d = T::one() / d;
         let ud = u * inv_d;
@@ -161,14 +198,19 @@ pub(crate) fn articulated_body<'w, T: Real>(
             // 𝔍ᵃ = 𝔍ᴬ − U Uᵀ / D (symmetric), added to the parent's as it is formed.
             let parent = &mut before[p];
             for c in 0..6 {
+                let uc = -u[c];
                 for r in 0..6 {
-                    parent[(r, c)] += ia[(r, c)] - ud[r] * u[c];
+                    parent[(r, c)] += ud[r].mul_add(uc, ia[(r, c)]);
                 }
             }
             // pᵃ = pᴬ + 𝔍ᵃ c + U u / D = pᴬ + 𝔍ᴬ c + (U / D)(u − Uᵀ c).
             let ci = bias_acc[i];
-            let pa = biases[i] + ia * ci + ud * (small_u - u.dot(&ci));
-            biases[p] += pa;
+            let k = small_u - dot6(&u, &ci);
+            let ia_c = mat6_vec(ia, &ci);
+            let (bi, bp) = (biases[i], &mut biases[p]);
+            for r in 0..6 {
+                bp[r] += ud[r].mul_add(k, bi[r] + ia_c[r]);
+            }
         }
     }
     // Pass 3: accelerations, from the root to the leaves.
@@ -178,9 +220,114 @@ pub(crate) fn articulated_body<'w, T: Real>(
             Some(p) => accels[p],
             None => base,
         } + bias_acc[i];
-        let qdd_i = small_u_over_d[i] - u_over_d[i].dot(&a_par);
+        let qdd_i = small_u_over_d[i] - dot6(&u_over_d[i], &a_par);
         qdd_out[i] = qdd_i;
-        accels[i] = a_par + screws[i] * qdd_i;
+        let s = &screws[i];
+        accels[i] = Twist::from_fn(|r, _| s[r].mul_add(qdd_i, a_par[r]));
     }
-    Ok(&ws.qdd)
+    Ok(())
+}
+
+// Products that are added are fused (`mul_add`: one instruction where the CPU has FMA, which the
+// multiversioned clones above are compiled for, and never less accurate than the two roundings).
+
+/// `xᵀ y` of two 6-vectors, fused.
+#[inline(always)]
+fn dot6<T: Real>(x: &Twist<T>, y: &Twist<T>) -> T {
+    let mut acc = x[0] * y[0];
+    for k in 1..6 {
+        acc = x[k].mul_add(y[k], acc);
+    }
+    acc
+}
+
+/// `M x` for a 6×6 `M` stored by columns: `Σ_c M[:, c] x_c`, fused.
+#[inline(always)]
+fn mat6_vec<T: Real>(m: &Matrix6<T>, x: &Twist<T>) -> Twist<T> {
+    let mut y = Twist::from_fn(|r, _| m[(r, 0)] * x[0]);
+    for c in 1..6 {
+        for r in 0..6 {
+            y[r] = m[(r, c)].mul_add(x[c], y[r]);
+        }
+    }
+    y
+}
+
+/// `a × b`, fused.
+#[inline(always)]
+fn cross<T: Real>(a: &Vector3<T>, b: &Vector3<T>) -> Vector3<T> {
+    Vector3::new(
+        a.y.mul_add(b.z, -(a.z * b.y)),
+        a.z.mul_add(b.x, -(a.x * b.z)),
+        a.x.mul_add(b.y, -(a.y * b.x)),
+    )
+}
+
+/// `ad_V X = (ω × ω_X, v × ω_X + ω × v_X)` for `V = (ω, v)`, fused.
+#[inline(always)]
+fn ad_fused<T: Real>(v: &Twist<T>, x: &Twist<T>) -> Twist<T> {
+    let (w, wx) = (ang(v), ang(x));
+    twist(cross(&w, &wx), cross(&lin(v), &wx) + cross(&w, &lin(x)))
+}
+
+/// The rigid-body inertia of `body` (given in its own frame) moved to {0} by `h = H_i^0 = (R, p)`,
+/// written into `out` as the 6×6 `𝔍^0 = [I_c^0 − m[c^0][c^0]  m[c^0]; −m[c^0]  m·1]` with
+/// `c^0 = R c + p` and `I_c^0 = R I_c Rᵀ` (six entries formed); returns the bias wrench
+/// `−ad_Vᵀ 𝔍^0 V = (ω × l + v × f, ω × f)` of twist `V = (ω, v)`, where `(l, f) = 𝔍^0 V` is the
+/// momentum: `f = m (v − c^0 × ω)`, `l = I_c^0 ω + c^0 × f`.
+#[inline(always)]
+fn rigid_in_world<T: Real>(
+    body: &SpatialInertia<T>,
+    h: &Se3<T>,
+    vel: &Twist<T>,
+    out: &mut Matrix6<T>,
+) -> Wrench<T> {
+    let (r, ic, m) = (&h.rotation, &body.inertia_com, body.mass);
+    // A = R I_c, row by row.
+    let a = Matrix3::from_fn(|row, k| {
+        r[(row, 2)].mul_add(
+            ic[(2, k)],
+            r[(row, 1)].mul_add(ic[(1, k)], r[(row, 0)] * ic[(0, k)]),
+        )
+    });
+    // (A Rᵀ)_{jk} = row j of A · row k of R; symmetric, so six are formed.
+    let dot = |j: usize, k: usize| {
+        a[(j, 2)].mul_add(
+            r[(k, 2)],
+            a[(j, 1)].mul_add(r[(k, 1)], a[(j, 0)] * r[(k, 0)]),
+        )
+    };
+    let (i00, i11, i22) = (dot(0, 0), dot(1, 1), dot(2, 2));
+    let (i01, i02, i12) = (dot(0, 1), dot(0, 2), dot(1, 2));
+    // c^0 = R c + p.
+    let c = &body.com;
+    let c0 = Vector3::from_fn(|row, _| {
+        r[(row, 2)].mul_add(
+            c.z,
+            r[(row, 1)].mul_add(c.y, r[(row, 0)].mul_add(c.x, h.translation[row])),
+        )
+    });
+    let (mx, my, mz) = (m * c0.x, m * c0.y, m * c0.z);
+    // −m[c][c] = m (cᵀc 1 − c cᵀ).
+    let (xx, yy, zz) = (mx * c0.x, my * c0.y, mz * c0.z);
+    let (xy, xz, yz) = (mx * c0.y, mx * c0.z, my * c0.z);
+    let zero = T::zero();
+    #[rustfmt::skip]
+    let j = Matrix6::new(
+        i00 + yy + zz, i01 - xy,      i02 - xz,      zero, -mz,  my,
+        i01 - xy,      i11 + xx + zz, i12 - yz,      mz,   zero, -mx,
+        i02 - xz,      i12 - yz,      i22 + xx + yy, -my,  mx,   zero,
+        zero,          mz,            -my,           m,    zero, zero,
+        -mz,           zero,          mx,            zero, m,    zero,
+        my,            -mx,           zero,          zero, zero, m,
+    );
+    *out = j;
+    let (w, v) = (ang(vel), lin(vel));
+    let f = (v - cross(&c0, &w)) * m;
+    let l = Vector3::new(
+        i02.mul_add(w.z, i01.mul_add(w.y, i00 * w.x)),
+        i12.mul_add(w.z, i11.mul_add(w.y, i01 * w.x)),
+        i22.mul_add(w.z, i12.mul_add(w.y, i02 * w.x)),
+    ) + cross(&c0, &f);
+    twist(cross(&w, &l) + cross(&v, &f), cross(&w, &f))
 }

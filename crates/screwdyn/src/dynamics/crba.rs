@@ -4,23 +4,26 @@
 use super::cholesky::{singular_error, with_small_size};
 use crate::error::Result;
 use crate::kinematics::forward_kinematics;
-use crate::model::Model;
+use crate::model::{HomeTurn, JointMotion, Model};
 use crate::scalar::Real;
+use crate::spatial::{CompositeInertia, Se3, Wrench};
 use crate::workspace::Workspace;
 use nalgebra::DMatrix;
+use nalgebra::{Matrix3, Vector3};
 
 /// The mass matrix `M(q)` by the composite-rigid-body algorithm: composite inertias
 /// `𝔍ᶜ_i = 𝔍_i + Σ_children 𝔍ᶜ_c` (backward), then `M_ij = S_iᵀ 𝔍ᶜ_j S_j` for every `i`
-/// supporting `j`, walking up the tree. Equal to the `M = Sᵀ Lᵀ 𝔍 L S` (Lynch & Park, *Modern Robotics*) and to
-/// the `Σ_i J_iᵀ 𝔍^{i,i} J_i`.
+/// supporting `j`, walking up the tree. Equal to the `M = Sᵀ Lᵀ 𝔍 L S` (Lynch & Park, *Modern
+/// Robotics*) and to the `Σ_i J_iᵀ 𝔍^{i,i} J_i`. Each joint's armature `I_a,i` (the rotor inertia
+/// reflected to it, [`Joint::armature`](crate::model::Joint::armature)) is added to its diagonal
+/// entry: `M_ii = S_iᵀ 𝔍ᶜ_i S_i + I_a,i`. Returns `ws.mass_matrix` (both triangles filled).
 ///
-/// Everything is written in the base frame {0}: `𝔍ᶜ_i` is summed from the bodies' inertias
-/// `Ad_{H_0^i}ᵀ 𝔍^{i,i} Ad_{H_0^i}`, and `S_i` is the space-Jacobian column
-/// `Ad_{H_i^0} S_i^{i,λ(i)}`, so each off-diagonal entry is a single 6-vector dot product (no
-/// per-ancestor change of frame). Each joint's armature `I_a,i` (the rotor inertia reflected
-/// to it, [`Joint::armature`](crate::model::Joint::armature)) is added to its diagonal entry:
-/// `M_ii = S_iᵀ 𝔍ᶜ_i S_i + I_a,i`. Also fills `ws.screw_in_world`.
-/// Returns `ws.mass_matrix` (both triangles filled).
+/// Two equivalent forms, chosen by the size of the model:
+/// [`crba_local`] (every quantity in its own body frame, no forward kinematics) for models of at
+/// most [`CRBA_LOCAL_MAX_BODIES`] bodies, [`crba_in_base_frame`] (everything in {0}) beyond, where
+/// its six-term dot products beat the `n(n−1)/2` changes of frame of the local form. Which
+/// workspace entries each one writes besides `ws.mass_matrix` is listed on each; use
+/// [`forward_kinematics`] for world poses.
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
@@ -38,10 +41,11 @@ pub fn crba<'w, T: Real>(
     ws: &'w mut Workspace<T>,
     q: &[T],
 ) -> Result<&'w DMatrix<T>> {
-    forward_kinematics(model, ws, q)?;
-    ws.ensure_square()?;
-    crba_given_poses(model, ws);
-    Ok(&ws.mass_matrix)
+    if model.nbodies() <= CRBA_LOCAL_MAX_BODIES {
+        crba_local(model, ws, q)
+    } else {
+        crba_in_base_frame(model, ws, q)
+    }
 }
 
 /// Alias of [`crba`]: the joint-space mass matrix `M(q)`.
@@ -54,6 +58,301 @@ pub fn mass_matrix<'w, T: Real>(
     q: &[T],
 ) -> Result<&'w DMatrix<T>> {
     crba(model, ws, q)
+}
+
+/// The largest model (in bodies) for which [`crba`] uses the local form [`crba_local`]; larger
+/// models use [`crba_in_base_frame`]. Chosen by instruction counts (callgrind) of both forms on
+/// serial chains: the local form's `O(n²)` term is a change of frame of a wrench (~45 flops),
+/// the base frame's a six-term dot product (11 flops), so the base frame wins on long chains
+/// despite its forward kinematics and its per-body change of frame to {0}.
+pub const CRBA_LOCAL_MAX_BODIES: usize = 16;
+
+/// [`crba`] with everything in the base frame {0}: `𝔍ᶜ_i` is summed from the bodies' inertias
+/// `Ad_{H_0^i}ᵀ 𝔍^{i,i} Ad_{H_0^i}`, and `S_i` is the space-Jacobian column
+/// `Ad_{H_i^0} S_i^{i,λ(i)}`, so each off-diagonal entry is a single 6-vector dot product (no
+/// per-ancestor change of frame). Runs [`forward_kinematics`] first, so it also fills
+/// `ws.pose_in_parent` and `ws.pose_in_world`, and fills `ws.screw_in_world`.
+///
+/// # Errors
+/// As [`crba`].
+///
+/// ```
+/// use screwdyn::{builtin, dynamics::{crba_in_base_frame, crba_local}, Workspace};
+/// let m = builtin::load("ur5").unwrap();
+/// let mut ws = Workspace::new(&m);
+/// let q = [0.1, -0.7, 1.2, 0.3, -0.4, 0.9];
+/// let base = crba_in_base_frame(&m, &mut ws, &q).unwrap().clone();
+/// assert!((base - crba_local(&m, &mut ws, &q).unwrap()).amax() < 1e-12);
+/// ```
+pub fn crba_in_base_frame<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+) -> Result<&'w DMatrix<T>> {
+    forward_kinematics(model, ws, q)?;
+    ws.ensure_square()?;
+    crba_given_poses(model, ws);
+    Ok(&ws.mass_matrix)
+}
+
+/// [`crba`] with every quantity in its own body frame (Featherstone's composite-rigid-body
+/// algorithm in local coordinates): no forward kinematics, only each joint's pose in its parent
+/// `H_i^{λ(i)}(q_i)`. Backward, from the leaves: `𝔍ᶜ_i` (in frame {i}) is whole once its
+/// children are added; the column `F = 𝔍ᶜ_i S_i` gives `M_ii = S_iᵀ F + I_a,i`; carried up the
+/// ancestors as a wrench, `F ← Ad_{H_k^{λ(k)}}⁻ᵀ F` (frame {k} to {λ(k)}), each gives
+/// `M_{λ(k) i} = S_{λ(k)}ᵀ F`; then `𝔍ᶜ_{λ(i)} += Ad_{H_{λ(i)}^i}ᵀ 𝔍ᶜ_i Ad_{H_{λ(i)}^i}`.
+/// Writes `ws.pose_in_parent` and `ws.composite_inertia` (each in its own body frame); leaves
+/// `ws.pose_in_world` as it was.
+///
+/// # Errors
+/// As [`crba`].
+///
+/// ```
+/// use screwdyn::{builtin, dynamics::crba_local, Workspace};
+/// let m = builtin::planar2();
+/// let mut ws = Workspace::new(&m);
+/// let mm = crba_local(&m, &mut ws, &[0.0, std::f64::consts::FRAC_PI_2]).unwrap();
+/// // By hand: D11 = 3, D12 = 1, D22 = 1 at θ2 = 90° (all masses and lengths 1).
+/// assert!((mm[(0, 0)] - 3.0).abs() < 1e-12 && (mm[(1, 0)] - 1.0).abs() < 1e-12);
+/// ```
+pub fn crba_local<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+) -> Result<&'w DMatrix<T>> {
+    ws.check(model)?;
+    model.check_vector(q, "q")?;
+    ws.ensure_square()?;
+    local_given_q(model, ws, q);
+    Ok(&ws.mass_matrix)
+}
+
+/// `𝔍 S` for a joint's screw axis `S`, reading the axis joints' columns out of the ten
+/// parameters: `𝔍 (ê_k, 0) = (I_o ê_k, ê_k × h)` and `𝔍 (0, ê_k) = (h × ê_k, m ê_k)`.
+#[inline(always)]
+fn inertia_times_axis<T: Real>(c: &CompositeInertia<T>, motion: &JointMotion<T>) -> Wrench<T> {
+    let (io, h, z) = (&c.inertia_origin, &c.first_moment, T::zero());
+    match *motion {
+        JointMotion::RevoluteAxis { axis, sign } => {
+            let l = match axis {
+                0 => [z, -h.z, h.y],
+                1 => [h.z, z, -h.x],
+                _ => [-h.y, h.x, z],
+            };
+            Wrench::new(
+                io[(0, axis)] * sign,
+                io[(1, axis)] * sign,
+                io[(2, axis)] * sign,
+                l[0] * sign,
+                l[1] * sign,
+                l[2] * sign,
+            )
+        }
+        JointMotion::PrismaticAxis { axis, sign } => {
+            let a = match axis {
+                0 => [z, h.z, -h.y],
+                1 => [-h.z, z, h.x],
+                _ => [h.y, -h.x, z],
+            };
+            let mut w = Wrench::new(a[0] * sign, a[1] * sign, a[2] * sign, z, z, z);
+            w[3 + axis] = c.mass * sign;
+            w
+        }
+        _ => c.apply(&motion.screw()),
+    }
+}
+
+/// `(c, s)` of the turn `Rot_K(θ)` about the coordinate axis `K` whose plane is `(I, J)`
+/// (`Rot_K ê_I = c ê_I + s ê_J`), read out of `R = R(0) Rot_K(θ)`: rows of `Rot_K` are rows of
+/// `R(0)ᵀ R`.
+#[inline(always)]
+fn cos_sin<T: Real, const I: usize, const J: usize>(r: &Matrix3<T>, home: HomeTurn) -> (T, T) {
+    match home {
+        HomeTurn::QuarterX(plus) => {
+            // R(0) = Rot_x(±π/2): Rot_K's rows 0, 1, 2 are R's rows 0, ±2, ∓1.
+            let sign = if plus { T::one() } else { -T::one() };
+            let row = |k: usize| match k {
+                0 => r[(0, I)],
+                1 => r[(2, I)] * sign,
+                _ => -r[(1, I)] * sign,
+            };
+            (row(I), row(J))
+        }
+        _ => (r[(I, I)], r[(J, I)]),
+    }
+}
+
+/// `v ↦ Rot_K(θ) v` on both halves of a 6-vector, in the plane `(I, J)`.
+#[inline(always)]
+fn turn<T: Real, const I: usize, const J: usize>(v: &mut [T; 6], c: T, s: T) {
+    for half in [0, 3] {
+        let (a, b) = (v[half + I], v[half + J]);
+        v[half + I] = c * a - s * b;
+        v[half + J] = s * a + c * b;
+    }
+}
+
+/// A wrench `W = (m, f)` in frame {i} written in the parent's frame, `Ad_{H_i^λ}⁻ᵀ W =
+/// (R m + p × R f, R f)` with `H_i^λ = (R, p)`. For an axis joint whose home rotation `R(0)` is
+/// the identity or a quarter turn, `R = R(0) Rot_K(θ)` (revolute) or `R(0)` (prismatic) only
+/// mixes and moves entries: the turn in one plane, then `R(0)`'s signed permutation.
+#[inline(always)]
+fn wrench_to_parent<T: Real>(
+    h: &Se3<T>,
+    motion: &JointMotion<T>,
+    home: HomeTurn,
+    w: &Wrench<T>,
+) -> Wrench<T> {
+    if home != HomeTurn::General {
+        let mut v = [w[0], w[1], w[2], w[3], w[4], w[5]];
+        let r = &h.rotation;
+        let special = match *motion {
+            JointMotion::RevoluteAxis { axis: 0, .. } => {
+                let (c, s) = cos_sin::<T, 1, 2>(r, home);
+                turn::<T, 1, 2>(&mut v, c, s);
+                true
+            }
+            JointMotion::RevoluteAxis { axis: 1, .. } => {
+                let (c, s) = cos_sin::<T, 2, 0>(r, home);
+                turn::<T, 2, 0>(&mut v, c, s);
+                true
+            }
+            JointMotion::RevoluteAxis { .. } => {
+                let (c, s) = cos_sin::<T, 0, 1>(r, home);
+                turn::<T, 0, 1>(&mut v, c, s);
+                true
+            }
+            JointMotion::PrismaticAxis { .. } => true,
+            _ => false,
+        };
+        if special {
+            if let HomeTurn::QuarterX(plus) = home {
+                // (a, b, c) ↦ (a, ∓c, ±b) on both halves
+                for half in [0, 3] {
+                    let (b, c) = (v[half + 1], v[half + 2]);
+                    (v[half + 1], v[half + 2]) = if plus { (-c, b) } else { (c, -b) };
+                }
+            }
+            // m' = R m + p × f'
+            let f = Vector3::new(v[3], v[4], v[5]);
+            let pf = h.translation.cross(&f);
+            return Wrench::new(v[0] + pf.x, v[1] + pf.y, v[2] + pf.z, f.x, f.y, f.z);
+        }
+    }
+    h.inv_act_transpose_wrench(w)
+}
+
+/// A composite inertia in frame {i} written in the parent's frame (`h = H_i^λ`): for the joints
+/// of [`wrench_to_parent`]'s special case, turned in one plane, moved by `R(0)`'s signed
+/// permutation and shifted by `p`; else the general change of frame.
+#[inline(always)]
+fn composite_to_parent<T: Real>(
+    c: &CompositeInertia<T>,
+    h: &Se3<T>,
+    motion: &JointMotion<T>,
+    home: HomeTurn,
+) -> CompositeInertia<T> {
+    if home != HomeTurn::General {
+        let r = &h.rotation;
+        let turned = match *motion {
+            JointMotion::RevoluteAxis { axis: 0, .. } => {
+                let (cos, sin) = cos_sin::<T, 1, 2>(r, home);
+                Some(c.turned::<1, 2, 0>(cos, sin))
+            }
+            JointMotion::RevoluteAxis { axis: 1, .. } => {
+                let (cos, sin) = cos_sin::<T, 2, 0>(r, home);
+                Some(c.turned::<2, 0, 1>(cos, sin))
+            }
+            JointMotion::RevoluteAxis { .. } => {
+                let (cos, sin) = cos_sin::<T, 0, 1>(r, home);
+                Some(c.turned::<0, 1, 2>(cos, sin))
+            }
+            JointMotion::PrismaticAxis { .. } => Some(*c),
+            _ => None,
+        };
+        if let Some(mut t) = turned {
+            if let HomeTurn::QuarterX(plus) = home {
+                t = quarter_x(&t, plus);
+            }
+            return t.shifted(&h.translation);
+        }
+    }
+    c.transformed(h)
+}
+
+/// `R 𝔍 Rᵀ` for `R = Rot_x(±π/2)`, `(v_x, v_y, v_z) ↦ (v_x, ∓v_z, ±v_y)`: `I_o'` has
+/// `I_xx`, `∓I_xz`, `±I_xy` in its first row, `I_zz`, `−I_yz`, `I_yy` on the rest.
+#[inline(always)]
+fn quarter_x<T: Real>(c: &CompositeInertia<T>, plus: bool) -> CompositeInertia<T> {
+    let (io, h) = (&c.inertia_origin, &c.first_moment);
+    let (xy, xz, hy, hz) = if plus {
+        (-io[(0, 2)], io[(0, 1)], -h.z, h.y)
+    } else {
+        (io[(0, 2)], -io[(0, 1)], h.z, -h.y)
+    };
+    CompositeInertia {
+        mass: c.mass,
+        first_moment: Vector3::new(h.x, hy, hz),
+        inertia_origin: Matrix3::new(
+            io[(0, 0)],
+            xy,
+            xz,
+            xy,
+            io[(2, 2)],
+            -io[(1, 2)],
+            xz,
+            -io[(1, 2)],
+            io[(1, 1)],
+        ),
+    }
+}
+
+fn local_given_q<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) {
+    let n = model.nbodies();
+    let (joints, motions, parents, bodies) = (
+        &model.joints()[..n],
+        &model.motions()[..n],
+        &model.parents()[..n],
+        &model.body_composite[..n],
+    );
+    let q = &q[..n];
+    let home_turn = &model.home_turn[..n];
+    let (pip, ci) = (&mut ws.pose_in_parent[..n], &mut ws.composite_inertia[..n]);
+    // H_i^{λ(i)} = H_i^{λ(i)}(0) e^{[S_i] q_i}; 𝔍ᶜ_i starts as body i's own inertia.
+    for i in 0..n {
+        pip[i] = motions[i].pose_in_parent(&joints[i].home, q[i]);
+        ci[i] = bodies[i];
+    }
+    let data = &mut ws.mass_matrix.as_mut_slice()[..n * n];
+    if !model.is_chain {
+        // Bodies on different branches do not couple.
+        data.fill(T::zero());
+    }
+    // Column i of the upper triangle (entry (k, i) is data[i n + k], every ancestor k < i),
+    // from the leaves, then the lower triangle mirrored.
+    for i in (0..n).rev() {
+        let column = &mut data[i * n..(i + 1) * n];
+        // F = 𝔍ᶜ_i S_i; M_ii = S_iᵀ F + I_a,i
+        let mut f = inertia_times_axis(&ci[i], &motions[i]);
+        column[i] = motions[i].dot(&f) + joints[i].armature;
+        let mut k = i;
+        while let Some(p) = parents[k] {
+            // F in {λ(k)} = Ad_{H_k^{λ(k)}}⁻ᵀ F = (R m + p × R f, R f); M_{λ(k) i} = S_{λ(k)}ᵀ F
+            f = wrench_to_parent(&pip[k], &motions[k], home_turn[k], &f);
+            k = p;
+            column[k] = motions[k].dot(&f);
+        }
+        // 𝔍ᶜ_{λ(i)} += 𝔍ᶜ_i written in {λ(i)}: Ad_{H_{λ(i)}^i}ᵀ 𝔍ᶜ_i Ad_{H_{λ(i)}^i}
+        if let Some(p) = parents[i] {
+            let c = composite_to_parent(&ci[i], &pip[i], &motions[i], home_turn[i]);
+            ci[p].add(&c);
+        }
+    }
+    for c in 0..n {
+        for r in c + 1..n {
+            data[c * n + r] = data[r * n + c];
+        }
+    }
 }
 
 pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) {

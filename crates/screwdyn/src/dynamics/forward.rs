@@ -1,7 +1,7 @@
 //! Forward dynamics three ways: ABA, CRBA + Cholesky, and the Walker–Orin simulator method
 //! (Walker & Orin, 1982)
 
-use super::aba::articulated_body;
+use super::aba::{articulated_body, articulated_body_for_stepper};
 use super::cholesky::{cholesky_in_place, cholesky_solve_in_place, singular_error};
 use super::crba::crba_given_poses;
 use super::inputs::checked_poses;
@@ -79,6 +79,23 @@ pub fn forward_dynamics<'w, T: Real>(
         ForwardMethod::Aba => articulated_body(model, ws, q, v, tau, fext),
         ForwardMethod::Crba => forward_dynamics_crba(model, ws, q, v, tau, fext),
         ForwardMethod::WalkerOrin => forward_dynamics_walker_orin(model, ws, q, v, tau, fext),
+    }
+}
+
+/// [`forward_dynamics`] for the simulator's plant, which guarantees that `v` and `tau` have one
+/// finite entry per joint (see [`articulated_body_for_stepper`]): ABA skips checking them again.
+pub(crate) fn forward_dynamics_for_stepper<'w, T: Real>(
+    model: &Model<T>,
+    ws: &'w mut Workspace<T>,
+    q: &[T],
+    v: &[T],
+    tau: &[T],
+    fext: Option<&ExternalWrenches<T>>,
+    method: ForwardMethod,
+) -> Result<&'w DVector<T>> {
+    match method {
+        ForwardMethod::Aba => articulated_body_for_stepper(model, ws, q, v, tau, fext),
+        _ => forward_dynamics(model, ws, q, v, tau, fext, method),
     }
 }
 

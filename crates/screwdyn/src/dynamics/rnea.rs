@@ -1,10 +1,10 @@
 //! Inverse dynamics by the recursive Newton–Euler algorithm in the Lie-group form
 //! (Lynch & Park, *Modern Robotics*), with gravity as a base acceleration and external wrenches.
 
-use super::inputs::checked_poses;
+use super::inputs::checked_poses_in_parent;
 use super::wrenches::ExternalWrenches;
 use crate::error::Result;
-use crate::kinematics::forward_kinematics;
+use crate::kinematics::poses_in_parent;
 use crate::model::Model;
 use crate::scalar::Real;
 use crate::spatial::{ad_transpose, twist, Twist};
@@ -18,8 +18,9 @@ pub fn base_acceleration<T: Real>(model: &Model<T>) -> Twist<T> {
     twist(Vector3::zeros(), -model.gravity())
 }
 
-/// Both passes of the RNEA given `ws.pose_in_parent`; `v = None` means `q̇ = 0`, `qdd(i)` gives
-/// `q̈_i`. Writes `ws.twist`, `ws.twist_dot`, `ws.wrench` and `ws.tau`.
+/// Both passes of the RNEA given `ws.pose_in_parent` (and `ws.pose_in_world` when there are
+/// external wrenches); `v = None` means `q̇ = 0`, `qdd(i)` gives `q̈_i`. Writes `ws.twist`,
+/// `ws.twist_dot`, `ws.wrench` and `ws.tau`.
 pub(crate) fn rnea_passes<T: Real>(
     model: &Model<T>,
     ws: &mut Workspace<T>,
@@ -72,7 +73,9 @@ pub(crate) fn rnea_passes<T: Real>(
 
 /// Inverse dynamics `τ = M(q) q̈ + C(q, q̇) q̇ + g(q)` by the recursive Newton–Euler algorithm
 /// (Lynch & Park, *Modern Robotics*; gravity as the base acceleration `(0, −g)` of Lynch & Park's *Modern Robotics*). Trees are handled:
-/// the backward pass sums `Ad_{H_λ^i}ᵀ W_i` over all children. Returns `ws.tau`.
+/// the backward pass sums `Ad_{H_λ^i}ᵀ W_i` over all children. Returns `ws.tau`. The passes
+/// work in the body frames: they write `ws.pose_in_parent`, not `ws.pose_in_world` (call
+/// [`forward_kinematics`](crate::kinematics::forward_kinematics) for the world poses).
 ///
 /// Forward pass: `V_i = Ad_{H_{λ(i)}^i} V_{λ(i)} + S_i q̇_i`,
 /// `V̇_i = Ad V̇_{λ(i)} − ad_{S_i q̇_i}(Ad V_{λ(i)}) + S_i q̈_i`.
@@ -101,7 +104,8 @@ pub fn rnea<'w, T: Real>(
 }
 
 /// [`rnea`] with external wrenches: `τ = M q̈ + C q̇ + g − Σ_i J_iᵀ W_ext,i (+ J_eᵀ W_tip)`
-/// (Lynch & Park, *Modern Robotics*). Returns `ws.tau`.
+/// (Lynch & Park, *Modern Robotics*). Returns `ws.tau`. Writes `ws.pose_in_world` too when
+/// `fext` is given (the world-frame wrenches need it), not without.
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
@@ -126,7 +130,7 @@ pub fn inverse_dynamics<'w, T: Real>(
     a: &[T],
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<&'w DVector<T>> {
-    checked_poses(model, ws, q, &[(v, "v"), (a, "a")], fext)?;
+    checked_poses_in_parent(model, ws, q, &[(v, "v"), (a, "a")], fext)?;
     rnea_passes(
         model,
         ws,
@@ -139,7 +143,8 @@ pub fn inverse_dynamics<'w, T: Real>(
 }
 
 /// Gravity torques `g(q)`: RNEA with `q̇ = q̈ = 0` (Lynch & Park, *Modern Robotics*,
-/// `g(θ) = Sᵀ Lᵀ 𝔍 L V̇_base`). Returns `ws.gravity_torque`.
+/// `g(θ) = Sᵀ Lᵀ 𝔍 L V̇_base`). Returns `ws.gravity_torque`; writes `ws.pose_in_parent`, not
+/// `ws.pose_in_world`.
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
@@ -157,7 +162,7 @@ pub fn gravity_torque<'w, T: Real>(
     ws: &'w mut Workspace<T>,
     q: &[T],
 ) -> Result<&'w DVector<T>> {
-    forward_kinematics(model, ws, q)?;
+    poses_in_parent(model, ws, q)?;
     rnea_passes(
         model,
         ws,
@@ -170,7 +175,8 @@ pub fn gravity_torque<'w, T: Real>(
     Ok(&ws.gravity_torque)
 }
 
-/// Nonlinear effects `C(q, q̇) q̇ + g(q)`: RNEA with `q̈ = 0`. Returns `ws.nonlinear_effects`.
+/// Nonlinear effects `C(q, q̇) q̇ + g(q)`: RNEA with `q̈ = 0`. Returns `ws.nonlinear_effects`;
+/// writes `ws.pose_in_parent`, not `ws.pose_in_world`.
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
@@ -190,7 +196,7 @@ pub fn nonlinear_effects<'w, T: Real>(
     q: &[T],
     v: &[T],
 ) -> Result<&'w DVector<T>> {
-    checked_poses(model, ws, q, &[(v, "v")], None)?;
+    checked_poses_in_parent(model, ws, q, &[(v, "v")], None)?;
     rnea_passes(
         model,
         ws,

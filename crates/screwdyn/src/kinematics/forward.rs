@@ -3,7 +3,7 @@
 
 use crate::error::Result;
 use crate::model::{Frame, Model};
-use crate::scalar::Real;
+use crate::scalar::{sin_cos, sin_cos_lanes, Real};
 use crate::spatial::Se3;
 use crate::workspace::Workspace;
 
@@ -31,6 +31,49 @@ use crate::workspace::Workspace;
     "x86_64+avx2+fma"
 ))]
 pub fn forward_kinematics<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) -> Result<()> {
+    // With fused multiply–adds, the sines and cosines of a block's joint angles side by side
+    // in vector registers before the joints that use them; without (a portable build's
+    // baseline clone, where `mul_add` is a library call) one scalar `sin_cos` per joint.
+    let lanes = multiversion::target::target_cfg_f!(target_feature = "fma");
+    poses::<T, true>(model, ws, q, lanes)
+}
+
+/// The poses of all bodies in their parents' frames only, `H_i^{λ(i)}(q_i) = H_i^{λ(i)}(0)
+/// e^{[S_i^{i,λ(i)}] q_i}`: [`forward_kinematics`] without the compositions `H_i^0 = H_{λ(i)}^0
+/// H_i^{λ(i)}`, for the algorithms that work in the body frames (the recursive Newton–Euler
+/// passes). Writes `ws.pose_in_parent` and leaves `ws.pose_in_world` as it was.
+///
+/// # Errors
+/// As [`forward_kinematics`].
+///
+/// ```
+/// use screwdyn::{builtin, kinematics::{forward_kinematics, poses_in_parent}, Workspace};
+/// let m = builtin::load("ur5").unwrap();
+/// let q = [0.1, -0.7, 1.2, 0.4, -0.3, 2.0];
+/// let (mut full, mut local) = (Workspace::new(&m), Workspace::new(&m));
+/// forward_kinematics(&m, &mut full, &q).unwrap();
+/// poses_in_parent(&m, &mut local, &q).unwrap();
+/// assert_eq!(local.pose_in_parent, full.pose_in_parent);
+/// assert_eq!(local.pose_in_world[5], screwdyn::spatial::Se3::identity()); // not written
+/// ```
+#[multiversion::multiversion(targets(
+    "x86_64+avx512f+avx512vl+avx512dq+avx512bw+avx2+fma",
+    "x86_64+avx2+fma"
+))]
+pub fn poses_in_parent<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) -> Result<()> {
+    let lanes = multiversion::target::target_cfg_f!(target_feature = "fma");
+    poses::<T, false>(model, ws, q, lanes)
+}
+
+/// The body poses in the parents' frames, and in the world frame when `WORLD`; the sines and
+/// cosines by lanes when `lanes` (see [`sin_cos_packed`]).
+#[inline(always)]
+fn poses<T: Real, const WORLD: bool>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    q: &[T],
+    lanes: bool,
+) -> Result<()> {
     ws.check(model)?;
     model.check_vector(q, "q")?;
     // `check_vector` made `q.len() == n`; `check` that the workspace was made for this model.
@@ -43,15 +86,63 @@ pub fn forward_kinematics<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &
     );
     let q = &q[..n];
     let (pip, piw) = (&mut ws.pose_in_parent[..n], &mut ws.pose_in_world[..n]);
-    for i in 0..n {
-        let h = motions[i].pose_in_parent(&joints[i].home, q[i]);
-        pip[i] = h;
-        piw[i] = match parents[i] {
-            Some(p) => piw[p].compose(&h),
-            None => h,
-        };
+    for start in (0..n).step_by(BLOCK) {
+        let end = n.min(start + BLOCK);
+        // The angles θ = ±q of the block's turning joints, packed.
+        let mut angle = [T::zero(); BLOCK];
+        let mut turning = 0;
+        for (m, &q) in motions[start..end].iter().zip(&q[start..end]) {
+            if m.turns() {
+                angle[turning] = m.angle(q);
+                turning += 1;
+            }
+        }
+        let (sin, cos) = sin_cos_packed(angle, turning, lanes);
+        let mut k = 0;
+        for i in start..end {
+            let sc = if motions[i].turns() {
+                k += 1;
+                (sin[k - 1], cos[k - 1])
+            } else {
+                (T::zero(), T::one())
+            };
+            // H_i^λ = H_i^λ(0) e^{[S_i] q_i},  H_i^0 = H_λ^0 H_i^λ.
+            let h = motions[i].pose_in_parent_given(&joints[i].home, q[i], sc);
+            pip[i] = h;
+            if WORLD {
+                piw[i] = match parents[i] {
+                    Some(p) => piw[p].compose(&h),
+                    None => h,
+                };
+            }
+        }
     }
     Ok(())
+}
+
+/// Joints per block of forward kinematics: the sines and cosines of a block's angles are
+/// computed together, into arrays on the stack.
+const BLOCK: usize = 8;
+
+/// `(sin θ_k, cos θ_k)` of the first `len` angles of `angle` (the rest are zeros): five to
+/// eight by [`sin_cos_lanes`] on eight lanes, two to four on four, a single one by
+/// [`sin_cos`]; each by [`sin_cos`] when `!lanes`.
+#[inline(always)]
+fn sin_cos_packed<T: Real>(angle: [T; BLOCK], len: usize, lanes: bool) -> ([T; BLOCK], [T; BLOCK]) {
+    if lanes && len > 4 {
+        return sin_cos_lanes(angle);
+    }
+    let (mut sin, mut cos) = ([T::zero(); BLOCK], [T::one(); BLOCK]);
+    if lanes && len > 1 {
+        let (s, c) = sin_cos_lanes::<T, 4>([angle[0], angle[1], angle[2], angle[3]]);
+        sin[..4].copy_from_slice(&s);
+        cos[..4].copy_from_slice(&c);
+    } else {
+        for k in 0..len {
+            (sin[k], cos[k]) = sin_cos(angle[k]);
+        }
+    }
+    (sin, cos)
 }
 
 /// The pose `H_f^0 = H_b^0 H_f^b` of frame `f` on body `b`, from the body poses of the last

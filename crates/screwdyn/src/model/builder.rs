@@ -442,6 +442,7 @@ impl<T: Real> ModelBuilder<T> {
             inertia_scale: T::zero(),
             body_composite: Vec::new(),
             is_chain: false,
+            home_turn: Vec::new(),
             body_frames: Vec::new(),
             findings: Vec::new(),
             frame_index: HashMap::new(),

@@ -17,7 +17,7 @@ mod findings;
 mod joint;
 #[allow(clippy::module_inception)]
 mod model;
-pub(crate) use model::{check_finite, first_non_finite};
+pub(crate) use model::{check_finite, first_non_finite, HomeTurn};
 mod motion;
 
 pub use builder::{JointSpec, ModelBuilder};

@@ -18,6 +18,46 @@ pub struct Body<T: Real = f64> {
     pub inertia: SpatialInertia<T>,
 }
 
+/// The shape of a joint's home rotation `R_i^{λ(i)}(0)`, classified at build time so that CRBA's
+/// local form can change frames by moving entries instead of 3×3 products.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum HomeTurn {
+    /// `R(0) = 1` exactly.
+    Identity,
+    /// `R(0) = Rot_x(±π/2)` to rounding (every entry within `4 ε` of it, as `rpy="±π/2 0 0"`
+    /// gives): `(v_x, v_y, v_z) ↦ (v_x, ∓v_z, ±v_y)`. `true` for `+π/2`.
+    QuarterX(bool),
+    /// Anything else.
+    General,
+}
+
+impl HomeTurn {
+    fn classify<T: Real>(r: &nalgebra::Matrix3<T>) -> Self {
+        if *r == nalgebra::Matrix3::identity() {
+            return HomeTurn::Identity;
+        }
+        let tol = T::default_epsilon() * crate::scalar::real(4.0);
+        for plus in [true, false] {
+            let sign = if plus { T::one() } else { -T::one() };
+            let quarter = nalgebra::Matrix3::new(
+                T::one(),
+                T::zero(),
+                T::zero(),
+                T::zero(),
+                T::zero(),
+                -sign,
+                T::zero(),
+                sign,
+                T::zero(),
+            );
+            if (r - quarter).amax() <= tol {
+                return HomeTurn::QuarterX(plus);
+            }
+        }
+        HomeTurn::General
+    }
+}
+
 /// What a frame marks.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FrameKind {
@@ -68,6 +108,8 @@ pub struct Model<T: Real = f64> {
     pub(crate) body_composite: Vec<crate::spatial::CompositeInertia<T>>,
     /// Derived: the tree is a single chain (`λ(i) = i − 1`).
     pub(crate) is_chain: bool,
+    /// Derived: the shape of joint `i`'s home rotation `R_i^{λ(i)}(0)` (CRBA's local form).
+    pub(crate) home_turn: Vec<HomeTurn>,
     /// Derived: the index of each body's frame in `frames`.
     pub(crate) body_frames: Vec<usize>,
     /// Frame name → index in `frames`.
@@ -227,6 +269,11 @@ impl<T: Real> Model<T> {
             .iter()
             .enumerate()
             .all(|(i, p)| *p == i.checked_sub(1));
+        self.home_turn = self
+            .joints
+            .iter()
+            .map(|j| HomeTurn::classify(&j.home.rotation))
+            .collect();
         self.body_frames = vec![0; self.bodies.len()];
         for (k, f) in self.frames.iter().enumerate() {
             if let (FrameKind::Body, Some(b)) = (f.kind, f.body) {
@@ -685,6 +732,7 @@ impl Model<f64> {
             inertia_scale: U::zero(),
             body_composite: Vec::new(),
             is_chain: false,
+            home_turn: Vec::new(),
             body_frames: Vec::new(),
             frame_index: self.frame_index.clone(),
             findings: self.findings.clone(),

@@ -119,17 +119,67 @@ impl<T: Real> JointMotion<T> {
     // Always inlined, so that the CPU-specific clones of forward kinematics compile it too.
     #[inline(always)]
     pub fn pose_in_parent(&self, home: &Se3<T>, q: T) -> Se3<T> {
+        let sin_cos = if self.turns() {
+            crate::scalar::sin_cos(self.angle(q))
+        } else {
+            (T::zero(), T::one())
+        };
+        self.pose_in_parent_given(home, q, sin_cos)
+    }
+
+    /// Whether the joint turns about a coordinate axis (a revolute axis joint, with or without
+    /// offset): whether its pose needs the sine and cosine of [`JointMotion::angle`].
+    #[inline(always)]
+    pub fn turns(&self) -> bool {
+        matches!(
+            self,
+            JointMotion::RevoluteAxis { .. } | JointMotion::RevoluteOffsetAxis { .. }
+        )
+    }
+
+    /// The angle `θ = ±q` the joint turns about its coordinate axis (revolute axis joints, with
+    /// or without offset), whose sine and cosine [`JointMotion::pose_in_parent_given`] takes;
+    /// zero for the other joints.
+    ///
+    /// ```
+    /// use nalgebra::Vector6;
+    /// use screwdyn::model::JointMotion;
+    /// let m = JointMotion::classify(&Vector6::new(0.0, -1.0, 0.0, 0.0, 0.0, 0.0));
+    /// assert_eq!(m.angle(0.3), -0.3);
+    /// ```
+    #[inline(always)]
+    pub fn angle(&self, q: T) -> T {
         match *self {
-            JointMotion::RevoluteAxis { axis, sign } => {
-                let (rot, _) = rotate_about_axis(&home.rotation, axis, q * sign);
+            JointMotion::RevoluteAxis { sign, .. }
+            | JointMotion::RevoluteOffsetAxis { sign, .. } => q * sign,
+            _ => T::zero(),
+        }
+    }
+
+    /// [`JointMotion::pose_in_parent`] given `(sin θ, cos θ)` of [`JointMotion::angle`]`(q)`,
+    /// computed beforehand (for all joints at once, by [`crate::scalar::sin_cos_lanes`], in
+    /// forward kinematics). Prismatic and general joints ignore it.
+    ///
+    /// ```
+    /// use nalgebra::Vector6;
+    /// use screwdyn::{model::JointMotion, spatial::Se3};
+    /// let m = JointMotion::classify(&Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0));
+    /// let home = Se3::from_rpy(0.1, 0.2, 0.3);
+    /// let q = 0.7_f64;
+    /// let given = m.pose_in_parent_given(&home, q, m.angle(q).sin_cos());
+    /// assert!((given.to_matrix() - m.pose_in_parent(&home, q).to_matrix()).amax() < 1e-15);
+    /// ```
+    #[inline(always)]
+    pub fn pose_in_parent_given(&self, home: &Se3<T>, q: T, (s, c): (T, T)) -> Se3<T> {
+        match *self {
+            JointMotion::RevoluteAxis { axis, .. } => {
+                let (rot, _) = rotate_about_axis(&home.rotation, axis, s, c);
                 Se3::new(rot, home.translation)
             }
-            JointMotion::RevoluteOffsetAxis {
-                axis, sign, point, ..
-            } => {
+            JointMotion::RevoluteOffsetAxis { axis, point, .. } => {
                 // H(0) (Rot_k(θ), (1 − Rot_k(θ)) r): p = p(0) + R(0) r − R(0) Rot_k(θ) r, where
                 // r = r_i ê_i + r_j ê_j only meets the two columns that turn.
-                let (rot, (i, j)) = rotate_about_axis(&home.rotation, axis, q * sign);
+                let (rot, (i, j)) = rotate_about_axis(&home.rotation, axis, s, c);
                 let r0 = &home.rotation;
                 let p = home.translation
                     + (r0.column(i) - rot.column(i)) * point[i]
@@ -237,14 +287,15 @@ impl<T: Real> JointMotion<T> {
     }
 }
 
-/// `R Rot_k(θ)`: only the two columns `(i, j)` other than `k` change; returns them too.
+/// `R Rot_k(θ)` given `s = sin θ`, `c = cos θ`: only the two columns `(i, j)` other than `k`
+/// change; returns them too.
 #[inline(always)]
 fn rotate_about_axis<T: Real>(
     r: &Matrix3<T>,
     axis: usize,
-    theta: T,
+    s: T,
+    c: T,
 ) -> (Matrix3<T>, (usize, usize)) {
-    let (s, c) = crate::scalar::sin_cos(theta);
     // One code path per axis, so that the columns are known at compile time.
     match axis {
         0 => (rotate_columns::<_, 1, 2>(r, s, c), (1, 2)),

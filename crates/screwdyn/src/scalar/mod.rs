@@ -26,7 +26,10 @@ pub fn real<T: Real>(x: f64) -> T {
 }
 
 mod sin_cos;
+mod sin_cos_lanes;
 #[cfg(test)]
 pub(crate) use sin_cos::ulps;
+pub(crate) use sin_cos::SIN_COS_MEDIUM;
 pub use sin_cos::{sin_cos, sin_cos_f64};
-pub(crate) use sin_cos::{Reduction, SIN_COS_MEDIUM};
+pub(crate) use sin_cos_lanes::sin_cos_array;
+pub use sin_cos_lanes::sin_cos_lanes;

@@ -8,7 +8,9 @@ use super::limit_events::LimitWatch;
 use super::options::SimOptions;
 use super::record::{Recording, Sample, SampleSink};
 use crate::dynamics::energy::{kinetic_energy_given_twists, potential_energy_given_poses};
-use crate::dynamics::{forward_dynamics, ExternalWrenches, ForwardMethod};
+use crate::dynamics::{
+    forward_dynamics, forward_dynamics_for_stepper, ExternalWrenches, ForwardMethod,
+};
 use crate::error::{Error, Result};
 use crate::kinematics::{forward_velocity, frame_pose};
 use crate::model::{first_non_finite, Model};
@@ -155,7 +157,21 @@ impl Plant<'_> {
         } else {
             None
         };
-        let a = forward_dynamics(self.model, &mut self.ws, q, v, &self.tau, fext, self.method)?;
+        let a = if self.commanded_only {
+            // The torque is the controller's, checked above, and the stepper only hands over
+            // states it has checked: ABA need not check them again.
+            forward_dynamics_for_stepper(
+                self.model,
+                &mut self.ws,
+                q,
+                v,
+                &self.tau,
+                fext,
+                self.method,
+            )?
+        } else {
+            forward_dynamics(self.model, &mut self.ws, q, v, &self.tau, fext, self.method)?
+        };
         qdd.copy_from_slice(a.as_slice());
         if let Some(i) = first_non_finite(qdd) {
             let cause = if self.effects.total_torque_is_commanded() {

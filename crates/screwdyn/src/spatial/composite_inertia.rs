@@ -90,6 +90,67 @@ impl<T: Real> CompositeInertia<T> {
         }
     }
 
+    /// This inertia turned by the angle `θ` (`c = cos θ`, `s = sin θ`) about the coordinate axis
+    /// `K` whose plane is (`I`, `J`) (`(I, J, K)` cyclic): `R 𝔍 Rᵀ` with `R = Rot_K(θ)`, which moves
+    /// only the entries in that plane (`R ê_I = c ê_I + s ê_J`, `R ê_J = c ê_J − s ê_I`).
+    /// `I_o' = R I_o Rᵀ` is a 2×2 block turned by `θ`, a column of two turned as a vector and
+    /// `I_KK` unchanged; `h' = R h`.
+    #[inline(always)]
+    pub(crate) fn turned<const I: usize, const J: usize, const K: usize>(
+        &self,
+        c: T,
+        s: T,
+    ) -> Self {
+        let (io, h) = (&self.inertia_origin, &self.first_moment);
+        let (a, b, d) = (io[(I, I)], io[(I, J)], io[(J, J)]);
+        let (cc, ss, cs) = (c * c, s * s, c * s);
+        let two_csb = (cs + cs) * b;
+        let mut out = *io;
+        out[(I, I)] = cc * a - two_csb + ss * d;
+        out[(J, J)] = ss * a + two_csb + cc * d;
+        let ij = cs * (a - d) + (cc - ss) * b;
+        out[(I, J)] = ij;
+        out[(J, I)] = ij;
+        let (ik, jk) = (io[(I, K)], io[(J, K)]);
+        let (ik, jk) = (c * ik - s * jk, s * ik + c * jk);
+        out[(I, K)] = ik;
+        out[(K, I)] = ik;
+        out[(J, K)] = jk;
+        out[(K, J)] = jk;
+        let mut first_moment = *h;
+        first_moment[I] = c * h[I] - s * h[J];
+        first_moment[J] = s * h[I] + c * h[J];
+        CompositeInertia {
+            mass: self.mass,
+            first_moment,
+            inertia_origin: out,
+        }
+    }
+
+    /// This inertia, given in frame `b`, written in frame `a` displaced from it by `p` without
+    /// rotation (`H_b^a = (1, p)`): [`transformed`](Self::transformed) with `R = 1`, i.e.
+    /// `I_o' = I_o + 2(h·p) 1 − p hᵀ − h pᵀ + m (|p|² 1 − p pᵀ)`, `h' = h + m p`.
+    #[inline(always)]
+    pub(crate) fn shifted(&self, p: &Vector3<T>) -> Self {
+        let (h, m) = (&self.first_moment, self.mass);
+        let mp = p * m;
+        let diag = (h.dot(p) + h.dot(p)) + mp.dot(p);
+        let mut io = self.inertia_origin;
+        for a in 0..3 {
+            for b in a..3 {
+                let t = io[(a, b)] - p[a] * h[b] - h[a] * p[b] - p[a] * mp[b];
+                io[(a, b)] = t;
+                io[(b, a)] = t;
+            }
+            io[(a, a)] += diag;
+        }
+        CompositeInertia {
+            mass: m,
+            first_moment: h + mp,
+            inertia_origin: io,
+        }
+    }
+
     /// `𝔍 V = (I_o ω + h × v, m v − h × ω)`.
     #[inline]
     pub fn apply(&self, v: &Twist<T>) -> Wrench<T> {

@@ -1,0 +1,186 @@
+//! The two forms of the composite-rigid-body algorithm agree: `crba_local` (each quantity in its
+//! own body frame, no forward kinematics) against `crba_in_base_frame` (everything in {0}, the
+//! form the Pinocchio fixtures were checked with), on random trees with branches and on long
+//! chains, with every kind of joint axis (coordinate axes with either sign, axes off the origin,
+//! general screws), home rotations that are the identity, quarter turns about x or general, and
+//! armatures. Both are also checked against `Σ_i J_iᵀ 𝔍_i J_i` built from
+//! the body Jacobians of forward kinematics, an independent formula.
+mod common;
+
+use nalgebra::{DMatrix, Vector3, Vector6};
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+use screwdyn::dynamics::{crba, crba_in_base_frame, crba_local, CRBA_LOCAL_MAX_BODIES};
+use screwdyn::kinematics::forward_kinematics;
+use screwdyn::model::{JointSpec, ModelBuilder};
+use screwdyn::spatial::{exp_so3, Se3};
+use screwdyn::{Model, Workspace};
+
+/// A random tree (a chain when `branch` is 0) whose joints mix every specialised axis shape.
+fn mixed_axes(rng: &mut StdRng, n: usize, branch: f64) -> Model {
+    let mut b = ModelBuilder::new("mixed");
+    b.gravity(Vector3::new(0.0, 0.0, -9.81));
+    for i in 0..n {
+        let parent = if i == 0 || rng.gen_bool(branch) {
+            "base".to_string()
+        } else if branch == 0.0 {
+            format!("l{}", i - 1)
+        } else {
+            format!("l{}", rng.gen_range(0..i))
+        };
+        let k = rng.gen_range(0..3);
+        let sign = if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+        let mut e = Vector3::zeros();
+        e[k] = sign;
+        let kind = rng.gen_range(0..5);
+        let screw = match kind {
+            // Revolute about ±ê_k through the origin (most arms), twice as likely.
+            0 | 1 => Vector6::new(e.x, e.y, e.z, 0.0, 0.0, 0.0),
+            2 => Vector6::new(0.0, 0.0, 0.0, e.x, e.y, e.z),
+            3 => {
+                // About ±ê_k through a point off the origin.
+                let mut r = Vector3::new(rng.gen_range(-0.3..0.3), rng.gen_range(-0.3..0.3), 0.0);
+                r[k] = 0.0;
+                let l = r.cross(&e);
+                Vector6::new(e.x, e.y, e.z, l.x, l.y, l.z)
+            }
+            _ => {
+                let w = Vector3::new(rng.gen_range(-1.0..1.0), 0.4, rng.gen_range(-1.0..1.0))
+                    .normalize();
+                let l = Vector3::new(0.1, -0.2, 0.05).cross(&w);
+                Vector6::new(w.x, w.y, w.z, l.x, l.y, l.z)
+            }
+        };
+        let spec = if kind == 2 {
+            JointSpec::prismatic(&format!("j{i}"))
+        } else {
+            JointSpec::revolute(&format!("j{i}"))
+        };
+        // Home rotations as on real arms: the identity, a quarter turn about x written as
+        // `rpy = (±π/2, 0, 0)` (entries within rounding of 0 and ±1), or anything.
+        let quarter = std::f64::consts::FRAC_PI_2;
+        let rotation = match rng.gen_range(0..4) {
+            0 => nalgebra::Matrix3::identity(),
+            1 => Se3::from_rpy(quarter, 0.0, 0.0).rotation,
+            2 => Se3::from_rpy(-quarter, 0.0, 0.0).rotation,
+            _ => exp_so3(&Vector3::new(
+                rng.gen_range(-2.0..2.0),
+                rng.gen_range(-2.0..2.0),
+                rng.gen_range(-2.0..2.0),
+            )),
+        };
+        let home = Se3::new(
+            rotation,
+            Vector3::new(
+                rng.gen_range(-0.5..0.5),
+                rng.gen_range(-0.5..0.5),
+                rng.gen_range(-0.5..0.5),
+            ),
+        );
+        b.link(
+            &format!("l{i}"),
+            &parent,
+            spec.screw_in_child(screw).armature(rng.gen_range(0.0..0.2)),
+            home,
+            common::random_inertia(rng),
+        );
+    }
+    b.build().expect("valid model")
+}
+
+/// `M = Σ_i J_iᵀ 𝔍_i J_i` with `J_i`'s column `j` the screw of joint `j` (supporting `i`)
+/// written in body `i`'s frame, plus the armatures: from forward kinematics only.
+fn mass_matrix_from_jacobians(model: &Model, q: &[f64]) -> DMatrix<f64> {
+    let n = model.nq();
+    let mut ws = Workspace::new(model);
+    forward_kinematics(model, &mut ws, q).unwrap();
+    let mut m = DMatrix::zeros(n, n);
+    for i in 0..n {
+        let support = model.support(i).unwrap();
+        let body_from_world = ws.pose_in_world[i].inverse();
+        let inertia = model.bodies()[i].inertia.matrix();
+        let cols: Vec<(usize, Vector6<f64>)> = support
+            .iter()
+            .map(|&j| {
+                let s0 = ws.pose_in_world[j].act_twist(&model.joints()[j].screw);
+                (j, body_from_world.act_twist(&s0))
+            })
+            .collect();
+        for (a, sa) in &cols {
+            for (b, sb) in &cols {
+                m[(*a, *b)] += (sa.transpose() * inertia * sb)[(0, 0)];
+            }
+        }
+    }
+    for i in 0..n {
+        m[(i, i)] += model.joints()[i].armature;
+    }
+    m
+}
+
+fn check(model: &Model, rng: &mut StdRng, states: usize) {
+    let n = model.nq();
+    let mut ws = Workspace::new(model);
+    for _ in 0..states {
+        let q = common::random_vec(rng, n, 3.0);
+        let base = crba_in_base_frame(model, &mut ws, &q).unwrap().clone();
+        let local = crba_local(model, &mut ws, &q).unwrap().clone();
+        let chosen = crba(model, &mut ws, &q).unwrap().clone();
+        let scale = base.amax().max(1.0);
+        assert!(
+            (&local - &base).amax() < 1e-12 * scale,
+            "{}: local vs base frame, n = {n}\n{local}\n{base}",
+            model.name()
+        );
+        assert_eq!(
+            chosen,
+            if n <= CRBA_LOCAL_MAX_BODIES {
+                &local
+            } else {
+                &base
+            }
+            .clone()
+        );
+        if n <= 40 {
+            let sum = mass_matrix_from_jacobians(model, &q);
+            assert!((&local - &sum).amax() < 1e-11 * scale, "local vs Σ JᵀJ");
+        }
+    }
+}
+
+#[test]
+fn local_and_base_frame_agree_on_random_trees() {
+    let mut rng = StdRng::seed_from_u64(31);
+    for n in [1, 2, 3, 5, 8, 13, 16, 17, 25] {
+        for _ in 0..4 {
+            let model = mixed_axes(&mut rng, n, 0.25);
+            check(&model, &mut rng, 5);
+        }
+    }
+    // The general screws and helical joints of the shared random trees.
+    for n in [4, 9, 20] {
+        let model = common::random_tree(&mut rng, n, true);
+        check(&model, &mut rng, 5);
+    }
+}
+
+#[test]
+fn local_and_base_frame_agree_on_chains() {
+    let mut rng = StdRng::seed_from_u64(200);
+    for n in [6, 16, 17, 60, 200] {
+        let model = mixed_axes(&mut rng, n, 0.0);
+        check(&model, &mut rng, 2);
+    }
+}
+
+#[test]
+fn local_form_rejects_bad_input() {
+    let mut rng = StdRng::seed_from_u64(1);
+    let model = mixed_axes(&mut rng, 4, 0.3);
+    let mut ws = Workspace::new(&model);
+    assert!(crba_local(&model, &mut ws, &[0.0; 3]).is_err());
+    assert!(crba_local(&model, &mut ws, &[0.0, f64::NAN, 0.0, 0.0]).is_err());
+    let other = mixed_axes(&mut rng, 5, 0.3);
+    let mut wrong = Workspace::new(&other);
+    assert!(crba_local(&model, &mut wrong, &[0.0; 4]).is_err());
+}
