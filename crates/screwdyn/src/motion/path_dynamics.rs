@@ -5,7 +5,7 @@
 use super::spline::Path;
 use crate::dynamics::base_acceleration;
 use crate::error::{Error, Result};
-use crate::kinematics::forward_kinematics;
+use crate::kinematics::poses_in_parent;
 use crate::model::Model;
 use crate::spatial::{ad_transpose, Twist, Wrench};
 use crate::workspace::Workspace;
@@ -29,9 +29,9 @@ pub struct PathPoint {
     pub c: Vec<f64>,
 }
 
-/// Evaluates [`PathPoint`]s of one model along paths, allocating nothing per call: one forward
-/// kinematics and three passes of the recursive Newton–Euler algorithm per point, run side by
-/// side,
+/// Evaluates [`PathPoint`]s of one model along paths, allocating nothing per call: the poses
+/// of the bodies in their parents (forward kinematics without the world poses) and three
+/// passes of the recursive Newton–Euler algorithm per point, run side by side,
 ///
 /// ```text
 /// c = RNEA_g(q, 0, 0) + f ∘ sign(q'),   a = RNEA_0(q, 0, q'),   b = RNEA_0(q, q', q''),
@@ -100,7 +100,8 @@ impl PathDynamics {
         path.eval(s, &mut p.q, &mut p.dq, &mut p.ddq);
         model.check_vector(&p.dq, "q'")?;
         model.check_vector(&p.ddq, "q''")?;
-        forward_kinematics(model, &mut self.ws, &p.q)?;
+        // The passes use the poses in the parents only: no world poses.
+        poses_in_parent(model, &mut self.ws, &p.q)?;
         three_passes(model, &mut self.ws, &mut self.extra, p);
         // c += k ∘ (q − q_spring) + f ∘ sign(q'): springs, and Coulomb friction moving forward
         // along the path (ṡ > 0, so sign(q̇) = sign(q')).
@@ -126,7 +127,7 @@ struct ExtraPasses {
 }
 
 /// The three passes of the recursive Newton–Euler algorithm (Lynch & Park, *Modern Robotics*)
-/// side by side on the poses of one forward kinematics, the velocity terms only in the one
+/// side by side on the poses in the parents at `q`, the velocity terms only in the one
 /// that has a velocity:
 ///
 /// ```text

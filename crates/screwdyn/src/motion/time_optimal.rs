@@ -551,6 +551,13 @@ fn check_limits(
     let samples = (duration / step).ceil() as usize + 1;
     let mut worst = (f64::NEG_INFINITY, (LimitKind::Torque, 0, 0.0));
     let mut stats = TorqueStatistics::new(model);
+    // |value| / limit as |value| · (1 / limit): one division per limit, not per sample.
+    let per_limit = |l: &[f64]| l.iter().map(|x| 1.0 / x).collect::<Vec<_>>();
+    let per_limit = [
+        per_limit(&limits.velocity),
+        per_limit(&limits.acceleration),
+        per_limit(&limits.effort),
+    ];
     let mut interval = 0;
     for k in 0..samples {
         let t = (k as f64 * step).min(duration);
@@ -572,12 +579,12 @@ fn check_limits(
         for (j, joint) in model.joints().iter().enumerate() {
             let tau_j = tau[j] + joint.spring_and_friction_torque(q[j], qd[j]);
             stats.add(j, t, tau_j);
-            for (kind, value, limit) in [
-                (LimitKind::Velocity, qd[j], limits.velocity[j]),
-                (LimitKind::Acceleration, qdd[j], limits.acceleration[j]),
-                (LimitKind::Torque, tau_j, limits.effort[j]),
+            for (kind, value, per_limit) in [
+                (LimitKind::Velocity, qd[j], per_limit[0][j]),
+                (LimitKind::Acceleration, qdd[j], per_limit[1][j]),
+                (LimitKind::Torque, tau_j, per_limit[2][j]),
             ] {
-                let excess = value.abs() / limit - 1.0;
+                let excess = value.abs() * per_limit - 1.0;
                 if excess > worst.0 {
                     worst = (excess, (kind, j, t));
                 }
