@@ -5,7 +5,6 @@ use super::inputs::checked_poses;
 use super::rnea::base_acceleration;
 use super::wrenches::ExternalWrenches;
 use crate::error::{Error, Result};
-use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::Real;
 use crate::spatial::{ang, lin, twist, Se3, SpatialInertia, Twist, Wrench};
@@ -92,10 +91,7 @@ pub(crate) fn articulated_body_for_stepper<'w, T: Real>(
 ) -> Result<&'w DVector<T>> {
     debug_assert!(v.len() == model.nq() && tau.len() == model.nq());
     debug_assert!(v.iter().chain(tau).all(|x| x.is_finite()));
-    if let Some(f) = fext {
-        f.check(model)?;
-    }
-    forward_kinematics(model, ws, q)?;
+    checked_poses(model, ws, q, &[], fext)?;
     aba_passes(model, ws, v, tau, fext)?;
     Ok(&ws.qdd)
 }

@@ -19,13 +19,19 @@ pub(crate) fn checked_poses<T: Real>(
     vectors: &[(&[T], &str)],
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<()> {
-    for (x, what) in vectors {
-        model.check_vector(x, what)?;
-    }
+    checked_vectors(model, vectors)?;
     if let Some(f) = fext {
         f.check(model)?;
     }
     forward_kinematics(model, ws, q)
+}
+
+/// Checks that each named joint vector has `nq` finite entries.
+fn checked_vectors<T: Real>(model: &Model<T>, vectors: &[(&[T], &str)]) -> Result<()> {
+    for (x, what) in vectors {
+        model.check_vector(x, what)?;
+    }
+    Ok(())
 }
 
 /// [`checked_poses`] for the algorithms that need the poses in the parents' frames only (the
@@ -42,8 +48,6 @@ pub(crate) fn checked_poses_in_parent<T: Real>(
     if fext.is_some() {
         return checked_poses(model, ws, q, vectors, fext);
     }
-    for (x, what) in vectors {
-        model.check_vector(x, what)?;
-    }
+    checked_vectors(model, vectors)?;
     poses_in_parent(model, ws, q)
 }
