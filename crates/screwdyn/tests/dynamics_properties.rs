@@ -471,14 +471,15 @@ fn tip_and_world_wrenches_are_jacobian_transposes() {
 }
 
 /// `M⁻¹` and the products `−M⁻¹ ∂τ/∂x` are compiled for each size from 1 to 12 joints and run
-/// with the size at run time beyond: every size from 1 to 16 gives `M M⁻¹ = 1` and
+/// with the size at run time beyond (the products four columns at a time, then the last
+/// `n mod 4`): every size from 1 to 16, and 23 and 40, gives `M M⁻¹ = 1` and
 /// `M ∂q̈/∂q = −∂τ/∂q`, `M ∂q̈/∂q̇ = −∂τ/∂q̇` (the definition of the inverse and of the
 /// forward-dynamics derivatives).
 #[test]
 fn inverse_and_forward_derivatives_at_every_small_size() {
     use screwdyn::dynamics::aba_derivatives;
     let mut rng = StdRng::seed_from_u64(31);
-    for n in 1..=16 {
+    for n in (1..=16).chain([23, 40]) {
         let model = random_tree(&mut rng, n, n % 2 == 0);
         let mut ws = Workspace::new(&model);
         let q = random_vec(&mut rng, n, 1.5);
