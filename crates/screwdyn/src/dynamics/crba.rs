@@ -300,11 +300,7 @@ fn local_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) {
             ci[p].add(&c);
         }
     }
-    for c in 0..n {
-        for r in c + 1..n {
-            data[c * n + r] = data[r * n + c];
-        }
-    }
+    mirror_upper_triangle(data, n);
 }
 
 pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) {
@@ -347,11 +343,7 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
             column[k] = s[k].dot(&f);
         }
     }
-    for c in 0..n {
-        for r in c + 1..n {
-            data[c * n + r] = data[r * n + c];
-        }
-    }
+    mirror_upper_triangle(data, n);
 }
 
 /// `M(q)⁻¹` by CRBA and a Cholesky factorisation. Returns `ws.mass_matrix_inverse`;
@@ -468,10 +460,17 @@ fn invert_columns<T: Real>(
     for j in 0..n {
         minv[j * n + j] = dot(minv, j, j);
     }
-    for j in 0..n {
-        for i in j + 1..n {
-            minv[j * n + i] = minv[i * n + j];
+    mirror_upper_triangle(minv, n);
+    Ok(())
+}
+
+/// Copies the strict upper triangle of the column-major `n × n` matrix `data` onto its lower
+/// triangle: `A_rc = A_cr` for `r > c` (entry `(r, c)` is `data[c n + r]`).
+#[inline(always)]
+fn mirror_upper_triangle<T: Real>(data: &mut [T], n: usize) {
+    for c in 0..n {
+        for r in c + 1..n {
+            data[c * n + r] = data[r * n + c];
         }
     }
-    Ok(())
 }
