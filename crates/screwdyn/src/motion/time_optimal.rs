@@ -8,7 +8,7 @@ use super::spline::Path;
 use crate::dynamics::rnea;
 use crate::error::{Error, Result};
 use crate::model::Model;
-use crate::sim::{ProfileSummary, Trajectory, ViolationSummary};
+use crate::sim::{ProfileSummary, TorqueStatistics, Trajectory};
 use crate::workspace::Workspace;
 
 /// Per-joint limits of a timing; `f64::INFINITY` where a joint has none.
@@ -592,61 +592,4 @@ fn check_limits(
         }
     }
     (worst.0, worst.1, samples, stats.summary(samples))
-}
-
-/// Per joint `max |τ|` (the first time on ties), `Σ τ²` and the samples over the model's
-/// effort limit, as a torque profile keeps them.
-struct TorqueStatistics {
-    peak: Vec<f64>,
-    peak_time: Vec<f64>,
-    sum_of_squares: Vec<f64>,
-    effort_limit: Vec<f64>,
-    over: Vec<Option<ViolationSummary>>,
-}
-
-impl TorqueStatistics {
-    fn new(model: &Model) -> Self {
-        let n = model.nq();
-        TorqueStatistics {
-            peak: vec![0.0; n],
-            peak_time: vec![0.0; n],
-            sum_of_squares: vec![0.0; n],
-            effort_limit: model.joints().iter().map(|j| j.limits.effort).collect(),
-            over: vec![None; n],
-        }
-    }
-
-    fn add(&mut self, j: usize, t: f64, tau: f64) {
-        let magnitude = tau.abs();
-        if magnitude > self.peak[j] {
-            (self.peak[j], self.peak_time[j]) = (magnitude, t);
-        }
-        self.sum_of_squares[j] += tau * tau;
-        if magnitude > self.effort_limit[j] {
-            let s = self.over[j].get_or_insert(ViolationSummary {
-                count: 0,
-                first_time: t,
-                worst: 0.0,
-            });
-            s.count += 1;
-            s.worst = s.worst.max(magnitude);
-        }
-    }
-
-    /// The statistics of `samples` samples; RMS `= √(Σ τ² / samples)`.
-    fn summary(self, samples: usize) -> ProfileSummary {
-        let count = samples as f64;
-        ProfileSummary {
-            samples,
-            rms: self
-                .sum_of_squares
-                .iter()
-                .map(|s| (s / count).sqrt())
-                .collect(),
-            peak: self.peak,
-            peak_time: self.peak_time,
-            effort_limit: self.effort_limit,
-            violation_summary: self.over,
-        }
-    }
 }

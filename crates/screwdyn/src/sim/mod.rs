@@ -33,6 +33,7 @@ pub use effects::{EffectGains, JointEffects};
 pub use integrate::{AccelFn, Integrator, Stepper};
 pub use limit_events::{LimitEvent, LimitEventKind, LimitSide, LimitWatch};
 pub use options::SimOptions;
+pub(crate) use profile::TorqueStatistics;
 pub use profile::{
     torque_profile, torque_profile_into, torque_profile_limited, ProfileSummary, TorqueProfile,
     Violation, ViolationSummary, MAX_PROFILE_SAMPLES,

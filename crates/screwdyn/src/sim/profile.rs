@@ -214,9 +214,7 @@ pub fn torque_profile_into(
     let (mut q, mut v, mut a, mut tau) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let joints: Vec<String> = model.joint_names().into_iter().map(String::from).collect();
     sink.begin(&joints, &[])?;
-    let effort_limit: Vec<f64> = model.joints().iter().map(|j| j.limits.effort).collect();
-    let (mut peak, mut peak_time, mut sumsq) = (vec![0.0_f64; n], vec![0.0; n], vec![0.0; n]);
-    let mut summary: Vec<Option<ViolationSummary>> = vec![None; n];
+    let mut stats = TorqueStatistics::new(model);
     for k in 0..=steps {
         let t = (k as f64 * dt).min(trajectory.duration());
         trajectory.sample(t, &mut q, &mut v, &mut a)?;
@@ -225,21 +223,8 @@ pub fn torque_profile_into(
         for ((t, j), (qi, vi)) in tau.iter_mut().zip(model.joints()).zip(q.iter().zip(&v)) {
             *t += j.spring_and_friction_torque(*qi, *vi);
         }
-        for i in 0..n {
-            let mag = tau[i].abs();
-            if mag > peak[i] {
-                (peak[i], peak_time[i]) = (mag, t);
-            }
-            sumsq[i] += tau[i] * tau[i];
-            if mag > effort_limit[i] {
-                let s = summary[i].get_or_insert(ViolationSummary {
-                    count: 0,
-                    first_time: t,
-                    worst: 0.0,
-                });
-                s.count += 1;
-                s.worst = s.worst.max(mag);
-            }
+        for (i, &tau_i) in tau.iter().enumerate() {
+            stats.add(i, t, tau_i);
         }
         let ke = kinetic_energy(model, &mut ws, &q, &v)?;
         let pe = potential_energy(model, &mut ws, &q)?;
@@ -254,13 +239,63 @@ pub fn torque_profile_into(
             poses: &[],
         })?;
     }
-    let count = wanted as f64;
-    Ok(ProfileSummary {
-        samples: wanted,
-        peak,
-        peak_time,
-        rms: sumsq.iter().map(|s| (s / count).sqrt()).collect(),
-        effort_limit,
-        violation_summary: summary,
-    })
+    Ok(stats.summary(wanted))
+}
+
+/// Per joint `max |τ|` (the first time on ties), `Σ τ²` and the samples over the model's
+/// effort limit, as a torque profile keeps them: what [`torque_profile_into`] and the check of
+/// a time-optimal timing (`motion::time_optimal`) summarise their samples with.
+pub(crate) struct TorqueStatistics {
+    peak: Vec<f64>,
+    peak_time: Vec<f64>,
+    sum_of_squares: Vec<f64>,
+    effort_limit: Vec<f64>,
+    over: Vec<Option<ViolationSummary>>,
+}
+
+impl TorqueStatistics {
+    pub(crate) fn new(model: &Model) -> Self {
+        let n = model.nq();
+        TorqueStatistics {
+            peak: vec![0.0; n],
+            peak_time: vec![0.0; n],
+            sum_of_squares: vec![0.0; n],
+            effort_limit: model.joints().iter().map(|j| j.limits.effort).collect(),
+            over: vec![None; n],
+        }
+    }
+
+    pub(crate) fn add(&mut self, j: usize, t: f64, tau: f64) {
+        let magnitude = tau.abs();
+        if magnitude > self.peak[j] {
+            (self.peak[j], self.peak_time[j]) = (magnitude, t);
+        }
+        self.sum_of_squares[j] += tau * tau;
+        if magnitude > self.effort_limit[j] {
+            let s = self.over[j].get_or_insert(ViolationSummary {
+                count: 0,
+                first_time: t,
+                worst: 0.0,
+            });
+            s.count += 1;
+            s.worst = s.worst.max(magnitude);
+        }
+    }
+
+    /// The statistics of `samples` samples; RMS `= √(Σ τ² / samples)`.
+    pub(crate) fn summary(self, samples: usize) -> ProfileSummary {
+        let count = samples as f64;
+        ProfileSummary {
+            samples,
+            rms: self
+                .sum_of_squares
+                .iter()
+                .map(|s| (s / count).sqrt())
+                .collect(),
+            peak: self.peak,
+            peak_time: self.peak_time,
+            effort_limit: self.effort_limit,
+            violation_summary: self.over,
+        }
+    }
 }
