@@ -77,28 +77,6 @@ impl RecordedEvaluation {
     }
 }
 
-/// [`first_non_finite`] for the plant's two checks per evaluation: the `0 · x` sums are kept in
-/// four independent lanes (the loop vectorises instead of adding one entry after another); the
-/// position is searched only when one is NaN.
-#[inline]
-fn first_non_finite_of(x: &[f64]) -> Option<usize> {
-    let mut lanes = [0.0; 4];
-    let mut chunks = x.chunks_exact(4);
-    for chunk in &mut chunks {
-        for (lane, v) in lanes.iter_mut().zip(chunk) {
-            *lane += v * 0.0;
-        }
-    }
-    for (lane, v) in lanes.iter_mut().zip(chunks.remainder()) {
-        *lane += v * 0.0;
-    }
-    if lanes.iter().sum::<f64>() == 0.0 {
-        None
-    } else {
-        first_non_finite(x)
-    }
-}
-
 impl Plant<'_> {
     /// The energy stored in the joint springs, `Σ ½ k_i (q_i − q_spring,i)²`, when they act
     /// (MuJoCo counts it in its potential energy too): with undamped springs the recorded total
@@ -151,7 +129,7 @@ impl Plant<'_> {
             &mut self.cmd
         };
         self.controller.torque(t, q, v, torque)?;
-        if let Some(i) = first_non_finite_of(torque) {
+        if let Some(i) = first_non_finite(torque) {
             let x = torque[i];
             return Err(Error::Numerical(format!(
                 "the controller returned a non-finite torque {x} for joint '{}' at t = {t:.6} s",
@@ -195,7 +173,7 @@ impl Plant<'_> {
             forward_dynamics(self.model, &mut self.ws, q, v, &self.tau, fext, self.method)?
         };
         qdd.copy_from_slice(a.as_slice());
-        if let Some(i) = first_non_finite_of(qdd) {
+        if let Some(i) = first_non_finite(qdd) {
             let cause = if self.effects.total_torque_is_commanded() {
                 "a fixed step too large for the robot's fastest motion, or a controller with \
                  gains too high for the step, does this"
