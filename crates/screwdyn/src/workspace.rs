@@ -30,6 +30,10 @@ pub struct Workspace<T: Real = f64> {
     pub pose_in_world: Vec<Se3<T>>,
     /// `Ad_{H_i^0} S_i`: joint `i`'s screw axis in the base frame (a column of the space Jacobian).
     pub screw_in_world: Vec<Twist<T>>,
+    /// CRBA (base frame): the same screws coordinate by coordinate, entry `r n + i` holding
+    /// coordinate `r` of `Ad_{H_i^0} S_i` (`n` bodies), so that the products `s_kᵀ F` of
+    /// consecutive joints `k` are formed side by side.
+    pub screw_in_world_by_coordinate: Vec<T>,
     /// `V_i^{i,0}`: body twist of body `i` in its own frame.
     pub twist: Vec<Twist<T>>,
     /// `V̇_i^{i,0}`: its time derivative.
@@ -147,6 +151,7 @@ impl<T: Real> Workspace<T> {
             pose_in_parent: vec![Se3::identity(); n],
             pose_in_world: vec![Se3::identity(); n],
             screw_in_world: vec![Twist::zeros(); n],
+            screw_in_world_by_coordinate: vec![T::zero(); 6 * n],
             twist: vec![Twist::zeros(); n],
             twist_dot: vec![Twist::zeros(); n],
             wrench: vec![Wrench::zeros(); n],

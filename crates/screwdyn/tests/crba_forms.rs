@@ -1,16 +1,15 @@
-//! The two forms of the composite-rigid-body algorithm agree: `crba_local` (each quantity in its
-//! own body frame, no forward kinematics) against `crba_in_base_frame` (everything in {0}, the
-//! form the Pinocchio fixtures were checked with), on random trees with branches and on long
-//! chains, with every kind of joint axis (coordinate axes with either sign, axes off the origin,
-//! general screws), home rotations that are the identity, quarter turns about x or general, and
-//! armatures. Both are also checked against `Σ_i J_iᵀ 𝔍_i J_i` built from
-//! the body Jacobians of forward kinematics, an independent formula.
+//! The composite-rigid-body algorithm (everything in {0}, composite inertias by their ten
+//! parameters) against `Σ_i J_iᵀ 𝔍_i J_i` built from the body Jacobians of forward kinematics,
+//! an independent formula, on random trees with branches and on chains up to 200 joints, with
+//! every kind of joint axis (coordinate axes with either sign, axes off the origin, general
+//! screws), home rotations that are the identity, quarter turns about x or general, and
+//! armatures (on the diagonal only); the result is symmetric and positive definite.
 mod common;
 
 use nalgebra::{DMatrix, Vector3, Vector6};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use screwdyn::dynamics::{crba, crba_in_base_frame, crba_local, CRBA_LOCAL_MAX_BODIES};
+use screwdyn::dynamics::crba;
 use screwdyn::kinematics::forward_kinematics;
 use screwdyn::model::{JointSpec, ModelBuilder};
 use screwdyn::spatial::{exp_so3, Se3};
@@ -118,38 +117,29 @@ fn mass_matrix_from_jacobians(model: &Model, q: &[f64]) -> DMatrix<f64> {
     m
 }
 
+/// `crba` against `Σ_i J_iᵀ 𝔍_i J_i` (to 1e-12 of the largest entry), exactly symmetric and
+/// positive definite (its Cholesky factor exists).
 fn check(model: &Model, rng: &mut StdRng, states: usize) {
     let n = model.nq();
     let mut ws = Workspace::new(model);
     for _ in 0..states {
         let q = common::random_vec(rng, n, 3.0);
-        let base = crba_in_base_frame(model, &mut ws, &q).unwrap().clone();
-        let local = crba_local(model, &mut ws, &q).unwrap().clone();
-        let chosen = crba(model, &mut ws, &q).unwrap().clone();
-        let scale = base.amax().max(1.0);
+        let m = crba(model, &mut ws, &q).unwrap().clone();
+        let sum = mass_matrix_from_jacobians(model, &q);
+        let scale = sum.amax().max(1.0);
         assert!(
-            (&local - &base).amax() < 1e-12 * scale,
-            "{}: local vs base frame, n = {n}\n{local}\n{base}",
-            model.name()
+            (&m - &sum).amax() < 1e-12 * scale,
+            "{}: crba vs Σ JᵀJ, n = {n}: {:e}\n{m}\n{sum}",
+            model.name(),
+            (&m - &sum).amax() / scale
         );
-        assert_eq!(
-            chosen,
-            if n <= CRBA_LOCAL_MAX_BODIES {
-                &local
-            } else {
-                &base
-            }
-            .clone()
-        );
-        if n <= 40 {
-            let sum = mass_matrix_from_jacobians(model, &q);
-            assert!((&local - &sum).amax() < 1e-11 * scale, "local vs Σ JᵀJ");
-        }
+        assert_eq!(m, m.transpose(), "not symmetric, n = {n}");
+        assert!(m.cholesky().is_some(), "not positive definite, n = {n}");
     }
 }
 
 #[test]
-fn local_and_base_frame_agree_on_random_trees() {
+fn crba_equals_sum_of_body_jacobians_on_random_trees() {
     let mut rng = StdRng::seed_from_u64(31);
     for n in [1, 2, 3, 5, 6, 7, 8, 13, 25] {
         for _ in 0..4 {
@@ -164,23 +154,29 @@ fn local_and_base_frame_agree_on_random_trees() {
     }
 }
 
+/// Chains up to 200 joints, and long trees with a few branches (whose ancestors are several
+/// runs of consecutive indices).
 #[test]
-fn local_and_base_frame_agree_on_chains() {
+fn crba_equals_sum_of_body_jacobians_on_chains_and_long_trees() {
     let mut rng = StdRng::seed_from_u64(200);
     for n in [6, 7, 16, 60, 200] {
         let model = mixed_axes(&mut rng, n, 0.0);
         check(&model, &mut rng, 2);
     }
+    for (n, branch) in [(9, 0.3), (30, 0.1), (80, 0.05), (200, 0.02)] {
+        let model = mixed_axes(&mut rng, n, branch);
+        check(&model, &mut rng, 2);
+    }
 }
 
 #[test]
-fn local_form_rejects_bad_input() {
+fn crba_rejects_bad_input() {
     let mut rng = StdRng::seed_from_u64(1);
     let model = mixed_axes(&mut rng, 4, 0.3);
     let mut ws = Workspace::new(&model);
-    assert!(crba_local(&model, &mut ws, &[0.0; 3]).is_err());
-    assert!(crba_local(&model, &mut ws, &[0.0, f64::NAN, 0.0, 0.0]).is_err());
+    assert!(crba(&model, &mut ws, &[0.0; 3]).is_err());
+    assert!(crba(&model, &mut ws, &[0.0, f64::NAN, 0.0, 0.0]).is_err());
     let other = mixed_axes(&mut rng, 5, 0.3);
     let mut wrong = Workspace::new(&other);
-    assert!(crba_local(&model, &mut wrong, &[0.0; 4]).is_err());
+    assert!(crba(&model, &mut wrong, &[0.0; 4]).is_err());
 }

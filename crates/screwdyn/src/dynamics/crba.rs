@@ -3,28 +3,32 @@
 
 use super::cholesky::{singular_error, with_small_size};
 use crate::error::Result;
-use crate::kinematics::{forward_kinematics, poses_in_parent};
-use crate::model::{JointMotion, Model};
+use crate::kinematics::forward_kinematics;
+use crate::model::Model;
 use crate::scalar::Real;
-use crate::spatial::{CompositeInertia, Se3, Wrench};
+use crate::spatial::{ang, lin, twist, CompositeInertia, Twist, Wrench};
 use crate::workspace::Workspace;
 use nalgebra::DMatrix;
 use nalgebra::Vector3;
 
-/// The mass matrix `M(q)` by the composite-rigid-body algorithm: composite inertias
-/// `𝔍ᶜ_i = 𝔍_i + Σ_children 𝔍ᶜ_c` (backward), then `M_ij = S_iᵀ 𝔍ᶜ_j S_j` for every `i`
-/// supporting `j`, walking up the tree. Equal to the `M = Sᵀ Lᵀ 𝔍 L S` (Lynch & Park, *Modern
-/// Robotics*) and to the `Σ_i J_iᵀ 𝔍^{i,i} J_i`. Each joint's armature `I_a,i` (the rotor inertia
-/// reflected to it, [`Joint::armature`](crate::model::Joint::armature)) is added to its diagonal
-/// entry: `M_ii = S_iᵀ 𝔍ᶜ_i S_i + I_a,i`. Returns `ws.mass_matrix` (both triangles filled).
+/// The mass matrix `M(q)` by the composite-rigid-body algorithm, everything in the base frame
+/// {0} (Featherstone's composite inertias, summed where no change of frame is needed):
 ///
-/// Two equivalent forms, chosen by the size of the model:
-/// [`crba_local`] (every quantity in its own body frame, no forward kinematics) for models of at
-/// most [`CRBA_LOCAL_MAX_BODIES`] bodies, [`crba_in_base_frame`] (everything in {0}) beyond, where
-/// its six-term dot products beat the changes of frame of the local form (one per body and
-/// ancestor: `n(n−1)/2` on a chain). Which
-/// workspace entries each one writes besides `ws.mass_matrix` is listed on each; use
-/// [`forward_kinematics`] for world poses.
+/// 1. forward kinematics `H_i^0 = (R_i, p_i)`, then body by body the joint's screw
+///    `s_i = Ad_{H_i^0} S_i` (a space-Jacobian column) and the body's inertia in {0} by its ten
+///    parameters: `c_i⁰ = R_i c_i + p_i`, `h = m_i c_i⁰`,
+///    `I_o = R_i I_{c,i} R_iᵀ + m_i(|c_i⁰|² 1 − c_i⁰ c_i⁰ᵀ)` (about the origin of {0});
+/// 2. from the leaves: `𝔍ᶜ_i = 𝔍_i^0 + Σ_children 𝔍ᶜ_c` (ten additions per child),
+///    `F_i = 𝔍ᶜ_i s_i = (I_o ω + h × v, m v − h × ω)` for `s_i = (ω, v)`,
+///    `M_ii = s_iᵀ F_i + I_a,i` and `M_ki = M_ik = s_kᵀ F_i` for every ancestor `k` of `i`
+///    (entries of bodies on different branches are zero).
+///
+/// Equal to Lynch & Park's `M = Sᵀ Lᵀ 𝔍 L S` (*Modern Robotics*) and to `Σ_i J_iᵀ 𝔍^{i,i} J_i`.
+/// Each joint's armature `I_a,i` (the rotor inertia reflected to it,
+/// [`Joint::armature`](crate::model::Joint::armature)) is added to its diagonal entry only.
+/// Returns `ws.mass_matrix` (both triangles filled); also writes `ws.pose_in_parent`,
+/// `ws.pose_in_world`, `ws.screw_in_world` (and `ws.screw_in_world_by_coordinate`) and
+/// `ws.composite_inertia` (`𝔍ᶜ_i` in {0}).
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
@@ -36,17 +40,19 @@ use nalgebra::Vector3;
 /// let mm = crba(&m, &mut ws, &[0.0, 0.0]).unwrap();
 /// // By hand: D11 = 5, D12 = 2, D22 = 1 at θ2 = 0 (all masses and lengths 1).
 /// assert!((mm[(0, 0)] - 5.0).abs() < 1e-12 && (mm[(0, 1)] - 2.0).abs() < 1e-12);
+/// let mm = crba(&m, &mut ws, &[0.0, std::f64::consts::FRAC_PI_2]).unwrap();
+/// // D11 = 3, D12 = 1 at θ2 = 90°.
+/// assert!((mm[(0, 0)] - 3.0).abs() < 1e-12 && (mm[(1, 0)] - 1.0).abs() < 1e-12);
 /// ```
 pub fn crba<'w, T: Real>(
     model: &Model<T>,
     ws: &'w mut Workspace<T>,
     q: &[T],
 ) -> Result<&'w DMatrix<T>> {
-    if model.nbodies() <= CRBA_LOCAL_MAX_BODIES {
-        crba_local(model, ws, q)
-    } else {
-        crba_in_base_frame(model, ws, q)
-    }
+    forward_kinematics(model, ws, q)?;
+    ws.ensure_square()?;
+    crba_given_poses(model, ws);
+    Ok(&ws.mass_matrix)
 }
 
 /// Alias of [`crba`]: the joint-space mass matrix `M(q)`.
@@ -61,289 +67,213 @@ pub fn mass_matrix<'w, T: Real>(
     crba(model, ws, q)
 }
 
-/// The largest model (in bodies) for which [`crba`] uses the local form [`crba_local`]; larger
-/// models use [`crba_in_base_frame`]. Chosen by instruction counts (callgrind, per call, AVX2
-/// build): UR5 (6 bodies, a chain) 3876 local against 4224 in {0}; Panda (9 bodies, a chain of
-/// 7 and two fingers) about 7250 local against 6510 in {0}. Fitted, the local form costs about
-/// 420 instructions a body (`sin_cos`, the composite's change of frame) plus 100 for each
-/// (body, ancestor) pair (a wrench's change of frame), the base frame 670 a body (forward
-/// kinematics, the change of frame to {0}, the screw in {0}) plus 14 a pair (a six-term dot
-/// product): the local form wins while the pairs are fewer than about 2.9 per body, i.e. on
-/// every tree of up to 6 bodies and on no chain longer than 6.
-pub const CRBA_LOCAL_MAX_BODIES: usize = 6;
-
-/// [`crba`] with everything in the base frame {0}: `𝔍ᶜ_i` is summed from the bodies' inertias
-/// `Ad_{H_0^i}ᵀ 𝔍^{i,i} Ad_{H_0^i}`, and `S_i` is the space-Jacobian column
-/// `Ad_{H_i^0} S_i^{i,λ(i)}`, so each off-diagonal entry is a single 6-vector dot product (no
-/// per-ancestor change of frame). Runs [`forward_kinematics`] first, so it also fills
-/// `ws.pose_in_parent` and `ws.pose_in_world`, and fills `ws.screw_in_world`.
-///
-/// # Errors
-/// As [`crba`].
-///
-/// ```
-/// use screwdyn::{builtin, dynamics::{crba_in_base_frame, crba_local}, Workspace};
-/// let m = builtin::load("ur5").unwrap();
-/// let mut ws = Workspace::new(&m);
-/// let q = [0.1, -0.7, 1.2, 0.3, -0.4, 0.9];
-/// let base = crba_in_base_frame(&m, &mut ws, &q).unwrap().clone();
-/// assert!((base - crba_local(&m, &mut ws, &q).unwrap()).amax() < 1e-12);
-/// ```
-pub fn crba_in_base_frame<'w, T: Real>(
-    model: &Model<T>,
-    ws: &'w mut Workspace<T>,
-    q: &[T],
-) -> Result<&'w DMatrix<T>> {
-    forward_kinematics(model, ws, q)?;
-    ws.ensure_square()?;
-    crba_given_poses(model, ws);
-    Ok(&ws.mass_matrix)
-}
-
-/// [`crba`] with every quantity in its own body frame (Featherstone's composite-rigid-body
-/// algorithm in local coordinates): no forward kinematics, only each joint's pose in its parent
-/// `H_i^{λ(i)}(q_i)`. Backward, from the leaves: `𝔍ᶜ_i` (in frame {i}) is whole once its
-/// children are added; the column `F = 𝔍ᶜ_i S_i` gives `M_ii = S_iᵀ F + I_a,i`; carried up the
-/// ancestors as a wrench, `F ← Ad_{H_k^{λ(k)}}⁻ᵀ F` (frame {k} to {λ(k)}), each gives
-/// `M_{λ(k) i} = S_{λ(k)}ᵀ F`; then `𝔍ᶜ_{λ(i)} += Ad_{H_{λ(i)}^i}ᵀ 𝔍ᶜ_i Ad_{H_{λ(i)}^i}`.
-/// Writes `ws.pose_in_parent` and `ws.composite_inertia` (each in its own body frame); leaves
-/// `ws.pose_in_world` as it was.
-///
-/// # Errors
-/// As [`crba`].
-///
-/// ```
-/// use screwdyn::{builtin, dynamics::crba_local, Workspace};
-/// let m = builtin::planar2();
-/// let mut ws = Workspace::new(&m);
-/// let mm = crba_local(&m, &mut ws, &[0.0, std::f64::consts::FRAC_PI_2]).unwrap();
-/// // By hand: D11 = 3, D12 = 1, D22 = 1 at θ2 = 90° (all masses and lengths 1).
-/// assert!((mm[(0, 0)] - 3.0).abs() < 1e-12 && (mm[(1, 0)] - 1.0).abs() < 1e-12);
-/// ```
-pub fn crba_local<'w, T: Real>(
-    model: &Model<T>,
-    ws: &'w mut Workspace<T>,
-    q: &[T],
-) -> Result<&'w DMatrix<T>> {
-    // H_i^{λ(i)} = H_i^{λ(i)}(0) e^{[S_i] q_i} (checks `ws` and `q`).
-    poses_in_parent(model, ws, q)?;
-    ws.ensure_square()?;
-    local_given_poses(model, ws);
-    Ok(&ws.mass_matrix)
-}
-
-/// `𝔍 S` for a joint's screw axis `S`, reading the axis joints' columns out of the ten
-/// parameters: `𝔍 (ê_k, 0) = (I_o ê_k, ê_k × h)` and `𝔍 (0, ê_k) = (h × ê_k, m ê_k)`.
-#[inline(always)]
-fn inertia_times_axis<T: Real>(c: &CompositeInertia<T>, motion: &JointMotion<T>) -> Wrench<T> {
-    let (io, h, z) = (&c.inertia_origin, &c.first_moment, T::zero());
-    match *motion {
-        JointMotion::RevoluteAxis { axis, sign } => {
-            let l = match axis {
-                0 => [z, -h.z, h.y],
-                1 => [h.z, z, -h.x],
-                _ => [-h.y, h.x, z],
-            };
-            Wrench::new(
-                io[(0, axis)] * sign,
-                io[(1, axis)] * sign,
-                io[(2, axis)] * sign,
-                l[0] * sign,
-                l[1] * sign,
-                l[2] * sign,
-            )
-        }
-        JointMotion::PrismaticAxis { axis, sign } => {
-            let a = match axis {
-                0 => [z, h.z, -h.y],
-                1 => [-h.z, z, h.x],
-                _ => [h.y, -h.x, z],
-            };
-            let mut w = Wrench::new(a[0] * sign, a[1] * sign, a[2] * sign, z, z, z);
-            w[3 + axis] = c.mass * sign;
-            w
-        }
-        _ => c.apply(&motion.screw()),
-    }
-}
-
-/// `(c, s)` of the turn `R = Rot_K(θ)` about the coordinate axis `K` whose plane is `(I, J)`:
-/// `R ê_I = c ê_I + s ê_J`.
-#[inline(always)]
-fn cos_sin<T: Real, const I: usize, const J: usize>(r: &nalgebra::Matrix3<T>) -> (T, T) {
-    (r[(I, I)], r[(J, I)])
-}
-
-/// `v ↦ Rot_K(θ) v` in the plane `(I, J)`.
-#[inline(always)]
-fn turn<T: Real, const I: usize, const J: usize>(v: &mut [T; 6], c: T, s: T) {
-    for half in [0, 3] {
-        let (a, b) = (v[half + I], v[half + J]);
-        v[half + I] = c * a - s * b;
-        v[half + J] = s * a + c * b;
-    }
-}
-
-/// A wrench `W = (m, f)` in frame {i} written in the parent's frame, `Ad_{H_i^λ}⁻ᵀ W =
-/// (R m + p × R f, R f)` with `H_i^λ = (R, p)`. When the joint's home has no rotation, an axis
-/// joint's `R` is a turn about a coordinate axis (revolute) or the identity (prismatic): then
-/// `R` only mixes two entries of each half.
-#[inline(always)]
-fn wrench_to_parent<T: Real>(
-    h: &Se3<T>,
-    motion: &JointMotion<T>,
-    unrotated: bool,
-    w: &Wrench<T>,
-) -> Wrench<T> {
-    if unrotated {
-        let mut v = [w[0], w[1], w[2], w[3], w[4], w[5]];
-        let r = &h.rotation;
-        let turned = match *motion {
-            JointMotion::RevoluteAxis { axis: 0, .. } => {
-                let (c, s) = cos_sin::<T, 1, 2>(r);
-                turn::<T, 1, 2>(&mut v, c, s);
-                true
-            }
-            JointMotion::RevoluteAxis { axis: 1, .. } => {
-                let (c, s) = cos_sin::<T, 2, 0>(r);
-                turn::<T, 2, 0>(&mut v, c, s);
-                true
-            }
-            JointMotion::RevoluteAxis { .. } => {
-                let (c, s) = cos_sin::<T, 0, 1>(r);
-                turn::<T, 0, 1>(&mut v, c, s);
-                true
-            }
-            JointMotion::PrismaticAxis { .. } => true,
-            _ => false,
-        };
-        if turned {
-            // m' = R m + p × f'
-            let p = &h.translation;
-            let f = Vector3::new(v[3], v[4], v[5]);
-            let pf = p.cross(&f);
-            return Wrench::new(v[0] + pf.x, v[1] + pf.y, v[2] + pf.z, f.x, f.y, f.z);
-        }
-    }
-    h.inv_act_transpose_wrench(w)
-}
-
-/// A composite inertia in frame {i} written in the parent's frame (`h = H_i^λ`), by the turn
-/// about a coordinate axis and the shift when the joint's home has no rotation (see
-/// [`wrench_to_parent`]), else by the general change of frame.
-#[inline(always)]
-fn composite_to_parent<T: Real>(
-    c: &CompositeInertia<T>,
-    h: &Se3<T>,
-    motion: &JointMotion<T>,
-    unrotated: bool,
-) -> CompositeInertia<T> {
-    if unrotated {
-        let r = &h.rotation;
-        let turned = match *motion {
-            JointMotion::RevoluteAxis { axis: 0, .. } => {
-                let (cos, sin) = cos_sin::<T, 1, 2>(r);
-                Some(c.turned::<1, 2, 0>(cos, sin))
-            }
-            JointMotion::RevoluteAxis { axis: 1, .. } => {
-                let (cos, sin) = cos_sin::<T, 2, 0>(r);
-                Some(c.turned::<2, 0, 1>(cos, sin))
-            }
-            JointMotion::RevoluteAxis { .. } => {
-                let (cos, sin) = cos_sin::<T, 0, 1>(r);
-                Some(c.turned::<0, 1, 2>(cos, sin))
-            }
-            JointMotion::PrismaticAxis { .. } => Some(*c),
-            _ => None,
-        };
-        if let Some(t) = turned {
-            return t.shifted(&h.translation);
-        }
-    }
-    c.transformed(h)
-}
-
-fn local_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) {
-    let n = model.nbodies();
-    let (joints, motions, parents, bodies) = (
-        &model.joints()[..n],
-        &model.motions()[..n],
-        &model.parents()[..n],
-        &model.body_composite[..n],
-    );
-    let unrotated = &model.home_unrotated[..n];
-    let (pip, ci) = (&ws.pose_in_parent[..n], &mut ws.composite_inertia[..n]);
-    // 𝔍ᶜ_i starts as body i's own inertia.
-    ci.copy_from_slice(bodies);
-    let data = &mut ws.mass_matrix.as_mut_slice()[..n * n];
-    if !model.is_chain {
-        // Bodies on different branches do not couple.
-        data.fill(T::zero());
-    }
-    // Column i of the upper triangle (entry (k, i) is data[i n + k], every ancestor k < i),
-    // from the leaves, then the lower triangle mirrored.
-    for i in (0..n).rev() {
-        let column = &mut data[i * n..(i + 1) * n];
-        // F = 𝔍ᶜ_i S_i; M_ii = S_iᵀ F + I_a,i
-        let mut f = inertia_times_axis(&ci[i], &motions[i]);
-        column[i] = motions[i].dot(&f) + joints[i].armature;
-        let mut k = i;
-        while let Some(p) = parents[k] {
-            // F in {λ(k)} = Ad_{H_k^{λ(k)}}⁻ᵀ F = (R m + p × R f, R f); M_{λ(k) i} = S_{λ(k)}ᵀ F
-            f = wrench_to_parent(&pip[k], &motions[k], unrotated[k], &f);
-            k = p;
-            column[k] = motions[k].dot(&f);
-        }
-        // 𝔍ᶜ_{λ(i)} += 𝔍ᶜ_i written in {λ(i)}: Ad_{H_{λ(i)}^i}ᵀ 𝔍ᶜ_i Ad_{H_{λ(i)}^i}
-        if let Some(p) = parents[i] {
-            let c = composite_to_parent(&ci[i], &pip[i], &motions[i], unrotated[i]);
-            ci[p].add(&c);
-        }
-    }
-    mirror_upper_triangle(data, n);
-}
-
+/// Steps 1 and 2 of [`crba`] on the world poses of the last forward kinematics
+/// (`ws.pose_in_world`), into `ws.mass_matrix` (square, checked by the callers); also used by
+/// forward dynamics by CRBA.
+#[multiversion::multiversion(targets(
+    "x86_64+avx512f+avx512vl+avx512dq+avx512bw+avx2+fma",
+    "x86_64+avx2+fma"
+))]
 pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>) {
     let n = model.nbodies();
-    let (motions, parents, bodies) = (model.motions(), model.parents(), &model.body_composite);
-    let ci = &mut ws.composite_inertia[..n];
-    let piw = &ws.pose_in_world[..n];
-    for i in 0..n {
-        ci[i] = bodies[i].transformed(&piw[i]);
-    }
-    for i in (0..n).rev() {
-        if let Some(p) = parents[i] {
-            let c = ci[i];
-            ci[p].add(&c);
-        }
-    }
-    let s = &mut ws.screw_in_world[..n];
-    for i in 0..n {
-        s[i] = motions[i].act(&piw[i]);
-    }
-    // Bodies on different branches do not couple: those entries stay zero (on a chain every
-    // entry is written below).
-    let data = ws.mass_matrix.as_mut_slice();
     if n == 0 {
         return;
     }
+    let (motions, parents, bodies, joints) = (
+        &model.motions()[..n],
+        &model.parents()[..n],
+        &model.bodies()[..n],
+        &model.joints()[..n],
+    );
+    let Workspace {
+        pose_in_world,
+        screw_in_world,
+        screw_in_world_by_coordinate,
+        composite_inertia,
+        mass_matrix,
+        ..
+    } = ws;
+    let poses = &pose_in_world[..n];
+    let screws = &mut screw_in_world[..n];
+    let by_coordinate = &mut screw_in_world_by_coordinate[..6 * n];
+    let composites = &mut composite_inertia[..n];
+    // 1. s_i = Ad_{H_i^0} S_i and 𝔍ᶜ_i = 𝔍_i^0, body by body (on a large model the screws are
+    // also stored coordinate by coordinate).
+    let side_by_side = n >= LONG_RUN;
+    for i in 0..n {
+        let s = motions[i].act(&poses[i]);
+        screws[i] = s;
+        if side_by_side {
+            for r in 0..6 {
+                by_coordinate[r * n + i] = s[r];
+            }
+        }
+        composites[i] = CompositeInertia::rigid_in_world(&bodies[i].inertia, &poses[i]);
+    }
+    // Bodies on different branches do not couple: those entries stay zero (on a chain every
+    // entry is written below).
+    let data = &mut mass_matrix.as_mut_slice()[..n * n];
     if !model.is_chain {
         data.fill(T::zero());
     }
-    // Column i of the upper triangle through one slice (column-major storage: entry (k, i) is
-    // data[i n + k], with every ancestor k < i), then the lower triangle mirrored.
-    // M_ii = S_iᵀ 𝔍ᶜ_i S_i + I_a,i, M_ki = S_kᵀ 𝔍ᶜ_i S_i for k supporting i.
-    let joints = model.joints();
-    for (i, column) in data.chunks_exact_mut(n).enumerate() {
-        let f = ci[i].apply(&s[i]);
-        column[i] = s[i].dot(&f) + joints[i].armature;
-        let mut k = i;
-        while let Some(p) = parents[k] {
-            k = p;
-            column[k] = s[k].dot(&f);
+    // 2. Compiled apart for small models, whose runs of ancestors are all short: the vector
+    // loops' setup would otherwise be paid for every joint.
+    let screws = &*screws;
+    let pass = Columns {
+        parents,
+        run_start: &model.run_start[..n],
+        joints,
+        screws,
+        by_coordinate,
+    };
+    if side_by_side {
+        pass.run::<true>(composites, data);
+    } else {
+        pass.run::<false>(composites, data);
+    }
+}
+
+/// What step 2 of [`crba`] reads.
+struct Columns<'a, T: Real> {
+    parents: &'a [Option<usize>],
+    run_start: &'a [usize],
+    joints: &'a [crate::model::Joint<T>],
+    screws: &'a [Twist<T>],
+    by_coordinate: &'a [T],
+}
+
+impl<T: Real> Columns<'_, T> {
+    /// Column `i` of `M` (column-major `data`) from the leaves: its upper part (entry `(k, i)`
+    /// is `data[i n + k]`, every ancestor `k < i`) and row `i` left of the diagonal (entry
+    /// `(i, k)` is `data[k n + i]`); `composites` summed into the parents on the way. With
+    /// `SIDE_BY_SIDE`, runs of at least [`LONG_RUN`] ancestors read the screws coordinate by
+    /// coordinate, and the lower triangle is copied at the end; without, each entry is written
+    /// to both triangles as it is formed.
+    #[inline(always)]
+    fn run<const SIDE_BY_SIDE: bool>(
+        &self,
+        composites: &mut [CompositeInertia<T>],
+        data: &mut [T],
+    ) {
+        let n = self.screws.len();
+        let (parents, screws) = (self.parents, self.screws);
+        for i in (0..n).rev() {
+            let composite = composites[i];
+            // F_i = 𝔍ᶜ_i s_i; M_ii = s_iᵀ F_i + I_a,i.
+            let f = composite_times_screw(&composite, &screws[i]);
+            let (left, right) = data.split_at_mut(i * n);
+            let column = &mut right[..n];
+            column[i] = dot6(&screws[i], &f) + self.joints[i].armature;
+            // M_ki = M_ik = s_kᵀ F_i for the ancestors k, one unbranched run of them at a time.
+            let mut next = parents[i];
+            while let Some(end) = next {
+                let start = self.run_start[end];
+                let run = &mut column[start..=end];
+                if SIDE_BY_SIDE && run.len() >= LONG_RUN {
+                    screw_products(run, self.by_coordinate, n, start, &f);
+                } else if SIDE_BY_SIDE {
+                    for (m, s) in run.iter_mut().zip(&screws[start..=end]) {
+                        *m = dot6(s, &f);
+                    }
+                } else {
+                    // (An exclusive range: `start..=end` iterated costs twice the instructions.)
+                    for k in start..end + 1 {
+                        let x = dot6(&screws[k], &f);
+                        column[k] = x;
+                        left[k * n + i] = x;
+                    }
+                }
+                next = parents[start];
+            }
+            // 𝔍ᶜ_{λ(i)} += 𝔍ᶜ_i
+            if let Some(p) = parents[i] {
+                composites[p].add(&composite);
+            }
+        }
+        if SIDE_BY_SIDE {
+            mirror_columns(data, n);
         }
     }
-    mirror_upper_triangle(data, n);
+}
+
+/// Copies the strict upper triangle of the column-major `n × n` matrix `data` onto its lower
+/// triangle, walking the later columns in order (no index arithmetic per entry): column `c`
+/// below the diagonal gets entry `c` of every later column.
+#[inline(always)]
+fn mirror_columns<T: Real>(data: &mut [T], n: usize) {
+    for c in 0..n {
+        let (head, tail) = data.split_at_mut((c + 1) * n);
+        let below = &mut head[c * n + c + 1..];
+        for (x, later) in below.iter_mut().zip(tail.chunks_exact(n)) {
+            *x = later[c];
+        }
+    }
+}
+
+/// The shortest run of consecutive ancestors whose products `s_kᵀ F` [`crba`] forms side by
+/// side from the screws stored coordinate by coordinate: below it, the setup of the vector loops costs more
+/// than it saves (instruction counts on the Panda, BENCHMARKS.md).
+const LONG_RUN: usize = 16;
+
+/// `out[j] = s_kᵀ f` for the consecutive joints `k = start + j`, the screws read coordinate by
+/// coordinate (`by_coordinate[r n + k]`), so that several `k` are formed side by side.
+#[inline(always)]
+fn screw_products<T: Real>(
+    out: &mut [T],
+    by_coordinate: &[T],
+    n: usize,
+    start: usize,
+    f: &Wrench<T>,
+) {
+    let len = out.len();
+    let lane = |r: usize| &by_coordinate[r * n + start..r * n + start + len];
+    let (s0, s1, s2, s3, s4, s5) = (lane(0), lane(1), lane(2), lane(3), lane(4), lane(5));
+    for (j, o) in out.iter_mut().enumerate() {
+        let p0 = s1[j].mul_add(f[1], s0[j] * f[0]);
+        let p1 = s3[j].mul_add(f[3], s2[j] * f[2]);
+        let p2 = s5[j].mul_add(f[5], s4[j] * f[4]);
+        *o = (p0 + p1) + p2;
+    }
+}
+
+// Products that are added are fused (`mul_add`: one instruction where the CPU has FMA, which the
+// multiversioned clones above are compiled for, and never less accurate than two roundings).
+
+/// `F = 𝔍 s = (I_o ω + h × v, m v − h × ω)` for a screw `s = (ω, v)` and an inertia given by its
+/// ten parameters `(m, h, I_o)`, fused.
+#[inline(always)]
+fn composite_times_screw<T: Real>(c: &CompositeInertia<T>, s: &Twist<T>) -> Wrench<T> {
+    let (io, h, m) = (&c.inertia_origin, &c.first_moment, c.mass);
+    let (w, v) = (ang(s), lin(s));
+    let h_x_v = cross(h, &v);
+    let h_x_w = cross(h, &w);
+    let l = Vector3::from_fn(|r, _| {
+        io[(r, 2)].mul_add(
+            w.z,
+            io[(r, 1)].mul_add(w.y, io[(r, 0)].mul_add(w.x, h_x_v[r])),
+        )
+    });
+    let f = Vector3::from_fn(|r, _| v[r].mul_add(m, -h_x_w[r]));
+    twist(l, f)
+}
+
+/// `xᵀ y` of two 6-vectors, fused, summed as a tree (three independent pairs).
+#[inline(always)]
+fn dot6<T: Real>(x: &Twist<T>, y: &Wrench<T>) -> T {
+    let p0 = x[1].mul_add(y[1], x[0] * y[0]);
+    let p1 = x[3].mul_add(y[3], x[2] * y[2]);
+    let p2 = x[5].mul_add(y[5], x[4] * y[4]);
+    (p0 + p1) + p2
+}
+
+/// `a × b`, fused.
+#[inline(always)]
+fn cross<T: Real>(a: &Vector3<T>, b: &Vector3<T>) -> Vector3<T> {
+    Vector3::new(
+        a.y.mul_add(b.z, -(a.z * b.y)),
+        a.z.mul_add(b.x, -(a.x * b.z)),
+        a.x.mul_add(b.y, -(a.y * b.x)),
+    )
 }
 
 /// `M(q)⁻¹` by CRBA and a Cholesky factorisation. Returns `ws.mass_matrix_inverse`;

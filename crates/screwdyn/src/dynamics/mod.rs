@@ -39,9 +39,7 @@ pub(crate) use cholesky::singular_threshold;
 pub use classic_newton_euler::{classic_newton_euler, ClassicLink};
 pub use closed_form::{closed_form, ClosedForm, MAX_CLOSED_FORM_JOINTS};
 pub use coriolis::coriolis_matrix;
-pub use crba::{
-    crba, crba_in_base_frame, crba_local, mass_matrix, mass_matrix_inverse, CRBA_LOCAL_MAX_BODIES,
-};
+pub use crba::{crba, mass_matrix, mass_matrix_inverse};
 pub use derivatives::{aba_derivatives, frame_velocity_derivatives, rnea_derivatives};
 pub use energy::{
     center_of_mass, kinetic_energy, kinetic_energy_mass_matrix, potential_energy, power,

@@ -442,7 +442,7 @@ impl<T: Real> ModelBuilder<T> {
             inertia_scale: T::zero(),
             body_composite: Vec::new(),
             is_chain: false,
-            home_unrotated: Vec::new(),
+            run_start: Vec::new(),
             body_frames: Vec::new(),
             findings: Vec::new(),
             frame_index: HashMap::new(),

@@ -68,9 +68,10 @@ pub struct Model<T: Real = f64> {
     pub(crate) body_composite: Vec<crate::spatial::CompositeInertia<T>>,
     /// Derived: the tree is a single chain (`λ(i) = i − 1`).
     pub(crate) is_chain: bool,
-    /// Derived: joint `i`'s home pose has no rotation (`H_i^{λ(i)}(0) = (1, p)`), so that for an
-    /// axis joint `R_i^{λ(i)}(q)` is a turn about a coordinate axis (CRBA's local form).
-    pub(crate) home_unrotated: Vec<bool>,
+    /// Derived: for each body `k`, the first body `j ≤ k` of the unbranched run ending at `k`
+    /// (`λ(t) = t − 1` for every `t` in `j + 1..=k`): the ancestors of a body are a few runs of
+    /// consecutive indices (CRBA's base-frame form walks them run by run).
+    pub(crate) run_start: Vec<usize>,
     /// Derived: the index of each body's frame in `frames`.
     pub(crate) body_frames: Vec<usize>,
     /// Frame name → index in `frames`.
@@ -242,11 +243,14 @@ impl<T: Real> Model<T> {
             .iter()
             .enumerate()
             .all(|(i, p)| *p == i.checked_sub(1));
-        self.home_unrotated = self
-            .joints
-            .iter()
-            .map(|j| j.home.rotation == nalgebra::Matrix3::identity())
-            .collect();
+        self.run_start = Vec::with_capacity(self.parents.len());
+        for (k, p) in self.parents.iter().enumerate() {
+            let start = match *p {
+                Some(p) if p + 1 == k => self.run_start[p],
+                _ => k,
+            };
+            self.run_start.push(start);
+        }
         self.body_frames = vec![0; self.bodies.len()];
         for (k, f) in self.frames.iter().enumerate() {
             if let (FrameKind::Body, Some(b)) = (f.kind, f.body) {
@@ -705,7 +709,7 @@ impl Model<f64> {
             inertia_scale: U::zero(),
             body_composite: Vec::new(),
             is_chain: false,
-            home_unrotated: Vec::new(),
+            run_start: Vec::new(),
             body_frames: Vec::new(),
             frame_index: self.frame_index.clone(),
             findings: self.findings.clone(),

@@ -90,64 +90,68 @@ impl<T: Real> CompositeInertia<T> {
         }
     }
 
-    /// This inertia turned by the angle `θ` (`c = cos θ`, `s = sin θ`) about the coordinate axis
-    /// `K` whose plane is (`I`, `J`) (`(I, J, K)` cyclic): `R 𝔍 Rᵀ` with `R = Rot_K(θ)`, which moves
-    /// only the entries in that plane (`R ê_I = c ê_I + s ê_J`, `R ê_J = c ê_J − s ê_I`).
-    /// `I_o' = R I_o Rᵀ` is a 2×2 block turned by `θ`, a column of two turned as a vector and
-    /// `I_KK` unchanged; `h' = R h`.
+    /// The inertia of a rigid body (`m`, centre of mass `c` and `I_c` in its own frame {i})
+    /// written in {0}, where `pose_in_world = H_i^0 = (R, p)`: with `c⁰ = R c + p`,
+    /// `h = m c⁰` and `I_o = R I_c Rᵀ + m(|c⁰|² 1 − c⁰ c⁰ᵀ)` (rotational inertia about the
+    /// origin of {0}). `R I_c Rᵀ` is symmetric, so six of its entries are formed; every sum of
+    /// products is fused. Equal to `CompositeInertia::from(body).transformed(pose_in_world)`
+    /// (the shift there starts from `I_o` about the body's origin, here from `I_c`).
+    ///
+    /// ```
+    /// use nalgebra::{Matrix3, Vector3};
+    /// use screwdyn::spatial::{CompositeInertia, Se3, SpatialInertia};
+    /// let body = SpatialInertia::new(2.0, Vector3::new(0.1, 0.0, 0.3), Matrix3::identity() * 0.2);
+    /// let pose = Se3::from_rpy(0.1, 0.2, 0.3).with_translation(Vector3::new(1.0, 2.0, 3.0));
+    /// let moved = CompositeInertia::rigid_in_world(&body, &pose);
+    /// let general = CompositeInertia::from(&body).transformed(&pose);
+    /// assert!((moved.matrix() - general.matrix()).amax() < 1e-12);
+    /// ```
     #[inline(always)]
-    pub(crate) fn turned<const I: usize, const J: usize, const K: usize>(
-        &self,
-        c: T,
-        s: T,
-    ) -> Self {
-        let (io, h) = (&self.inertia_origin, &self.first_moment);
-        let (a, b, d) = (io[(I, I)], io[(I, J)], io[(J, J)]);
-        let (cc, ss, cs) = (c * c, s * s, c * s);
-        let two_csb = (cs + cs) * b;
-        let mut out = *io;
-        out[(I, I)] = cc * a - two_csb + ss * d;
-        out[(J, J)] = ss * a + two_csb + cc * d;
-        let ij = cs * (a - d) + (cc - ss) * b;
-        out[(I, J)] = ij;
-        out[(J, I)] = ij;
-        let (ik, jk) = (io[(I, K)], io[(J, K)]);
-        let (ik, jk) = (c * ik - s * jk, s * ik + c * jk);
-        out[(I, K)] = ik;
-        out[(K, I)] = ik;
-        out[(J, K)] = jk;
-        out[(K, J)] = jk;
-        let mut first_moment = *h;
-        first_moment[I] = c * h[I] - s * h[J];
-        first_moment[J] = s * h[I] + c * h[J];
-        CompositeInertia {
-            mass: self.mass,
-            first_moment,
-            inertia_origin: out,
-        }
-    }
-
-    /// This inertia, given in frame `b`, written in frame `a` displaced from it by `p` without
-    /// rotation (`H_b^a = (1, p)`): [`transformed`](Self::transformed) with `R = 1`, i.e.
-    /// `I_o' = I_o + 2(h·p) 1 − p hᵀ − h pᵀ + m (|p|² 1 − p pᵀ)`, `h' = h + m p`.
-    #[inline(always)]
-    pub(crate) fn shifted(&self, p: &Vector3<T>) -> Self {
-        let (h, m) = (&self.first_moment, self.mass);
-        let mp = p * m;
-        let diag = (h.dot(p) + h.dot(p)) + mp.dot(p);
-        let mut io = self.inertia_origin;
-        for a in 0..3 {
-            for b in a..3 {
-                let t = io[(a, b)] - p[a] * h[b] - h[a] * p[b] - p[a] * mp[b];
-                io[(a, b)] = t;
-                io[(b, a)] = t;
-            }
-            io[(a, a)] += diag;
-        }
+    pub fn rigid_in_world(body: &SpatialInertia<T>, pose_in_world: &Se3<T>) -> Self {
+        let (r, ic, m, c) = (
+            &pose_in_world.rotation,
+            &body.inertia_com,
+            body.mass,
+            &body.com,
+        );
+        // A = R I_c.
+        let a = Matrix3::from_fn(|row, k| {
+            r[(row, 2)].mul_add(
+                ic[(2, k)],
+                r[(row, 1)].mul_add(ic[(1, k)], r[(row, 0)] * ic[(0, k)]),
+            )
+        });
+        // (A Rᵀ)_jk = row j of A · row k of R.
+        let dot = |j: usize, k: usize| {
+            a[(j, 2)].mul_add(
+                r[(k, 2)],
+                a[(j, 1)].mul_add(r[(k, 1)], a[(j, 0)] * r[(k, 0)]),
+            )
+        };
+        // c⁰ = R c + p, h = m c⁰.
+        let p = &pose_in_world.translation;
+        let c0 = Vector3::from_fn(|row, _| {
+            r[(row, 2)].mul_add(
+                c.z,
+                r[(row, 1)].mul_add(c.y, r[(row, 0)].mul_add(c.x, p[row])),
+            )
+        });
+        let h = c0 * m;
+        // m(|c⁰|² 1 − c⁰ c⁰ᵀ): the diagonal is h_y c⁰_y + h_z c⁰_z, …, the rest −h_a c⁰_b.
+        let (xx, yy, zz) = (h.x * c0.x, h.y * c0.y, h.z * c0.z);
+        let i01 = dot(0, 1) - h.x * c0.y;
+        let i02 = dot(0, 2) - h.x * c0.z;
+        let i12 = dot(1, 2) - h.y * c0.z;
+        #[rustfmt::skip]
+        let inertia_origin = Matrix3::new(
+            dot(0, 0) + (yy + zz), i01, i02,
+            i01, dot(1, 1) + (xx + zz), i12,
+            i02, i12, dot(2, 2) + (xx + yy),
+        );
         CompositeInertia {
             mass: m,
-            first_moment: h + mp,
-            inertia_origin: io,
+            first_moment: h,
+            inertia_origin,
         }
     }
 
