@@ -211,8 +211,11 @@ fn mirror_columns<T: Real>(data: &mut [T], n: usize) {
 }
 
 /// The shortest run of consecutive ancestors whose products `s_kᵀ F` [`crba`] forms side by
-/// side from the screws stored coordinate by coordinate: below it, the setup of the vector loops costs more
-/// than it saves (instruction counts on the Panda, BENCHMARKS.md).
+/// side from the screws stored coordinate by coordinate, and the smallest model whose pass is
+/// compiled for that. Forming every run side by side cost the arms (at most 9 bodies, runs
+/// shorter than 9) about 30 % more instructions, the vector loops' setup being paid for every
+/// joint; on the 200-joint chain it cuts the instructions 2.9× (BENCHMARKS.md). Chosen between
+/// the two, not tuned.
 const LONG_RUN: usize = 16;
 
 /// `out[j] = s_kᵀ f` for the consecutive joints `k = start + j`, the screws read coordinate by
