@@ -55,10 +55,13 @@ pub struct Workspace<T: Real = f64> {
 
     /// CRBA: composite spatial inertia of the subtree rooted at body `i`, in the base frame.
     pub composite_inertia: Vec<CompositeInertia<T>>,
-    /// ABA: `V_i^0 = Ad_{H_i^0} V_i^{i,0}`, body `i`'s twist written in the base frame.
+    /// ABA and RNEA: `V_i^0 = Ad_{H_i^0} V_i^{i,0}`, body `i`'s twist written in the base frame.
     pub twist_in_world: Vec<Twist<T>>,
-    /// ABA: `V̇_i^0`, its time derivative (the base-frame spatial acceleration).
+    /// ABA and RNEA: `V̇_i^0`, its time derivative (the base-frame spatial acceleration).
     pub twist_dot_in_world: Vec<Twist<T>>,
+    /// RNEA: `W_i^0 = Ad_{H_0^i}ᵀ W_{λ(i)}^{i,i}`, the wrench of the parent on body `i` written
+    /// in the base frame (moment about the base origin).
+    pub wrench_in_world: Vec<Wrench<T>>,
     /// ABA: articulated-body inertia `𝔍ᴬ_i`, in the base frame.
     pub articulated_inertia: Vec<Matrix6<T>>,
     /// ABA: articulated bias wrench `pᴬ_i`, in the base frame.
@@ -160,6 +163,7 @@ impl<T: Real> Workspace<T> {
             composite_inertia: vec![CompositeInertia::zero(); n],
             twist_in_world: vec![Twist::zeros(); n],
             twist_dot_in_world: vec![Twist::zeros(); n],
+            wrench_in_world: vec![Wrench::zeros(); n],
             articulated_inertia: vec![Matrix6::zeros(); n],
             articulated_bias: vec![Wrench::zeros(); n],
             bias_acceleration: vec![Twist::zeros(); n],
