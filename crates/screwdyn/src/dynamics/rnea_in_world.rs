@@ -61,21 +61,18 @@ pub(crate) fn rnea_in_world_passes<T: Real>(
     let wrenches = &mut wrench_in_world[..n];
     let tau = &mut tau.as_mut_slice()[..n];
     let base = base_acceleration(model);
-    // Forward pass, root to leaves.
+    // Forward pass, root to leaves: s_i, V_i and V̇_i (a short chain from parent to child) ...
     for i in 0..n {
-        let h = &poses[i];
-        let s = motions[i].act(h);
+        let s = motions[i].act(&poses[i]);
         let (vp, ap) = match parents[i] {
             Some(p) => (twists[p], accels[p]),
             None => (Twist::zeros(), base),
         };
-        // V̇_i = V̇_λ + s_i q̈_i (+ ad_{V_λ}(s_i q̇_i) below).
+        // V̇_i = V̇_λ + s_i q̈_i + ad_{V_λ}(s_i q̇_i).
         let mut ai = match a {
             Some(a) => Twist::from_fn(|r, _| s[r].mul_add(a[i], ap[r])),
             None => ap,
         };
-        let inertia = InertiaInWorld::new(&bodies[i].inertia, h);
-        // W_i = 𝔍_i^0 V̇_i − ad_{V_i}ᵀ 𝔍_i^0 V_i, the second term only when the body moves.
         let vi = match v {
             Some(v) => {
                 let sv = s * v[i];
@@ -84,16 +81,23 @@ pub(crate) fn rnea_in_world_passes<T: Real>(
             }
             None => Twist::zeros(),
         };
-        let mut w = inertia.momentum(&ai);
+        screws[i] = s;
+        twists[i] = vi;
+        accels[i] = ai;
+    }
+    // ... then, body by body (each on its own), W_i = 𝔍_i^0 V̇_i − ad_{V_i}ᵀ 𝔍_i^0 V_i − W_ext,i,
+    // the velocity product only when the bodies move.
+    for i in 0..n {
+        let h = &poses[i];
+        let inertia = InertiaInWorld::new(&bodies[i].inertia, h);
+        let mut w = inertia.momentum(&accels[i]);
         if v.is_some() {
-            w += velocity_product_wrench(&vi, &inertia.momentum(&vi));
+            let vi = &twists[i];
+            w += velocity_product_wrench(vi, &inertia.momentum(vi));
         }
         if let Some(f) = fext {
             w -= f.in_world_at(h, i);
         }
-        screws[i] = s;
-        twists[i] = vi;
-        accels[i] = ai;
         wrenches[i] = w;
     }
     // Backward pass, leaves to root: τ_i = s_iᵀ W_i + I_a,i q̈_i, then W_λ += W_i.
