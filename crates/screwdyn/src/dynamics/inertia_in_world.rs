@@ -35,17 +35,9 @@ impl<T: Real> InertiaInWorld<T> {
                 a[(j, 1)].mul_add(r[(k, 1)], a[(j, 0)] * r[(k, 0)]),
             )
         };
-        // c^0 = R c + p.
-        let c = &body.com;
-        let com = Vector3::from_fn(|row, _| {
-            r[(row, 2)].mul_add(
-                c.z,
-                r[(row, 1)].mul_add(c.y, r[(row, 0)].mul_add(c.x, h.translation[row])),
-            )
-        });
         Self {
             mass: body.mass,
-            com,
+            com: com_in_world(body, h),
             rotational: [
                 dot(0, 0),
                 dot(1, 1),
@@ -100,6 +92,18 @@ impl<T: Real> InertiaInWorld<T> {
             }
         }
     }
+}
+
+/// `c^0 = R c + p`: the centre of mass of `body` in {0} at `h = H_i^0 = (R, p)`.
+#[inline(always)]
+pub(super) fn com_in_world<T: Real>(body: &SpatialInertia<T>, h: &Se3<T>) -> Vector3<T> {
+    let (r, c) = (&h.rotation, &body.com);
+    Vector3::from_fn(|row, _| {
+        r[(row, 2)].mul_add(
+            c.z,
+            r[(row, 1)].mul_add(c.y, r[(row, 0)].mul_add(c.x, h.translation[row])),
+        )
+    })
 }
 
 /// The bias wrench `−ad_Vᵀ 𝔍^0 V = (ω × l + v × f, ω × f)` of the twist `V = (ω, v)` whose

@@ -3,13 +3,13 @@
 //! docs/notation.md), the form [`rnea`](super::rnea) and its variants run: every twist, wrench
 //! and inertia is written in {0}, so nothing is carried from one body's frame to another's.
 
-use super::fused::{ad_fused, dot6};
-use super::inertia_in_world::{velocity_product_wrench, InertiaInWorld};
+use super::fused::{ad_fused, cross, dot6};
+use super::inertia_in_world::{com_in_world, velocity_product_wrench, InertiaInWorld};
 use super::rnea::base_acceleration;
 use super::wrenches::ExternalWrenches;
 use crate::model::Model;
 use crate::scalar::Real;
-use crate::spatial::Twist;
+use crate::spatial::{lin, twist, Twist};
 use crate::workspace::Workspace;
 
 /// Both passes of the RNEA in {0} on the world poses of the last forward kinematics
@@ -87,14 +87,24 @@ pub(crate) fn rnea_in_world_passes<T: Real>(
     }
     // ... then, body by body (each on its own), W_i = 𝔍_i^0 V̇_i − ad_{V_i}ᵀ 𝔍_i^0 V_i − W_ext,i,
     // the velocity product only when the bodies move.
+    let at_rest = v.is_none() && a.is_none();
     for i in 0..n {
         let h = &poses[i];
-        let inertia = InertiaInWorld::new(&bodies[i].inertia, h);
-        let mut w = inertia.momentum(&accels[i]);
-        if v.is_some() {
-            let vi = &twists[i];
-            w += velocity_product_wrench(vi, &inertia.momentum(vi));
-        }
+        let body = &bodies[i].inertia;
+        let mut w = if at_rest {
+            // g(q): W_i = 𝔍_i^0 (0, −g) = (c^0 × f, f) with f = −m g, the weight at the centre
+            // of mass; the rotational inertia plays no part.
+            let f = lin(&base) * body.mass;
+            twist(cross(&com_in_world(body, h), &f), f)
+        } else {
+            let inertia = InertiaInWorld::new(body, h);
+            let mut w = inertia.momentum(&accels[i]);
+            if v.is_some() {
+                let vi = &twists[i];
+                w += velocity_product_wrench(vi, &inertia.momentum(vi));
+            }
+            w
+        };
         if let Some(f) = fext {
             w -= f.in_world_at(h, i);
         }
