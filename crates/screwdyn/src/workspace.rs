@@ -30,11 +30,14 @@ pub struct Workspace<T: Real = f64> {
     pub pose_in_world: Vec<Se3<T>>,
     /// `Ad_{H_i^0} S_i`: joint `i`'s screw axis in the base frame (a column of the space Jacobian).
     pub screw_in_world: Vec<Twist<T>>,
-    /// `V_i^{i,0}`: body twist of body `i` in its own frame.
+    /// `V_i^{i,0}`: body twist of body `i` in its own frame (forward velocity and acceleration,
+    /// the local-frame RNEA of [`rnea_trace`](crate::dynamics::rnea_trace); [`rnea`](crate::dynamics::rnea)
+    /// writes `twist_in_world` instead).
     pub twist: Vec<Twist<T>>,
     /// `V̇_i^{i,0}`: its time derivative.
     pub twist_dot: Vec<Twist<T>>,
-    /// `W_{λ(i)}^{i,i}`: wrench of the parent on body `i`, in frame `i`.
+    /// `W_{λ(i)}^{i,i}`: wrench of the parent on body `i`, in frame `i` (the local-frame RNEA;
+    /// [`rnea`](crate::dynamics::rnea) writes `wrench_in_world` instead).
     pub wrench: Vec<Wrench<T>>,
 
     /// `τ`: joint torques from inverse dynamics ([`rnea`](crate::dynamics::rnea)).
