@@ -1,7 +1,8 @@
 //! The recursive Newton–Euler passes in the base frame {0} (Featherstone, *Rigid Body Dynamics
-//! Algorithms*, §5.3 in ground coordinates; Lynch & Park, *Modern Robotics*, in the notation of
-//! docs/notation.md), the form [`rnea`](super::rnea) and its variants run: every twist, wrench
-//! and inertia is written in {0}, so nothing is carried from one body's frame to another's.
+//! Algorithms*, the algorithm in ground coordinates; Lynch & Park, *Modern Robotics*, in the
+//! notation of docs/notation.md), the form [`rnea`](crate::dynamics::rnea()) and its variants
+//! run: every twist, wrench and inertia is written in {0}, so nothing is carried from one
+//! body's frame to another's.
 
 use super::fused::{ad_fused, cross, dot6};
 use super::inertia_in_world::{com_in_world, velocity_product_wrench, InertiaInWorld};
