@@ -34,11 +34,14 @@ pub struct Workspace<T: Real = f64> {
     /// coordinate `r` of `Ad_{H_i^0} S_i` (`n` bodies), so that the products `s_kᵀ F` of
     /// consecutive joints `k` are formed side by side.
     pub screw_in_world_by_coordinate: Vec<T>,
-    /// `V_i^{i,0}`: body twist of body `i` in its own frame.
+    /// `V_i^{i,0}`: body twist of body `i` in its own frame (forward velocity and acceleration,
+    /// the local-frame RNEA of [`rnea_trace`](crate::dynamics::rnea_trace); [`rnea`](crate::dynamics::rnea)
+    /// writes `twist_in_world` instead).
     pub twist: Vec<Twist<T>>,
     /// `V̇_i^{i,0}`: its time derivative.
     pub twist_dot: Vec<Twist<T>>,
-    /// `W_{λ(i)}^{i,i}`: wrench of the parent on body `i`, in frame `i`.
+    /// `W_{λ(i)}^{i,i}`: wrench of the parent on body `i`, in frame `i` (the local-frame RNEA;
+    /// [`rnea`](crate::dynamics::rnea) writes `wrench_in_world` instead).
     pub wrench: Vec<Wrench<T>>,
 
     /// `τ`: joint torques from inverse dynamics ([`rnea`](crate::dynamics::rnea)).
@@ -59,10 +62,13 @@ pub struct Workspace<T: Real = f64> {
 
     /// CRBA: composite spatial inertia of the subtree rooted at body `i`, in the base frame.
     pub composite_inertia: Vec<CompositeInertia<T>>,
-    /// ABA: `V_i^0 = Ad_{H_i^0} V_i^{i,0}`, body `i`'s twist written in the base frame.
+    /// ABA and RNEA: `V_i^0 = Ad_{H_i^0} V_i^{i,0}`, body `i`'s twist written in the base frame.
     pub twist_in_world: Vec<Twist<T>>,
-    /// ABA: `V̇_i^0`, its time derivative (the base-frame spatial acceleration).
+    /// ABA and RNEA: `V̇_i^0`, its time derivative (the base-frame spatial acceleration).
     pub twist_dot_in_world: Vec<Twist<T>>,
+    /// RNEA: `W_i^0 = Ad_{H_0^i}ᵀ W_{λ(i)}^{i,i}`, the wrench of the parent on body `i` written
+    /// in the base frame (moment about the base origin).
+    pub wrench_in_world: Vec<Wrench<T>>,
     /// ABA: articulated-body inertia `𝔍ᴬ_i`, in the base frame.
     pub articulated_inertia: Vec<Matrix6<T>>,
     /// ABA: articulated bias wrench `pᴬ_i`, in the base frame.
@@ -165,6 +171,7 @@ impl<T: Real> Workspace<T> {
             composite_inertia: vec![CompositeInertia::zero(); n],
             twist_in_world: vec![Twist::zeros(); n],
             twist_dot_in_world: vec![Twist::zeros(); n],
+            wrench_in_world: vec![Wrench::zeros(); n],
             articulated_inertia: vec![Matrix6::zeros(); n],
             articulated_bias: vec![Wrench::zeros(); n],
             bias_acceleration: vec![Twist::zeros(); n],

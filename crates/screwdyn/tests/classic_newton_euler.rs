@@ -24,7 +24,13 @@ fn check(model: &Model, rng: &mut StdRng) {
     let classic: Vec<f64> = table.iter().map(|l| l.tau).collect();
     assert_close(&classic, &tau, 1e-12, "τ classic vs RNEA");
     for (i, link) in table.iter().enumerate() {
-        let (tw, twd, w) = (ws.twist[i], ws.twist_dot[i], ws.wrench[i]);
+        // The RNEA runs in {0}: its twist, acceleration and wrench moved to body i's frame.
+        let h = &ws.pose_in_world[i];
+        let (tw, twd, w) = (
+            h.inv_act_twist(&ws.twist_in_world[i]),
+            h.inv_act_twist(&ws.twist_dot_in_world[i]),
+            h.act_transpose_wrench(&ws.wrench_in_world[i]),
+        );
         let omega = tw.fixed_rows::<3>(0).into_owned();
         let vel = tw.fixed_rows::<3>(3).into_owned();
         // ω, ω̇ and v agree; the classical v̇ is the twist derivative's linear part + ω × v.

@@ -84,7 +84,9 @@ fn rnea_equals_the_closed_form() {
         // Seed 000: V = L S θ̇ equals the recursion's body twists.
         for i in 0..n {
             assert_close(
-                ws.twist[i].as_slice(),
+                ws.pose_in_world[i]
+                    .inv_act_twist(&ws.twist_in_world[i])
+                    .as_slice(),
                 cf.v.rows(6 * i, 6).as_slice(),
                 1e-9,
                 "V",

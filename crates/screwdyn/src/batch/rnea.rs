@@ -1,5 +1,6 @@
-//! The recursive Newton–Euler algorithm on `Lanes`: [`dynamics::rnea`]'s two
-//! passes, line for line, for `L` states at once.
+//! The recursive Newton–Euler algorithm on `Lanes`, in the bodies' own frames (the local form
+//! of Lynch & Park's *Modern Robotics*; [`dynamics::rnea`] computes the same `τ` in the base
+//! frame), for `L` states at once.
 //!
 //! [`dynamics::rnea`]: crate::dynamics::rnea
 

@@ -1,15 +1,17 @@
 //! Forward dynamics by Featherstone's articulated-body algorithm (O(n)), in the notation of docs/notation.md.
 
 use super::cholesky::singular_threshold;
+use super::fused::{ad_fused, dot6, mat6_vec};
+use super::inertia_in_world::{velocity_product_wrench, InertiaInWorld};
 use super::inputs::checked_poses;
 use super::rnea::base_acceleration;
 use super::wrenches::ExternalWrenches;
 use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::scalar::Real;
-use crate::spatial::{ang, lin, twist, Se3, SpatialInertia, Twist, Wrench};
+use crate::spatial::Twist;
 use crate::workspace::Workspace;
-use nalgebra::{DVector, Matrix3, Matrix6, Vector3};
+use nalgebra::DVector;
 
 /// Forward dynamics `q̈ = M⁻¹(τ − C q̇ − g)` by the articulated-body algorithm (Featherstone),
 /// written with the operators and every spatial quantity in the base frame {0}
@@ -163,7 +165,10 @@ fn aba_passes<T: Real>(
     // 𝔍ᴬ_i, and pᴬ_i = −ad_{V_i}ᵀ 𝔍_i^0 V_i − W_ext,i.
     for i in 0..n {
         let h = &poses[i];
-        let mut p = rigid_in_world(&bodies[i].inertia, h, &twists[i], &mut inertias[i]);
+        let inertia = InertiaInWorld::new(&bodies[i].inertia, h);
+        inertia.write_matrix(&mut inertias[i]);
+        let vi = &twists[i];
+        let mut p = velocity_product_wrench(vi, &inertia.momentum(vi));
         if let Some(f) = fext {
             p -= f.in_world_at(h, i);
         }
@@ -222,114 +227,4 @@ fn aba_passes<T: Real>(
         accels[i] = Twist::from_fn(|r, _| s[r].mul_add(qdd_i, a_par[r]));
     }
     Ok(())
-}
-
-// Products that are added are fused (`mul_add`: one instruction where the CPU has FMA, which the
-// multiversioned clones above are compiled for, and never less accurate than the two roundings).
-
-/// `xᵀ y` of two 6-vectors, fused, summed as a tree `(x₀y₀ + x₁y₁) + (x₂y₂ + x₃y₃) + (x₄y₄ + x₅y₅)`:
-/// the three pairs are independent, so the sum waits on four operations instead of six.
-#[inline(always)]
-fn dot6<T: Real>(x: &Twist<T>, y: &Twist<T>) -> T {
-    let p0 = x[1].mul_add(y[1], x[0] * y[0]);
-    let p1 = x[3].mul_add(y[3], x[2] * y[2]);
-    let p2 = x[5].mul_add(y[5], x[4] * y[4]);
-    (p0 + p1) + p2
-}
-
-/// `M x` for a 6×6 `M` stored by columns: `Σ_c M[:, c] x_c`, fused, the even and the odd columns
-/// summed apart (two independent chains of three) and then added.
-#[inline(always)]
-fn mat6_vec<T: Real>(m: &Matrix6<T>, x: &Twist<T>) -> Twist<T> {
-    Twist::from_fn(|r, _| {
-        let even = m[(r, 4)].mul_add(x[4], m[(r, 2)].mul_add(x[2], m[(r, 0)] * x[0]));
-        let odd = m[(r, 5)].mul_add(x[5], m[(r, 3)].mul_add(x[3], m[(r, 1)] * x[1]));
-        even + odd
-    })
-}
-
-/// `a × b`, fused.
-#[inline(always)]
-fn cross<T: Real>(a: &Vector3<T>, b: &Vector3<T>) -> Vector3<T> {
-    Vector3::new(
-        a.y.mul_add(b.z, -(a.z * b.y)),
-        a.z.mul_add(b.x, -(a.x * b.z)),
-        a.x.mul_add(b.y, -(a.y * b.x)),
-    )
-}
-
-/// `ad_V X = (ω × ω_X, v × ω_X + ω × v_X)` for `V = (ω, v)`, fused.
-#[inline(always)]
-fn ad_fused<T: Real>(v: &Twist<T>, x: &Twist<T>) -> Twist<T> {
-    let (w, wx) = (ang(v), ang(x));
-    twist(cross(&w, &wx), cross(&lin(v), &wx) + cross(&w, &lin(x)))
-}
-
-/// The rigid-body inertia of `body` (given in its own frame) moved to {0} by `h = H_i^0 = (R, p)`,
-/// written into `out` as the 6×6 `𝔍^0 = [I_c^0 − m[c^0][c^0]  m[c^0]; −m[c^0]  m·1]` with
-/// `c^0 = R c + p` and `I_c^0 = R I_c Rᵀ` (six entries formed); returns the bias wrench
-/// `−ad_Vᵀ 𝔍^0 V = (ω × l + v × f, ω × f)` of twist `V = (ω, v)`, where `(l, f) = 𝔍^0 V` is the
-/// momentum: `f = m (v − c^0 × ω)`, `l = I_c^0 ω + c^0 × f`.
-#[inline(always)]
-fn rigid_in_world<T: Real>(
-    body: &SpatialInertia<T>,
-    h: &Se3<T>,
-    vel: &Twist<T>,
-    out: &mut Matrix6<T>,
-) -> Wrench<T> {
-    let (r, ic, m) = (&h.rotation, &body.inertia_com, body.mass);
-    // A = R I_c, row by row.
-    let a = Matrix3::from_fn(|row, k| {
-        r[(row, 2)].mul_add(
-            ic[(2, k)],
-            r[(row, 1)].mul_add(ic[(1, k)], r[(row, 0)] * ic[(0, k)]),
-        )
-    });
-    // (A Rᵀ)_{jk} = row j of A · row k of R; symmetric, so six are formed.
-    let dot = |j: usize, k: usize| {
-        a[(j, 2)].mul_add(
-            r[(k, 2)],
-            a[(j, 1)].mul_add(r[(k, 1)], a[(j, 0)] * r[(k, 0)]),
-        )
-    };
-    let (i00, i11, i22) = (dot(0, 0), dot(1, 1), dot(2, 2));
-    let (i01, i02, i12) = (dot(0, 1), dot(0, 2), dot(1, 2));
-    // c^0 = R c + p.
-    let c = &body.com;
-    let c0 = Vector3::from_fn(|row, _| {
-        r[(row, 2)].mul_add(
-            c.z,
-            r[(row, 1)].mul_add(c.y, r[(row, 0)].mul_add(c.x, h.translation[row])),
-        )
-    });
-    let (mx, my, mz) = (m * c0.x, m * c0.y, m * c0.z);
-    // −m[c][c] = m (cᵀc 1 − c cᵀ).
-    let (xx, yy, zz) = (mx * c0.x, my * c0.y, mz * c0.z);
-    let (xy, xz, yz) = (mx * c0.y, mx * c0.z, my * c0.z);
-    // Written entry by entry in place (column-major order), with no 6×6 temporary to copy.
-    let zero = T::zero();
-    let (a00, a11, a22) = (i00 + yy + zz, i11 + xx + zz, i22 + xx + yy);
-    let (a01, a02, a12) = (i01 - xy, i02 - xz, i12 - yz);
-    #[rustfmt::skip]
-    let columns = [
-        [a00, a01, a02, zero, -mz, my],
-        [a01, a11, a12, mz, zero, -mx],
-        [a02, a12, a22, -my, mx, zero],
-        [zero, mz, -my, m, zero, zero],
-        [-mz, zero, mx, zero, m, zero],
-        [my, -mx, zero, zero, zero, m],
-    ];
-    for (c, column) in columns.iter().enumerate() {
-        for (r, x) in column.iter().enumerate() {
-            out[(r, c)] = *x;
-        }
-    }
-    let (w, v) = (ang(vel), lin(vel));
-    let f = (v - cross(&c0, &w)) * m;
-    let l = Vector3::new(
-        i02.mul_add(w.z, i01.mul_add(w.y, i00 * w.x)),
-        i12.mul_add(w.z, i11.mul_add(w.y, i01 * w.x)),
-        i22.mul_add(w.z, i12.mul_add(w.y, i02 * w.x)),
-    ) + cross(&c0, &f);
-    twist(cross(&w, &l) + cross(&v, &f), cross(&w, &f))
 }

@@ -256,8 +256,10 @@ impl<T: Real> ClosedForm<T> {
     /// let (vdot, w, tau) = closed_form(&m, &q, &v).unwrap().stacked_dynamics(&a).unwrap();
     /// let mut ws = Workspace::new(&m);
     /// assert!((rnea(&m, &mut ws, &q, &v, &a).unwrap() - &tau).amax() < 1e-12);
-    /// assert!((vdot.fixed_rows::<6>(6) - ws.twist_dot[1]).amax() < 1e-12);
-    /// assert!((w.fixed_rows::<6>(0) - ws.wrench[0]).amax() < 1e-12);
+    /// // RNEA's V̇_2 and W_1, which it forms in {0}, in the bodies' own frames.
+    /// let (h1, h2) = (&ws.pose_in_world[0], &ws.pose_in_world[1]);
+    /// assert!((vdot.fixed_rows::<6>(6) - h2.inv_act_twist(&ws.twist_dot_in_world[1])).amax() < 1e-12);
+    /// assert!((w.fixed_rows::<6>(0) - h1.act_transpose_wrench(&ws.wrench_in_world[0])).amax() < 1e-12);
     /// ```
     ///
     /// # Errors

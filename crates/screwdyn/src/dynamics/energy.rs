@@ -33,7 +33,8 @@ pub fn kinetic_energy<T: Real>(
 }
 
 /// `Σ_i ½ V_iᵀ 𝔍_i V_i + ½ I_a,i q̇_i²` from the body twists `ws.twist` of the last
-/// [`forward_velocity`](crate::kinematics::forward_velocity) (or RNEA) call at velocity `v`.
+/// [`forward_velocity`](crate::kinematics::forward_velocity) call at velocity `v` (the RNEA
+/// leaves its twists in `ws.twist_in_world`, not here).
 pub(crate) fn kinetic_energy_given_twists<T: Real>(
     model: &Model<T>,
     ws: &Workspace<T>,

@@ -5,7 +5,8 @@ use super::aba::{articulated_body, articulated_body_for_stepper};
 use super::cholesky::{cholesky_in_place, cholesky_solve_in_place, singular_error};
 use super::crba::crba_given_poses;
 use super::inputs::checked_poses;
-use super::rnea::{base_acceleration, rnea_passes};
+use super::rnea::rnea_passes;
+use super::rnea_in_world::rnea_in_world_passes;
 use super::wrenches::ExternalWrenches;
 use crate::error::{Error, Result};
 use crate::model::Model;
@@ -108,15 +109,8 @@ fn prepare<T: Real>(
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<()> {
     checked_poses(model, ws, q, &[(v, "v"), (tau, "tau")], fext)?;
-    // b = C q̇ + g − Σ Jᵀ W_ext: RNEA with q̈ = 0.
-    rnea_passes(
-        model,
-        ws,
-        Some(v),
-        |_| T::zero(),
-        &base_acceleration(model),
-        fext,
-    );
+    // b = C q̇ + g − Σ Jᵀ W_ext: RNEA (in {0}) with q̈ = 0.
+    rnea_in_world_passes(model, ws, Some(v), None, fext);
     ws.bias.copy_from(&ws.tau);
     Ok(())
 }

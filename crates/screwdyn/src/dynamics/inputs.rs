@@ -1,11 +1,10 @@
 //! The checks every dynamics algorithm makes before it writes: the workspace is the model's,
 //! each joint vector has `nq` finite entries, external wrenches were made for the model; then
-//! forward kinematics, which all of them start with (the poses in the parents' frames only for
-//! the recursive Newton–Euler algorithm without external wrenches).
+//! forward kinematics, which all of them start with.
 
 use super::wrenches::ExternalWrenches;
 use crate::error::Result;
-use crate::kinematics::{forward_kinematics, poses_in_parent};
+use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::Real;
 use crate::workspace::Workspace;
@@ -32,22 +31,4 @@ fn checked_vectors<T: Real>(model: &Model<T>, vectors: &[(&[T], &str)]) -> Resul
         model.check_vector(x, what)?;
     }
     Ok(())
-}
-
-/// [`checked_poses`] for the algorithms that need the poses in the parents' frames only (the
-/// recursive Newton–Euler passes): external wrenches given in the world frame need the world
-/// poses, so with `fext` it is [`checked_poses`]; without, [`poses_in_parent`] only
-/// (`ws.pose_in_world` is left as it was).
-pub(crate) fn checked_poses_in_parent<T: Real>(
-    model: &Model<T>,
-    ws: &mut Workspace<T>,
-    q: &[T],
-    vectors: &[(&[T], &str)],
-    fext: Option<&ExternalWrenches<T>>,
-) -> Result<()> {
-    if fext.is_some() {
-        return checked_poses(model, ws, q, vectors, fext);
-    }
-    checked_vectors(model, vectors)?;
-    poses_in_parent(model, ws, q)
 }

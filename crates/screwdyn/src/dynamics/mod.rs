@@ -26,10 +26,13 @@ mod crba;
 mod derivatives;
 pub(crate) mod energy;
 mod forward;
+mod fused;
+mod inertia_in_world;
 mod inputs;
 mod lagrange;
 mod regressor;
 mod rnea;
+mod rnea_in_world;
 mod trace;
 mod wrenches;
 

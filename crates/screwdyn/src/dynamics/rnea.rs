@@ -1,10 +1,11 @@
 //! Inverse dynamics by the recursive Newton–Euler algorithm in the Lie-group form
 //! (Lynch & Park, *Modern Robotics*), with gravity as a base acceleration and external wrenches.
 
-use super::inputs::checked_poses_in_parent;
+use super::inputs::checked_poses;
+use super::rnea_in_world::rnea_in_world_passes;
 use super::wrenches::ExternalWrenches;
 use crate::error::Result;
-use crate::kinematics::poses_in_parent;
+use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::Real;
 use crate::spatial::{ad_transpose, twist, Twist};
@@ -18,9 +19,12 @@ pub fn base_acceleration<T: Real>(model: &Model<T>) -> Twist<T> {
     twist(Vector3::zeros(), -model.gravity())
 }
 
-/// Both passes of the RNEA given `ws.pose_in_parent` (and `ws.pose_in_world` when there are
-/// external wrenches); `v = None` means `q̇ = 0`, `qdd(i)` gives `q̈_i`. Writes `ws.twist`,
-/// `ws.twist_dot`, `ws.wrench` and `ws.tau`.
+/// Both passes of the RNEA in the bodies' own frames (the local form, Lynch & Park's *Modern
+/// Robotics*) given `ws.pose_in_parent` (and `ws.pose_in_world` when there are external
+/// wrenches); `v = None` means `q̇ = 0`, `qdd(i)` gives `q̈_i`. Writes `ws.twist`,
+/// `ws.twist_dot`, `ws.wrench` and `ws.tau`: the body-frame quantities that
+/// [`rnea_trace`](crate::dynamics::rnea_trace), the regressor and Walker–Orin's columns read
+/// ([`rnea`] itself runs the base-frame passes).
 pub(crate) fn rnea_passes<T: Real>(
     model: &Model<T>,
     ws: &mut Workspace<T>,
@@ -85,15 +89,21 @@ pub(crate) fn rnea_passes<T: Real>(
 }
 
 /// Inverse dynamics `τ = M(q) q̈ + C(q, q̇) q̇ + g(q)` by the recursive Newton–Euler algorithm
-/// (Lynch & Park, *Modern Robotics*; gravity as the base acceleration `(0, −g)` of Lynch & Park's *Modern Robotics*). Trees are handled:
-/// the backward pass sums `Ad_{H_λ^i}ᵀ W_i` over all children. Returns `ws.tau`. The passes
-/// work in the body frames: they write `ws.pose_in_parent`, not `ws.pose_in_world` (call
-/// [`forward_kinematics`](crate::kinematics::forward_kinematics) for the world poses).
+/// (Lynch & Park, *Modern Robotics*; Featherstone, *Rigid Body Dynamics Algorithms*), with
+/// gravity as the base acceleration `V̇_base = (0, −g)`. Trees are handled: the backward pass
+/// sums the children's wrenches. Returns `ws.tau`.
 ///
-/// Forward pass: `V_i = Ad_{H_{λ(i)}^i} V_{λ(i)} + S_i q̇_i`,
-/// `V̇_i = Ad V̇_{λ(i)} − ad_{S_i q̇_i}(Ad V_{λ(i)}) + S_i q̈_i`.
-/// Backward pass: `W_i = 𝔍_i V̇_i − ad_{V_i}ᵀ 𝔍_i V_i + Σ_children Ad_{H_i^c}ᵀ W_c`,
-/// `τ_i = S_iᵀ W_i + I_a,i q̈_i` (the joint's armature `I_a,i`, [`Joint::armature`](crate::model::Joint::armature)).
+/// The passes run in the base frame {0}, with `s_i = Ad_{H_i^0} S_i` and
+/// `𝔍_i^0 = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i}` (formed from the body's ten inertial parameters):
+///
+/// Forward pass: `V_i = V_{λ(i)} + s_i q̇_i`, `V̇_i = V̇_{λ(i)} + s_i q̈_i + ad_{V_{λ(i)}}(s_i q̇_i)`.
+/// Backward pass: `W_i = 𝔍_i^0 V̇_i − ad_{V_i}ᵀ 𝔍_i^0 V_i + Σ_children W_c`,
+/// `τ_i = s_iᵀ W_i + I_a,i q̈_i` (the joint's armature `I_a,i`, [`Joint::armature`](crate::model::Joint::armature)).
+///
+/// Writes the poses (`ws.pose_in_parent`, `ws.pose_in_world`), `ws.screw_in_world`,
+/// `ws.twist_in_world`, `ws.twist_dot_in_world` and `ws.wrench_in_world` (all in {0}), not the
+/// body-frame `ws.twist`, `ws.twist_dot`, `ws.wrench` (those are
+/// [`rnea_trace`](crate::dynamics::rnea_trace)'s, in the bodies' own frames).
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
@@ -117,8 +127,8 @@ pub fn rnea<'w, T: Real>(
 }
 
 /// [`rnea`] with external wrenches: `τ = M q̈ + C q̇ + g − Σ_i J_iᵀ W_ext,i (+ J_eᵀ W_tip)`
-/// (Lynch & Park, *Modern Robotics*). Returns `ws.tau`. Writes `ws.pose_in_world` too when
-/// `fext` is given (the world-frame wrenches need it), not without.
+/// (Lynch & Park, *Modern Robotics*), each `W_ext,i` moved to {0} and taken from body `i`'s
+/// wrench in the forward pass. Returns `ws.tau`; writes what [`rnea`] writes.
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
@@ -143,21 +153,14 @@ pub fn inverse_dynamics<'w, T: Real>(
     a: &[T],
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<&'w DVector<T>> {
-    checked_poses_in_parent(model, ws, q, &[(v, "v"), (a, "a")], fext)?;
-    rnea_passes(
-        model,
-        ws,
-        Some(v),
-        |i| a[i],
-        &base_acceleration(model),
-        fext,
-    );
+    checked_poses(model, ws, q, &[(v, "v"), (a, "a")], fext)?;
+    rnea_in_world_passes(model, ws, Some(v), Some(a), fext);
     Ok(&ws.tau)
 }
 
 /// Gravity torques `g(q)`: RNEA with `q̇ = q̈ = 0` (Lynch & Park, *Modern Robotics*,
-/// `g(θ) = Sᵀ Lᵀ 𝔍 L V̇_base`). Returns `ws.gravity_torque`; writes `ws.pose_in_parent`, not
-/// `ws.pose_in_world`.
+/// `g(θ) = Sᵀ Lᵀ 𝔍 L V̇_base`), in {0} as [`rnea`]: `W_i = 𝔍_i^0 V̇_base + Σ_children W_c`,
+/// `τ_i = s_iᵀ W_i`. Returns `ws.gravity_torque`; writes what [`rnea`] writes (and `ws.tau`).
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
@@ -175,21 +178,14 @@ pub fn gravity_torque<'w, T: Real>(
     ws: &'w mut Workspace<T>,
     q: &[T],
 ) -> Result<&'w DVector<T>> {
-    poses_in_parent(model, ws, q)?;
-    rnea_passes(
-        model,
-        ws,
-        None,
-        |_| T::zero(),
-        &base_acceleration(model),
-        None,
-    );
+    forward_kinematics(model, ws, q)?;
+    rnea_in_world_passes(model, ws, None, None, None);
     ws.gravity_torque.copy_from(&ws.tau);
     Ok(&ws.gravity_torque)
 }
 
-/// Nonlinear effects `C(q, q̇) q̇ + g(q)`: RNEA with `q̈ = 0`. Returns `ws.nonlinear_effects`;
-/// writes `ws.pose_in_parent`, not `ws.pose_in_world`.
+/// Nonlinear effects `C(q, q̇) q̇ + g(q)`: [`rnea`] (in {0}) with `q̈ = 0`. Returns
+/// `ws.nonlinear_effects`; writes what [`rnea`] writes (and `ws.tau`).
 ///
 /// # Errors
 /// [`Error::InvalidArgument`](crate::Error::InvalidArgument) when `ws` was made for another model; [`Error::DimensionMismatch`](crate::Error::DimensionMismatch) or [`Error::NonFinite`](crate::Error::NonFinite) for a joint vector of the wrong length or with NaN/∞.
@@ -209,15 +205,8 @@ pub fn nonlinear_effects<'w, T: Real>(
     q: &[T],
     v: &[T],
 ) -> Result<&'w DVector<T>> {
-    checked_poses_in_parent(model, ws, q, &[(v, "v")], None)?;
-    rnea_passes(
-        model,
-        ws,
-        Some(v),
-        |_| T::zero(),
-        &base_acceleration(model),
-        None,
-    );
+    checked_poses(model, ws, q, &[(v, "v")], None)?;
+    rnea_in_world_passes(model, ws, Some(v), None, None);
     ws.nonlinear_effects.copy_from(&ws.tau);
     Ok(&ws.nonlinear_effects)
 }

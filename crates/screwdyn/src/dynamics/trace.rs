@@ -2,7 +2,8 @@
 //! student who checks a homework line by line: every intermediate quantity of one
 //! [`inverse_dynamics`] call, in the notation of docs/notation.md.
 
-use super::rnea::{base_acceleration, inverse_dynamics};
+use super::inputs::checked_poses;
+use super::rnea::{base_acceleration, rnea_passes};
 use super::wrenches::ExternalWrenches;
 use crate::error::Result;
 use crate::model::Model;
@@ -59,7 +60,9 @@ pub struct RneaTrace {
     pub tau: Vec<f64>,
 }
 
-/// Runs [`inverse_dynamics`] and reads out every step of the recursion:
+/// Runs the recursive Newton–Euler algorithm in the bodies' own frames (the form written
+/// below; [`inverse_dynamics`](super::inverse_dynamics) computes the same `τ` in the base
+/// frame) and reads out every step of the recursion:
 ///
 /// - forward, `i = 1 … n`: `H_i^{λ(i)}(θ_i) = H_i^{λ(i)}(0) e^{S̃_i θ_i}`,
 ///   `V_i = Ad_{H_{λ(i)}^i} V_{λ(i)} + S_i θ̇_i`,
@@ -72,7 +75,7 @@ pub struct RneaTrace {
 /// Teaching code: it allocates the trace.
 ///
 /// # Errors
-/// As [`inverse_dynamics`].
+/// As [`inverse_dynamics`](super::inverse_dynamics).
 ///
 /// ```
 /// use screwdyn::{builtin, dynamics::rnea_trace};
@@ -91,10 +94,10 @@ pub fn rnea_trace(
     fext: Option<&ExternalWrenches>,
 ) -> Result<RneaTrace> {
     let mut ws = Workspace::new(model);
-    let tau = inverse_dynamics(model, &mut ws, q, v, a, fext)?
-        .as_slice()
-        .to_vec();
+    checked_poses(model, &mut ws, q, &[(v, "v"), (a, "a")], fext)?;
     let base = base_acceleration(model);
+    rnea_passes(model, &mut ws, Some(v), |i| a[i], &base, fext);
+    let tau = ws.tau.as_slice().to_vec();
     let parents = model.parents();
     let forward = (0..model.nq())
         .map(|i| {

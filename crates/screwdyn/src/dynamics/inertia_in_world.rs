@@ -1,0 +1,116 @@
+//! A body's rigid inertia moved to the base frame {0} from its ten parameters, for the
+//! base-frame algorithms (ABA and the RNEA in {0}): `𝔍^0 = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i}` is never
+//! formed by 6×6 products, only `m`, `c^0` and the six entries of `I_c^0`.
+
+use super::fused::cross;
+use crate::scalar::Real;
+use crate::spatial::{ang, lin, twist, Se3, SpatialInertia, Twist, Wrench};
+use nalgebra::{Matrix3, Matrix6, Vector3};
+
+/// Body `i`'s inertia in {0}, given `h = H_i^0 = (R, p)`: the mass `m`, the centre of mass
+/// `c^0 = R c + p` and the rotational inertia about it `I_c^0 = R I_c Rᵀ` (symmetric, six entries).
+pub(super) struct InertiaInWorld<T: Real> {
+    mass: T,
+    com: Vector3<T>,
+    /// `I_c^0` as `(I₀₀, I₁₁, I₂₂, I₀₁, I₀₂, I₁₂)`.
+    rotational: [T; 6],
+}
+
+impl<T: Real> InertiaInWorld<T> {
+    /// `m`, `c^0 = R c + p` and `I_c^0 = R I_c Rᵀ` of `body` (given in its own frame) at `h = H_i^0`.
+    #[inline(always)]
+    pub(super) fn new(body: &SpatialInertia<T>, h: &Se3<T>) -> Self {
+        let (r, ic) = (&h.rotation, &body.inertia_com);
+        // A = R I_c, row by row.
+        let a = Matrix3::from_fn(|row, k| {
+            r[(row, 2)].mul_add(
+                ic[(2, k)],
+                r[(row, 1)].mul_add(ic[(1, k)], r[(row, 0)] * ic[(0, k)]),
+            )
+        });
+        // (A Rᵀ)_{jk} = row j of A · row k of R; symmetric, so six are formed.
+        let dot = |j: usize, k: usize| {
+            a[(j, 2)].mul_add(
+                r[(k, 2)],
+                a[(j, 1)].mul_add(r[(k, 1)], a[(j, 0)] * r[(k, 0)]),
+            )
+        };
+        Self {
+            mass: body.mass,
+            com: com_in_world(body, h),
+            rotational: [
+                dot(0, 0),
+                dot(1, 1),
+                dot(2, 2),
+                dot(0, 1),
+                dot(0, 2),
+                dot(1, 2),
+            ],
+        }
+    }
+
+    /// The momentum `(l, f) = 𝔍^0 x` of the twist `x = (x_ω, x_v)`:
+    /// `f = m (x_v − c^0 × x_ω)`, `l = I_c^0 x_ω + c^0 × f`.
+    #[inline(always)]
+    pub(super) fn momentum(&self, x: &Twist<T>) -> Wrench<T> {
+        let [i00, i11, i22, i01, i02, i12] = self.rotational;
+        let (w, v) = (ang(x), lin(x));
+        let f = (v - cross(&self.com, &w)) * self.mass;
+        let l = Vector3::new(
+            i02.mul_add(w.z, i01.mul_add(w.y, i00 * w.x)),
+            i12.mul_add(w.z, i11.mul_add(w.y, i01 * w.x)),
+            i22.mul_add(w.z, i12.mul_add(w.y, i02 * w.x)),
+        ) + cross(&self.com, &f);
+        twist(l, f)
+    }
+
+    /// Writes the 6×6 `𝔍^0 = [I_c^0 − m[c^0][c^0]  m[c^0]; −m[c^0]  m·1]` into `out`, entry by
+    /// entry in place (column-major order), with no 6×6 temporary to copy.
+    #[inline(always)]
+    pub(super) fn write_matrix(&self, out: &mut Matrix6<T>) {
+        let (m, c0) = (self.mass, &self.com);
+        let [i00, i11, i22, i01, i02, i12] = self.rotational;
+        let (mx, my, mz) = (m * c0.x, m * c0.y, m * c0.z);
+        // −m[c][c] = m (cᵀc 1 − c cᵀ).
+        let (xx, yy, zz) = (mx * c0.x, my * c0.y, mz * c0.z);
+        let (xy, xz, yz) = (mx * c0.y, mx * c0.z, my * c0.z);
+        let zero = T::zero();
+        let (a00, a11, a22) = (i00 + yy + zz, i11 + xx + zz, i22 + xx + yy);
+        let (a01, a02, a12) = (i01 - xy, i02 - xz, i12 - yz);
+        #[rustfmt::skip]
+        let columns = [
+            [a00, a01, a02, zero, -mz, my],
+            [a01, a11, a12, mz, zero, -mx],
+            [a02, a12, a22, -my, mx, zero],
+            [zero, mz, -my, m, zero, zero],
+            [-mz, zero, mx, zero, m, zero],
+            [my, -mx, zero, zero, zero, m],
+        ];
+        for (c, column) in columns.iter().enumerate() {
+            for (r, x) in column.iter().enumerate() {
+                out[(r, c)] = *x;
+            }
+        }
+    }
+}
+
+/// `c^0 = R c + p`: the centre of mass of `body` in {0} at `h = H_i^0 = (R, p)`.
+#[inline(always)]
+pub(super) fn com_in_world<T: Real>(body: &SpatialInertia<T>, h: &Se3<T>) -> Vector3<T> {
+    let (r, c) = (&h.rotation, &body.com);
+    Vector3::from_fn(|row, _| {
+        r[(row, 2)].mul_add(
+            c.z,
+            r[(row, 1)].mul_add(c.y, r[(row, 0)].mul_add(c.x, h.translation[row])),
+        )
+    })
+}
+
+/// The bias wrench `−ad_Vᵀ 𝔍^0 V = (ω × l + v × f, ω × f)` of the twist `V = (ω, v)` whose
+/// momentum is `(l, f) = 𝔍^0 V`.
+#[inline(always)]
+pub(super) fn velocity_product_wrench<T: Real>(vel: &Twist<T>, momentum: &Wrench<T>) -> Wrench<T> {
+    let (w, v) = (ang(vel), lin(vel));
+    let (l, f) = (ang(momentum), lin(momentum));
+    twist(cross(&w, &l) + cross(&v, &f), cross(&w, &f))
+}
