@@ -49,5 +49,8 @@ fn main() {
         let timed = time_optimal(&model, path, &limits, &options).expect("a timing");
         duration += timed.duration();
     }
-    println!("{robot}: {calls} calls, duration {}", duration / calls as f64);
+    println!(
+        "{robot}: {calls} calls, duration {}",
+        duration / calls as f64
+    );
 }
