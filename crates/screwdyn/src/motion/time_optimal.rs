@@ -487,8 +487,12 @@ fn fill_constraints(
     // Only the rows of finite limits are kept (the others never bind), two per limit.
     let finite = |l: &[f64]| l.iter().filter(|x| x.is_finite()).count();
     c.rows_per_point = 2 * (finite(&limits.0.acceleration) + finite(&limits.0.effort));
+    // point_rows writes each limit's two rows one after the other.
+    c.paired = true;
     c.rows.clear();
     c.x_max.clear();
+    c.rows.reserve(s.len() * c.rows_per_point);
+    c.x_max.reserve(s.len());
     let doubled = s.len() % 2 == 1
         && coarse.x_max.len() == s.len() / 2 + 1
         && coarse.rows_per_point == c.rows_per_point;
