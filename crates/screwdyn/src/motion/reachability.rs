@@ -217,17 +217,27 @@ fn project(
         // its round-off tolerance.
         _ => return project_pairwise(scratch, (x_lo, x_hi)),
     };
-    match upper_end(f, lo, x_hi) {
+    // The upper end is near the next set's (neighbouring grid points): Newton starts there.
+    match upper_end(f, lo, next.1, x_hi) {
         Settled::At(hi) => close_enough(lo, hi),
         _ => project_pairwise(scratch, (x_lo, x_hi)),
     }
 }
 
-/// The largest `x ≤ x_hi` with `F(x) ≤ 0`, given `F(lo) ≤ 0`: rightwards from `lo` to the zero
-/// of the tangent (at or beyond the end, since the tangent lies below `F`), or doubling where
-/// `F` does not rise, until `F > 0`; then Newton leftwards.
-fn upper_end(f: impl Fn(f64) -> (f64, f64, f64), lo: f64, x_hi: f64) -> Settled {
+/// The largest `x ≤ x_hi` with `F(x) ≤ 0`, given `F(lo) ≤ 0`: from `guess` (when it lies
+/// between `lo` and `x_hi` and `F(guess) > 0`, the end is to its left: Newton leftwards from
+/// there, usually one step), else rightwards from `lo` or the guess to the zero of the tangent
+/// (at or beyond the end, since the tangent lies below `F`), or doubling where `F` does not
+/// rise, until `F > 0`; then Newton leftwards.
+fn upper_end(f: impl Fn(f64) -> (f64, f64, f64), lo: f64, guess: f64, x_hi: f64) -> Settled {
     let mut x = lo;
+    if guess > lo && guess < x_hi {
+        let (fx, _, scale) = f(guess);
+        if fx > ROUND_OFF * scale {
+            return newton(f, guess, Direction::Left);
+        }
+        x = guess;
+    }
     for _ in 0..64 {
         let (fx, slope, scale) = f(x);
         if fx > ROUND_OFF * scale {
