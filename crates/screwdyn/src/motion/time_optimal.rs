@@ -154,8 +154,8 @@ pub struct TimingReport {
     /// The torques of the final check's samples summarised against the model's effort limits:
     /// what [`torque_profile_into`](crate::sim::torque_profile_into) reports for this timing
     /// every `check_step` seconds, the same samples and the same inverse dynamics (to round-off:
-    /// the check's runs eight samples side by side, see [`crate::batch`]), so a profile at
-    /// that step need not compute them again.
+    /// the check evaluates it for eight samples side by side, see [`crate::batch`]), so a
+    /// profile at that step need not compute them again.
     pub profile: ProfileSummary,
 }
 
