@@ -108,7 +108,11 @@ fn time_optimal_output_stays_within_the_limits_by_inverse_dynamics() {
     ]);
     assert!(f(&free["duration"]) <= duration);
     // The report alone takes its statistics from the timing's check (the same samples every
-    // --dt): they equal those of the profile computed while writing --output, to the bit.
+    // --dt): they equal those of the profile computed while writing --output. The check's
+    // inverse dynamics runs eight samples side by side in SIMD lanes (fused multiply–adds),
+    // the written profile's is the per-call RNEA: peaks and RMS agree to round-off
+    // (10⁻¹² (1 + |value|)), the duration, the times of the peaks, the violations and the limits
+    // exactly.
     let alone = json(&[
         "torque-profile",
         "builtin:ur5",
@@ -119,15 +123,11 @@ fn time_optimal_output_stays_within_the_limits_by_inverse_dynamics() {
         "--amax",
         "10",
     ]);
-    for key in [
-        "duration",
-        "peak",
-        "peak_time",
-        "rms",
-        "violations",
-        "effort_limit",
-    ] {
+    for key in ["duration", "peak_time", "violations", "effort_limit"] {
         assert_eq!(alone[key], out[key], "{key}");
+    }
+    for key in ["peak", "rms"] {
+        close(&vec(&alone[key]), &vec(&out[key]), 1e-12);
     }
 }
 

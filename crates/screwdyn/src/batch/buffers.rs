@@ -25,7 +25,13 @@ pub(super) struct Buffers<const L: usize> {
     pub(super) articulated_inertia: Vec<M6<L>>,
     pub(super) articulated_force: Vec<V6<L>>,
     pub(super) articulated_joint_force: Vec<Lanes<L>>,
-    /// The result: `n` values, or `n²` for the mass matrix.
+    /// The accelerations `V̇a`, `V̇c` and wrenches `W_a`, `W_c` of the passes for the path
+    /// coefficients `a` and `c` (those for `b` are `accel` and `wrench`).
+    pub(super) accel_a: Vec<V6<L>>,
+    pub(super) accel_c: Vec<V6<L>>,
+    pub(super) wrench_a: Vec<V6<L>>,
+    pub(super) wrench_c: Vec<V6<L>>,
+    /// The result: `n` values, `n²` for the mass matrix, `3n` for the path coefficients.
     pub(super) out: Vec<Lanes<L>>,
 }
 
@@ -47,7 +53,11 @@ impl<const L: usize> Buffers<L> {
             articulated_inertia: vec![[[Lanes::zero(); 6]; 6]; n],
             articulated_force: vec![[Lanes::zero(); 6]; n],
             articulated_joint_force: vec![Lanes::zero(); n],
-            out: vec![Lanes::zero(); n * n],
+            accel_a: vec![[Lanes::zero(); 6]; n],
+            accel_c: vec![[Lanes::zero(); 6]; n],
+            wrench_a: vec![[Lanes::zero(); 6]; n],
+            wrench_c: vec![[Lanes::zero(); 6]; n],
+            out: vec![Lanes::zero(); (n * n).max(3 * n)],
         }
     }
 }

@@ -7,7 +7,7 @@ use super::buffers::Buffers;
 use super::joint::LaneJoint;
 use super::lanes::Lanes;
 use super::workspace::{BatchWorkspace, LANES};
-use super::{aba, crba, rnea};
+use super::{aba, crba, path, rnea};
 use crate::error::Error;
 use crate::model::Model;
 
@@ -26,6 +26,8 @@ pub(super) enum Algorithm {
     Rnea,
     Crba,
     Aba,
+    /// `a`, `b`, `c` of `τ = a s̈ + b ṡ² + c` from `q`, `q'`, `q''` (gravity in `c`).
+    PathCoefficients,
 }
 
 /// Runs `algorithm` on the gathered lanes of `b`; `Err((joint, D))` from ABA.
@@ -46,6 +48,10 @@ fn kernel<const L: usize>(
             Ok(())
         }
         Algorithm::Aba => aba::aba(model, joints, b),
+        Algorithm::PathCoefficients => {
+            path::path_coefficients(model, joints, b);
+            Ok(())
+        }
     }
 }
 
@@ -296,8 +302,35 @@ fn state_by_state(
             // Symmetric: column-major is row-major.
             Algorithm::Crba => crate::dynamics::crba(model, ws, q).map(|m| m.as_slice()),
             Algorithm::Aba => crate::dynamics::aba(model, ws, q, v, a).map(|t| t.as_slice()),
+            Algorithm::PathCoefficients => {
+                path_coefficients_by_rnea(model, ws, [q, v, a], zeros, o)
+                    .map_err(|e| e.in_state(k))?;
+                continue;
+            }
         };
         o.copy_from_slice(result.map_err(|e| e.in_state(k))?);
+    }
+    Ok(())
+}
+
+/// The path coefficients of one point from three per-call inverse dynamics, `c = g(q)`,
+/// `a = RNEA(q, 0, q') − c`, `b = RNEA(q, q', q'') − c`, into `out = [a, b, c]`.
+fn path_coefficients_by_rnea(
+    model: &Model,
+    ws: &mut crate::Workspace,
+    [q, dq, ddq]: [&[f64]; 3],
+    zeros: &[f64],
+    out: &mut [f64],
+) -> Result<(), Error> {
+    let n = model.nq();
+    let (a, rest) = out.split_at_mut(n);
+    let (b, c) = rest.split_at_mut(n);
+    c.copy_from_slice(crate::dynamics::rnea(model, ws, q, zeros, zeros)?.as_slice());
+    a.copy_from_slice(crate::dynamics::rnea(model, ws, q, zeros, dq)?.as_slice());
+    b.copy_from_slice(crate::dynamics::rnea(model, ws, q, dq, ddq)?.as_slice());
+    for ((a, b), c) in a.iter_mut().zip(b.iter_mut()).zip(c.iter()) {
+        *a -= c;
+        *b -= c;
     }
     Ok(())
 }

@@ -69,6 +69,7 @@ mod crba;
 mod driver;
 mod joint;
 mod lanes;
+mod path;
 mod rnea;
 mod spatial;
 mod workspace;
@@ -216,4 +217,30 @@ pub fn aba(
 ) -> Result<(), Error> {
     let inputs = [(Some(q), "q"), (Some(v), "v"), (Some(tau), "tau")];
     run(Algorithm::Aba, model, ws, inputs, model.nq(), qdd)
+}
+
+/// The coefficients of the equations of motion along a path, `τ = a s̈ + b ṡ² + c` with
+/// `a = M(q) q'`, `b = M(q) q'' + C(q, q') q'`, `c = g(q)`, at every point `(q, q', q'')`:
+/// `out` is `(N, 3 nq)`, row-major, each row `[a, b, c]` (what `motion::PathDynamics` computes
+/// point by point, without its springs and friction).
+///
+/// # Errors
+/// As [`rnea`], the inputs named `q`, `q'` and `q''`.
+pub(crate) fn path_coefficients(
+    model: &Model,
+    ws: &mut BatchWorkspace,
+    q: Rows<'_>,
+    dq: Rows<'_>,
+    ddq: Rows<'_>,
+    out: &mut [f64],
+) -> Result<(), Error> {
+    let inputs = [(Some(q), "q"), (Some(dq), "q'"), (Some(ddq), "q''")];
+    run(
+        Algorithm::PathCoefficients,
+        model,
+        ws,
+        inputs,
+        3 * model.nq(),
+        out,
+    )
 }

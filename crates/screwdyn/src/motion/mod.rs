@@ -18,6 +18,8 @@
 //! ```
 
 mod cartesian;
+mod check;
+mod grid_coefficients;
 mod jerk_limited;
 mod path_dynamics;
 mod reachability;

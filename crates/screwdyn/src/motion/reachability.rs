@@ -21,6 +21,9 @@ pub(crate) struct Constraints {
     /// Rows `[α, β, γ]`, `rows_per_point` for each grid point (rows with `γ = ∞` are unused).
     pub rows: Vec<[f64; 3]>,
     pub rows_per_point: usize,
+    /// Whether the rows of each point come in pairs `(α, β, γ)`, `(−α, −β, γ')` (the two signs
+    /// of one limit), which share `1 / α` ([`split_rows`], [`largest_u`]).
+    pub paired: bool,
     /// `x_max` per grid point.
     pub x_max: Vec<f64>,
 }
@@ -85,10 +88,52 @@ fn split_rows(
     let room = 2 * c.rows_per_point + 2;
     scratch.upper.clear(room);
     scratch.lower.clear(room);
-    let (upper, lower) = (&mut scratch.upper, &mut scratch.lower);
-    let (mut n_upper, mut n_lower) = (0, 0);
-    let (mut x_lo, mut x_hi) = (0.0_f64, c.x_max[i]);
-    let mut add = |r: [f64; 3]| {
+    let mut split = Split {
+        upper: &mut scratch.upper,
+        lower: &mut scratch.lower,
+        n_upper: 0,
+        n_lower: 0,
+        x_lo: 0.0,
+        x_hi: c.x_max[i],
+    };
+    // Plain loops rather than chained iterators: each compiles to a tight loop.
+    if c.paired {
+        for r in c.at(i).chunks_exact(2) {
+            split.pair(r[0], r[1][2]);
+        }
+        for r in c.at(i + 1).chunks_exact(2) {
+            let r0 = r[0];
+            split.pair([r0[0] + 2.0 * delta * r0[1], r0[1], r0[2]], r[1][2]);
+        }
+    } else {
+        for &r in c.at(i) {
+            split.row(r);
+        }
+        for r in c.at(i + 1) {
+            split.row([r[0] + 2.0 * delta * r[1], r[1], r[2]]);
+        }
+    }
+    split.row([2.0 * delta, 1.0, next.1]);
+    split.row([-2.0 * delta, -1.0, -next.0]);
+    let (n_upper, n_lower, x_lo, x_hi) = (split.n_upper, split.n_lower, split.x_lo, split.x_hi);
+    (scratch.upper.len, scratch.lower.len) = (n_upper, n_lower);
+    (x_lo, x_hi)
+}
+
+/// The lines and the bounds on `x` of [`split_rows`] as they are collected.
+struct Split<'a> {
+    upper: &'a mut Lines,
+    lower: &'a mut Lines,
+    n_upper: usize,
+    n_lower: usize,
+    x_lo: f64,
+    x_hi: f64,
+}
+
+impl Split<'_> {
+    /// One row `α u + β x ≤ γ`.
+    #[inline(always)]
+    fn row(&mut self, r: [f64; 3]) {
         if !r[2].is_finite() {
             return;
         }
@@ -96,30 +141,43 @@ fn split_rows(
             // Written to both columns, kept by the one its sign picks: no branch to mispredict.
             let per_alpha = 1.0 / r[0];
             let (c0, c1) = (r[2] * per_alpha, -r[1] * per_alpha);
-            (upper.c0[n_upper], upper.c1[n_upper]) = (-c0, -c1);
-            (lower.c0[n_lower], lower.c1[n_lower]) = (c0, c1);
+            (self.upper.c0[self.n_upper], self.upper.c1[self.n_upper]) = (-c0, -c1);
+            (self.lower.c0[self.n_lower], self.lower.c1[self.n_lower]) = (c0, c1);
             let is_upper = r[0] > 0.0;
-            n_upper += usize::from(is_upper);
-            n_lower += usize::from(!is_upper);
+            self.n_upper += usize::from(is_upper);
+            self.n_lower += usize::from(!is_upper);
         } else if r[1] > 0.0 {
-            x_hi = x_hi.min(r[2] / r[1]);
+            self.x_hi = self.x_hi.min(r[2] / r[1]);
         } else if r[1] < 0.0 {
-            x_lo = x_lo.max(r[2] / r[1]);
+            self.x_lo = self.x_lo.max(r[2] / r[1]);
         } else if r[2] < 0.0 {
-            x_lo = f64::INFINITY;
+            self.x_lo = f64::INFINITY;
         }
-    };
-    // Three plain loops rather than one over chained iterators: each compiles to a tight loop.
-    for &r in c.at(i) {
-        add(r);
     }
-    for r in c.at(i + 1) {
-        add([r[0] + 2.0 * delta * r[1], r[1], r[2]]);
+
+    /// The rows `(α, β, γ)` and `(−α, −β, γ')`: one bound on `u` each way, from one division.
+    /// With `g = γ / α`, `g' = γ' / α` and `d = β / α`, the upper bound (negated) is
+    /// `(−g, d)` and the lower `(−g', −d)` for `α > 0`; `(g', d)` and `(g, −d)` for `α < 0`:
+    /// the lines [`row`](Self::row) writes for the two rows, to the bit (negation is exact).
+    #[inline(always)]
+    fn pair(&mut self, r: [f64; 3], gamma_other: f64) {
+        if r[0] == 0.0 || !r[2].is_finite() || !gamma_other.is_finite() {
+            self.row(r);
+            self.row([-r[0], -r[1], gamma_other]);
+            return;
+        }
+        let per_alpha = 1.0 / r[0];
+        let (g, g_other, d) = (r[2] * per_alpha, gamma_other * per_alpha, r[1] * per_alpha);
+        let (upper, lower) = if r[0] > 0.0 {
+            (-g, -g_other)
+        } else {
+            (g_other, g)
+        };
+        (self.upper.c0[self.n_upper], self.upper.c1[self.n_upper]) = (upper, d);
+        (self.lower.c0[self.n_lower], self.lower.c1[self.n_lower]) = (lower, -d);
+        self.n_upper += 1;
+        self.n_lower += 1;
     }
-    add([2.0 * delta, 1.0, next.1]);
-    add([-2.0 * delta, -1.0, -next.0]);
-    (upper.len, lower.len) = (n_upper, n_lower);
-    (x_lo, x_hi)
 }
 
 /// The projection onto `x` of the polygon of interval `i`, or `None` when it is empty.
@@ -159,17 +217,27 @@ fn project(
         // its round-off tolerance.
         _ => return project_pairwise(scratch, (x_lo, x_hi)),
     };
-    match upper_end(f, lo, x_hi) {
+    // The upper end is near the next set's (neighbouring grid points): Newton starts there.
+    match upper_end(f, lo, next.1, x_hi) {
         Settled::At(hi) => close_enough(lo, hi),
         _ => project_pairwise(scratch, (x_lo, x_hi)),
     }
 }
 
-/// The largest `x ≤ x_hi` with `F(x) ≤ 0`, given `F(lo) ≤ 0`: rightwards from `lo` to the zero
-/// of the tangent (at or beyond the end, since the tangent lies below `F`), or doubling where
-/// `F` does not rise, until `F > 0`; then Newton leftwards.
-fn upper_end(f: impl Fn(f64) -> (f64, f64, f64), lo: f64, x_hi: f64) -> Settled {
+/// The largest `x ≤ x_hi` with `F(x) ≤ 0`, given `F(lo) ≤ 0`: from `guess` (when it lies
+/// between `lo` and `x_hi` and `F(guess) > 0`, the end is to its left: Newton leftwards from
+/// there, usually one step), else rightwards from `lo` or the guess to the zero of the tangent
+/// (at or beyond the end, since the tangent lies below `F`), or doubling where `F` does not
+/// rise, until `F > 0`; then Newton leftwards.
+fn upper_end(f: impl Fn(f64) -> (f64, f64, f64), lo: f64, guess: f64, x_hi: f64) -> Settled {
     let mut x = lo;
+    if guess > lo && guess < x_hi {
+        let (fx, _, scale) = f(guess);
+        if fx > ROUND_OFF * scale {
+            return newton(f, guess, Direction::Left);
+        }
+        x = guess;
+    }
     for _ in 0..64 {
         let (fx, slope, scale) = f(x);
         if fx > ROUND_OFF * scale {
@@ -204,19 +272,26 @@ fn gap(upper: &Lines, lower: &Lines, x: f64) -> (f64, f64, f64) {
 }
 
 /// `max_k (c0_k + c1_k x)` and the slope `c1_k` of a line attaining it, in four independent
-/// lanes (the lines are many and each step is short: one chain would wait on every compare).
+/// lanes (the lines are many and each step is short: one chain would wait on every compare),
+/// compiled for AVX-512, AVX2 and the baseline, chosen at run time (the same operations, so the
+/// same bits, in each).
+#[multiversion::multiversion(targets(
+    "x86_64+avx512f+avx512vl+avx512dq+avx512bw+avx2+fma",
+    "x86_64+avx2+fma"
+))]
 fn max_line(lines: &Lines, x: f64) -> (f64, f64) {
     let (c0, c1) = lines.columns();
     let (mut best, mut slope) = ([f64::NEG_INFINITY; 4], [0.0; 4]);
     let (c0_4, c1_4) = (c0.chunks_exact(4), c1.chunks_exact(4));
     let tail = c0_4.remainder().iter().zip(c1_4.remainder());
     for (a, b) in c0_4.zip(c1_4) {
-        for lane in 0..4 {
-            let v = a[lane] + b[lane] * x;
-            if v > best[lane] {
-                (best[lane], slope[lane]) = (v, b[lane]);
-            }
-        }
+        // Whole four-lane arrays at each step, selects rather than branches: one vector
+        // multiply, add, compare and two blends.
+        let (a, b): (&[f64; 4], &[f64; 4]) = (a.try_into().unwrap(), b.try_into().unwrap());
+        let v: [f64; 4] = std::array::from_fn(|l| a[l] + b[l] * x);
+        let above: [bool; 4] = std::array::from_fn(|l| v[l] > best[l]);
+        best = std::array::from_fn(|l| if above[l] { v[l] } else { best[l] });
+        slope = std::array::from_fn(|l| if above[l] { b[l] } else { slope[l] });
     }
     for (a, b) in tail {
         let v = a + b * x;
@@ -370,11 +445,30 @@ fn largest_u(c: &Constraints, i: usize, delta: f64, next: (f64, f64), x: f64) ->
             u_hi = u;
         }
     };
-    for &r in c.at(i) {
-        bound(r);
-    }
-    for r in c.at(i + 1) {
-        bound([r[0] + 2.0 * delta * r[1], r[1], r[2]]);
+    if c.paired {
+        // Of the rows (α, β, γ) and (−α, −β, γ') only the one with a positive α bounds u
+        // from above: one division per pair.
+        let mut pair = |r: [f64; 3], gamma_other: f64| {
+            if r[0] > 0.0 {
+                bound(r);
+            } else {
+                bound([-r[0], -r[1], gamma_other]);
+            }
+        };
+        for r in c.at(i).chunks_exact(2) {
+            pair(r[0], r[1][2]);
+        }
+        for r in c.at(i + 1).chunks_exact(2) {
+            let r0 = r[0];
+            pair([r0[0] + 2.0 * delta * r0[1], r0[1], r0[2]], r[1][2]);
+        }
+    } else {
+        for &r in c.at(i) {
+            bound(r);
+        }
+        for r in c.at(i + 1) {
+            bound([r[0] + 2.0 * delta * r[1], r[1], r[2]]);
+        }
     }
     bound([2.0 * delta, 1.0, next.1]);
     bound([-2.0 * delta, -1.0, -next.0]);
@@ -407,6 +501,7 @@ mod tests {
                 .flat_map(|_| [[1.0, 0.0, 1.0], [-1.0, 0.0, 1.0]])
                 .collect(),
             rows_per_point: 2,
+            paired: false,
             x_max: vec![f64::INFINITY; n + 1],
         };
         let mut p = Parameterization::default();
@@ -449,6 +544,7 @@ mod tests {
             let c = Constraints {
                 rows,
                 rows_per_point: k,
+                paired: false,
                 x_max,
             };
             let next = match case % 4 {
@@ -481,6 +577,53 @@ mod tests {
     }
 
     #[test]
+    fn paired_rows_give_the_lines_and_bounds_of_single_rows_to_the_bit() {
+        // Rows (α, β, γ), (−α, −β, γ') as fill_constraints writes them, some with α = 0: the
+        // paired split (one division per pair) and the row-by-row one give the same lines in
+        // the same order, the same bounds on x and the same largest u.
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand::rngs::StdRng::seed_from_u64(26);
+        for case in 0..500 {
+            let k = rng.gen_range(1..8);
+            let mut rows = Vec::new();
+            for _ in 0..2 * k {
+                let alpha = if rng.gen_range(0..6) == 0 {
+                    0.0
+                } else {
+                    rng.gen_range(-2.0..2.0)
+                };
+                let beta = rng.gen_range(-1.0..1.0);
+                rows.push([alpha, beta, rng.gen_range(0.1..3.0)]);
+                rows.push([-alpha, -beta, rng.gen_range(0.1..3.0)]);
+            }
+            let x_max = vec![rng.gen_range(0.5..20.0); 2];
+            let next = (rng.gen_range(0.0..1.0), rng.gen_range(1.0..10.0));
+            let delta = rng.gen_range(0.001..0.1);
+            let x = rng.gen_range(0.0..2.0);
+            let [paired, single] = [true, false].map(|paired| Constraints {
+                rows: rows.clone(),
+                rows_per_point: 2 * k,
+                paired,
+                x_max: x_max.clone(),
+            });
+            let (mut a, mut b) = (Scratch::default(), Scratch::default());
+            let bounds = split_rows(&paired, 0, delta, next, &mut a);
+            assert_eq!(
+                bounds,
+                split_rows(&single, 0, delta, next, &mut b),
+                "case {case}"
+            );
+            assert_eq!(a.upper.columns(), b.upper.columns(), "case {case}");
+            assert_eq!(a.lower.columns(), b.lower.columns(), "case {case}");
+            assert_eq!(
+                largest_u(&paired, 0, delta, next, x).to_bits(),
+                largest_u(&single, 0, delta, next, x).to_bits(),
+                "case {case}"
+            );
+        }
+    }
+
+    #[test]
     fn an_empty_set_names_its_grid_point() {
         // x ≤ −1 at point 3 (an impossible speed bound) empties K_3.
         let s: Vec<f64> = (0..=5).map(f64::from).collect();
@@ -489,6 +632,7 @@ mod tests {
         let c = Constraints {
             rows: vec![[1.0, 0.0, 1.0]; 6],
             rows_per_point: 1,
+            paired: false,
             x_max,
         };
         let mut p = Parameterization::default();

@@ -2,14 +2,13 @@
 //! and torque limits: TOPP-RA (reachability analysis, Pham & Pham 2018) on a grid refined until
 //! the duration converges, checked afterwards by inverse dynamics along the result.
 
-use super::path_dynamics::PathDynamics;
+use super::check::{check_limits, CheckWorkspace};
+use super::grid_coefficients::{GridCoefficients, PointView, POINTS_PER_CALL};
 use super::reachability::{interval_times, parameterize, Constraints, LimitKind, Parameterization};
 use super::spline::Path;
-use crate::dynamics::rnea;
 use crate::error::{Error, Result};
 use crate::model::Model;
-use crate::sim::{ProfileSummary, TorqueStatistics, Trajectory};
-use crate::workspace::Workspace;
+use crate::sim::{ProfileSummary, Trajectory};
 
 /// Per-joint limits of a timing; `f64::INFINITY` where a joint has none.
 #[derive(Clone, Debug, PartialEq)]
@@ -154,14 +153,15 @@ pub struct TimingReport {
     pub samples_checked: usize,
     /// The torques of the final check's samples summarised against the model's effort limits:
     /// what [`torque_profile_into`](crate::sim::torque_profile_into) reports for this timing
-    /// every `check_step` seconds, the same samples and the same inverse dynamics, so a
+    /// every `check_step` seconds, the same samples and the same inverse dynamics (to round-off:
+    /// the check evaluates it for eight samples side by side, see [`crate::batch`]), so a
     /// profile at that step need not compute them again.
     pub profile: ProfileSummary,
 }
 
 /// The timing on one grid: `s_i`, `x_i = ṡ_i²`, `u_i` and the times `t_i`.
 #[derive(Clone, Debug)]
-struct Timing {
+pub(super) struct Timing {
     s: Vec<f64>,
     x: Vec<f64>,
     u: Vec<f64>,
@@ -178,7 +178,7 @@ impl Timing {
 
     /// [`state`](Self::state) for times that only increase from call to call: the interval is
     /// found by stepping on from the previous one (`k`, 0 at first) instead of a binary search.
-    fn state_after(&self, t: f64, k: &mut usize) -> (f64, f64, f64) {
+    pub(super) fn state_after(&self, t: f64, k: &mut usize) -> (f64, f64, f64) {
         let last = self.s.len() - 2;
         while *k < last && self.t[*k + 1] <= t {
             *k += 1;
@@ -206,7 +206,7 @@ impl Timing {
     }
 
     /// `q(s)`, `q'(s) ṡ` and `q'(s) s̈ + q''(s) ṡ²` from the path state `(s, ṡ, s̈)`.
-    fn to_joints(
+    pub(super) fn to_joints(
         path: &dyn Path,
         (s, sd, sdd): (f64, f64, f64),
         q: &mut [f64],
@@ -221,7 +221,7 @@ impl Timing {
         }
     }
 
-    fn duration(&self) -> f64 {
+    pub(super) fn duration(&self) -> f64 {
         self.t[self.t.len() - 1]
     }
 }
@@ -257,6 +257,11 @@ impl<P: Path> TimeOptimal<P> {
     pub fn report(&self) -> &TimingReport {
         &self.report
     }
+    /// The timing itself, for the tests of its check.
+    #[cfg(test)]
+    pub(super) fn timing(&self) -> &Timing {
+        &self.timing
+    }
     /// `(s, ṡ, s̈)` at time `t` (clamped to `[0, duration]`).
     pub fn path_state(&self, t: f64) -> (f64, f64, f64) {
         self.timing.state(t)
@@ -279,7 +284,7 @@ impl<P: Path> Trajectory for TimeOptimal<P> {
 ///
 /// With `u = s̈`, `x = ṡ²`, each limit is linear in `(u, x)` at every `s`:
 /// `x ≤ (vmax_j / |q'_j|)²`, `|q'_j u + q''_j x| ≤ amax_j`, `|a_j u + b_j x + c_j| ≤ τmax_j`
-/// (the coefficients of [`PathDynamics`]). On a uniform grid `s_0 … s_N` with
+/// (the coefficients of [`PathDynamics`](super::PathDynamics)). On a uniform grid `s_0 … s_N` with
 /// `x_{i+1} = x_i + 2 Δ u_i`, the controllable sets `K_i` are computed backward from
 /// `K_N = {0}` and the greedy forward pass from `x_0 = 0` takes the largest `u_i` keeping
 /// `x_{i+1} ∈ K_{i+1}`. The grid is doubled until the duration changes by less than
@@ -316,8 +321,8 @@ pub fn time_optimal<P: Path>(
     limits.check(model)?;
     check_options(options)?;
     let keep = 1.0 - options.limit_margin;
-    let mut dynamics = PathDynamics::new(model, path.nq())?;
-    let mut ws = Workspace::new(model);
+    let mut dynamics = GridCoefficients::new(model, path.nq())?;
+    let mut check_ws = CheckWorkspace::new(model, limits);
     // The rows of the grid being timed, and of the one before (half as fine).
     let (mut constraints, mut coarse) = (Constraints::default(), Constraints::default());
     let mut durations: Vec<(usize, f64)> = Vec::new();
@@ -341,7 +346,7 @@ pub fn time_optimal<P: Path>(
         durations.push((grid, duration));
         let finest = options.grid.is_some() || 2 * grid > options.max_grid;
         if converged || finest {
-            let check = check_limits(model, &mut ws, &path, &timing, limits, options.check_step);
+            let check = check_limits(model, &mut check_ws, &path, &timing, options.check_step);
             if check.0 <= 0.0 || finest {
                 if check.0 > 0.0 && options.grid.is_none() {
                     let (kind, j, at) = check.1;
@@ -432,7 +437,7 @@ fn time_on_grid(
     path: &dyn Path,
     n: usize,
     limits: (&TimingLimits, f64, f64),
-    dynamics: &mut PathDynamics,
+    dynamics: &mut GridCoefficients,
     (coarse, constraints): (&Constraints, &mut Constraints),
 ) -> Result<Timing> {
     let s = uniform_grid(path, n);
@@ -468,128 +473,108 @@ fn fmt_s(s: f64) -> String {
 /// outside the position limits or where `|c_j(s)| > keep τmax_j` (the robot could not be held
 /// there). On a doubled grid (`coarse` has the rows of `s_0, s_2, s_4, …`, which
 /// [`uniform_grid`] computes to the same bits) the even points' rows are copied, not recomputed.
+/// The coefficients of the others are computed [`POINTS_PER_CALL`] at a time
+/// ([`GridCoefficients`]), the rows then written point by point in grid order.
 fn fill_constraints(
     model: &Model,
     path: &dyn Path,
     s: &[f64],
-    (limits, keep, path_speed): (&TimingLimits, f64, f64),
-    dynamics: &mut PathDynamics,
+    limits: (&TimingLimits, f64, f64),
+    dynamics: &mut GridCoefficients,
     coarse: &Constraints,
     c: &mut Constraints,
 ) -> Result<()> {
     // Only the rows of finite limits are kept (the others never bind), two per limit.
     let finite = |l: &[f64]| l.iter().filter(|x| x.is_finite()).count();
-    c.rows_per_point = 2 * (finite(&limits.acceleration) + finite(&limits.effort));
+    c.rows_per_point = 2 * (finite(&limits.0.acceleration) + finite(&limits.0.effort));
+    // point_rows writes each limit's two rows one after the other.
+    c.paired = true;
     c.rows.clear();
     c.x_max.clear();
+    c.rows.reserve(s.len() * c.rows_per_point);
+    c.x_max.reserve(s.len());
     let doubled = s.len() % 2 == 1
         && coarse.x_max.len() == s.len() / 2 + 1
         && coarse.rows_per_point == c.rows_per_point;
-    for (k, &si) in s.iter().enumerate() {
-        if doubled && k % 2 == 0 {
-            c.rows.extend_from_slice(coarse.at(k / 2));
-            c.x_max.push(coarse.x_max[k / 2]);
-            continue;
+    let copied = |k: usize| doubled && k % 2 == 0;
+    let mut wanted = [0.0; POINTS_PER_CALL];
+    let mut first = 0;
+    while first < s.len() {
+        // The next grid points up to POINTS_PER_CALL computed ones, and their coefficients.
+        let (mut end, mut count) = (first, 0);
+        while end < s.len() && (count < POINTS_PER_CALL || copied(end)) {
+            if !copied(end) {
+                wanted[count] = s[end];
+                count += 1;
+            }
+            end += 1;
         }
-        let p = dynamics.at(model, path, si)?;
-        // x = ṡ² ≤ (keep · max_path_speed)²
-        let mut x_max = (keep * path_speed).powi(2);
-        for (j, joint) in model.joints().iter().enumerate() {
-            let (lo, hi) = (joint.limits.lower, joint.limits.upper);
-            if p.q[j] < lo || p.q[j] > hi {
-                return Err(Error::InvalidArgument(format!(
-                    "the path leaves the position limits of joint {} at s = {}: q = {} outside [{lo}, {hi}]",
-                    model.joint_names()[j],
-                    fmt_s(si),
-                    p.q[j]
-                )));
+        let batched = dynamics.eval(model, path, &wanted[..count]);
+        let mut next = 0;
+        for (k, &si) in s.iter().enumerate().take(end).skip(first) {
+            if copied(k) {
+                c.rows.extend_from_slice(coarse.at(k / 2));
+                c.x_max.push(coarse.x_max[k / 2]);
+                continue;
             }
-            let effort = limits.effort[j] * keep;
-            if p.c[j].abs() > effort {
-                return Err(Error::InvalidArgument(format!(
-                    "gravity alone needs {:.3} at joint {} at s = {}, more than its effort limit {} allows: the robot cannot be held there",
-                    p.c[j].abs(),
-                    model.joint_names()[j],
-                    fmt_s(si),
-                    limits.effort[j]
-                )));
+            if batched {
+                point_rows(model, si, dynamics.point(next), limits, c)?;
+            } else {
+                let p = dynamics.one.at(model, path, si)?;
+                point_rows(model, si, p.into(), limits, c)?;
             }
-            // x ≤ (vmax / |q'|)²
-            if p.dq[j] != 0.0 {
-                x_max = x_max.min((keep * limits.velocity[j] / p.dq[j]).powi(2));
-            }
-            // ±(q' u + q'' x) ≤ amax,  ±(a u + b x + c) ≤ τmax
-            let amax = keep * limits.acceleration[j];
-            if amax.is_finite() {
-                c.rows.push([p.dq[j], p.ddq[j], amax]);
-                c.rows.push([-p.dq[j], -p.ddq[j], amax]);
-            }
-            if effort.is_finite() {
-                c.rows.push([p.a[j], p.b[j], effort - p.c[j]]);
-                c.rows.push([-p.a[j], -p.b[j], effort + p.c[j]]);
-            }
+            next += 1;
         }
-        c.x_max.push(x_max);
+        first = end;
     }
     Ok(())
 }
 
-/// Samples the timing every `step` seconds (and at its end) and returns the largest excess
-/// `|value| / limit − 1` over velocity, acceleration and torque (inverse dynamics plus springs
-/// and Coulomb friction), where it occurs, the number of samples and their torque statistics.
-fn check_limits(
+/// The rows and the speed bound of the grid point `si` (see [`fill_constraints`]).
+fn point_rows(
     model: &Model,
-    ws: &mut Workspace,
-    path: &dyn Path,
-    timing: &Timing,
-    limits: &TimingLimits,
-    step: f64,
-) -> (f64, (LimitKind, usize, f64), usize, ProfileSummary) {
-    let n = path.nq();
-    let (mut q, mut qd, mut qdd) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let duration = timing.duration();
-    let samples = (duration / step).ceil() as usize + 1;
-    let mut worst = (f64::NEG_INFINITY, (LimitKind::Torque, 0, 0.0));
-    let mut stats = TorqueStatistics::new(model);
-    // |value| / limit as |value| · (1 / limit): one division per limit, not per sample.
-    let per_limit = |l: &[f64]| l.iter().map(|x| 1.0 / x).collect::<Vec<_>>();
-    let per_limit = [
-        per_limit(&limits.velocity),
-        per_limit(&limits.acceleration),
-        per_limit(&limits.effort),
-    ];
-    let mut interval = 0;
-    for k in 0..samples {
-        let t = (k as f64 * step).min(duration);
-        Timing::to_joints(
-            path,
-            timing.state_after(t, &mut interval),
-            &mut q,
-            &mut qd,
-            &mut qdd,
-        );
-        let Ok(tau) = rnea(model, ws, &q, &qd, &qdd) else {
-            return (
-                f64::INFINITY,
-                (LimitKind::Torque, 0, t),
-                k + 1,
-                stats.summary(k + 1),
-            );
-        };
-        for (j, joint) in model.joints().iter().enumerate() {
-            let tau_j = tau[j] + joint.spring_and_friction_torque(q[j], qd[j]);
-            stats.add(j, t, tau_j);
-            for (kind, value, per_limit) in [
-                (LimitKind::Velocity, qd[j], per_limit[0][j]),
-                (LimitKind::Acceleration, qdd[j], per_limit[1][j]),
-                (LimitKind::Torque, tau_j, per_limit[2][j]),
-            ] {
-                let excess = value.abs() * per_limit - 1.0;
-                if excess > worst.0 {
-                    worst = (excess, (kind, j, t));
-                }
-            }
+    si: f64,
+    p: PointView<'_>,
+    (limits, keep, path_speed): (&TimingLimits, f64, f64),
+    c: &mut Constraints,
+) -> Result<()> {
+    // x = ṡ² ≤ (keep · max_path_speed)²
+    let mut x_max = (keep * path_speed).powi(2);
+    for (j, joint) in model.joints().iter().enumerate() {
+        let (lo, hi) = (joint.limits.lower, joint.limits.upper);
+        if p.q[j] < lo || p.q[j] > hi {
+            return Err(Error::InvalidArgument(format!(
+                "the path leaves the position limits of joint {} at s = {}: q = {} outside [{lo}, {hi}]",
+                model.joint_names()[j],
+                fmt_s(si),
+                p.q[j]
+            )));
+        }
+        let effort = limits.effort[j] * keep;
+        if p.c[j].abs() > effort {
+            return Err(Error::InvalidArgument(format!(
+                "gravity alone needs {:.3} at joint {} at s = {}, more than its effort limit {} allows: the robot cannot be held there",
+                p.c[j].abs(),
+                model.joint_names()[j],
+                fmt_s(si),
+                limits.effort[j]
+            )));
+        }
+        // x ≤ (vmax / |q'|)²
+        if p.dq[j] != 0.0 {
+            x_max = x_max.min((keep * limits.velocity[j] / p.dq[j]).powi(2));
+        }
+        // ±(q' u + q'' x) ≤ amax,  ±(a u + b x + c) ≤ τmax
+        let amax = keep * limits.acceleration[j];
+        if amax.is_finite() {
+            c.rows.push([p.dq[j], p.ddq[j], amax]);
+            c.rows.push([-p.dq[j], -p.ddq[j], amax]);
+        }
+        if effort.is_finite() {
+            c.rows.push([p.a[j], p.b[j], effort - p.c[j]]);
+            c.rows.push([-p.a[j], -p.b[j], effort + p.c[j]]);
         }
     }
-    (worst.0, worst.1, samples, stats.summary(samples))
+    c.x_max.push(x_max);
+    Ok(())
 }
