@@ -111,6 +111,10 @@ pub struct Workspace<T: Real = f64> {
     pub subtree_wrench_in_world: Vec<Wrench<T>>,
     /// Derivatives: `Eᶜ_i`, the subtree's external wrenches given in the base frame.
     pub subtree_fixed_external_wrench: Vec<Wrench<T>>,
+    /// ABA derivatives: scratch of the articulated-body sweeps that form `M⁻¹` and `M⁻¹ X`
+    /// (`1 / D_i`, one block of rows, the slots of the blocks `F_i` and `A_i`; empty until the
+    /// first call).
+    pub(crate) articulated_sweep: crate::dynamics::ArticulatedSweep<T>,
     /// The number of bodies of the model this workspace was made for.
     nbodies: usize,
 }
@@ -181,6 +185,7 @@ impl<T: Real> Workspace<T> {
             subtree_linear_momentum: vec![Vector3::zeros(); n],
             subtree_wrench_in_world: vec![Wrench::zeros(); n],
             subtree_fixed_external_wrench: vec![Wrench::zeros(); n],
+            articulated_sweep: crate::dynamics::ArticulatedSweep::empty(),
             nbodies: n,
         }
     }
@@ -241,6 +246,9 @@ impl<T: Real> Workspace<T> {
             self.dtau_dv = try_square(n)?;
             self.dqdd_dq = try_square(n)?;
             self.dqdd_dv = try_square(n)?;
+        }
+        if self.articulated_sweep.len() != n {
+            self.articulated_sweep = crate::dynamics::ArticulatedSweep::new(n);
         }
         Ok(())
     }

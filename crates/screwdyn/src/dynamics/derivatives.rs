@@ -69,6 +69,7 @@
 //! (O(n²) on a chain), and allocates nothing.
 
 use super::aba::articulated_body;
+use super::articulated_inverse::articulated_inverse_and_products;
 use super::cholesky::with_small_size;
 use super::crba::invert_mass_matrix;
 use super::inputs::checked_poses;
@@ -123,7 +124,7 @@ pub fn rnea_derivatives<T: Real>(
     ws.check(model)?;
     ws.ensure_derivatives()?;
     checked_poses(model, ws, q, &[(v, "v"), (a, "a")], fext)?;
-    derivative_passes(model, ws, v, |i| a[i], fext);
+    derivative_passes(model, ws, v, a, fext);
     Ok(())
 }
 
@@ -174,11 +175,12 @@ fn velocity_coupling<T: Real>(
 }
 
 /// Both passes of [`rnea_derivatives`] given `ws.pose_in_world`.
+#[inline(never)]
 fn derivative_passes<T: Real>(
     model: &Model<T>,
     ws: &mut Workspace<T>,
     v: &[T],
-    a: impl Fn(usize) -> T,
+    a: &[T],
     fext: Option<&ExternalWrenches<T>>,
 ) {
     let n = model.nbodies();
@@ -196,7 +198,7 @@ fn derivative_passes<T: Real>(
         };
         let sdot = ad(&vp, &s);
         let vi = vp + s * v[i];
-        let ai = ap + s * a(i) + sdot * v[i];
+        let ai = ap + s * a[i] + sdot * v[i];
         let alpha = ad(&ap, &s) + ad(&vp, &sdot);
         let inertia = bodies[i].transformed(&h);
         let momentum = inertia.apply(&vi);
@@ -240,7 +242,7 @@ fn derivative_passes<T: Real>(
         // τ_j = s_jᵀ W_j + I_a,j q̈_j; the armature adds I_a,j to M_jj = ∂τ_j/∂q̈_j and nothing
         // to ∂τ/∂q or ∂τ/∂q̇ (it is constant).
         let armature = model.joints()[j].armature;
-        ws.tau[j] = s.dot(&(fc - ec)) + armature * a(j);
+        ws.tau[j] = s.dot(&(fc - ec)) + armature * a[j];
         let ic_sdot = ic.apply(&sdot);
         let phi = ic.apply(&alpha) + coupling_apply(&d11, &lm, &sdot) - ad_transpose(&s, &fc);
         let psi = ic_sdot * two + coupling_apply(&d11, &lm, &s);
@@ -319,14 +321,31 @@ pub fn aba_derivatives<T: Real>(
     articulated_body(model, ws, q, v, tau, fext)?;
     // Poses are those of `q` (set by ABA); q̈ is read from a moved-out buffer (no allocation).
     let qdd = std::mem::replace(&mut ws.qdd, DVector::zeros(0));
-    derivative_passes(model, ws, v, |i| qdd[i], fext);
+    derivative_passes(model, ws, v, qdd.as_slice(), fext);
     ws.qdd = qdd;
-    invert_mass_matrix(model, ws)?;
+    // M⁻¹ and ∂q̈/∂x = −M⁻¹ ∂τ/∂x: by articulated-body sweeps on larger models, by a Cholesky
+    // inverse and dense products (fewer instructions there) on small ones.
     let n = model.nv();
-    negated_product(&ws.mass_matrix_inverse, &ws.dtau_dq, &mut ws.dqdd_dq, n);
-    negated_product(&ws.mass_matrix_inverse, &ws.dtau_dv, &mut ws.dqdd_dv, n);
+    let (inverse, products) = (n >= INVERSE_SWEEP_FROM, n >= PRODUCT_SWEEP_FROM);
+    if !inverse {
+        invert_mass_matrix(model, ws)?;
+    }
+    articulated_inverse_and_products(model, ws, inverse, products);
+    if !products {
+        negated_product(&ws.mass_matrix_inverse, &ws.dtau_dq, &mut ws.dqdd_dq, n);
+        negated_product(&ws.mass_matrix_inverse, &ws.dtau_dv, &mut ws.dqdd_dv, n);
+    }
     Ok(())
 }
+
+/// From this many joints on, `M⁻¹` is formed by an articulated-body sweep
+/// ([`articulated_inverse_and_products`]), below by a Cholesky inverse (measured by instruction
+/// counts: BENCHMARKS.md, "ABA derivatives: `M⁻¹` by an articulated-body sweep").
+const INVERSE_SWEEP_FROM: usize = 10;
+
+/// From this many joints on, `−M⁻¹ ∂τ/∂x` is formed by articulated-body sweeps, below by dense
+/// products with `M⁻¹`.
+const PRODUCT_SWEEP_FROM: usize = 28;
 
 /// `out = −a b` for n×n matrices, column by column as sums of columns of `a` (a plain loop:
 /// `gemm` may allocate packing buffers), compiled for the size at hand ([`with_small_size`]).
