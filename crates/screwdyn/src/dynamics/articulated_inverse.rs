@@ -362,16 +362,16 @@ fn sweep<T: Real>(
             }
         }
         *row = q;
-        if flags & HAS_CHILDREN != 0 {
-            a = a_parent;
-            for r in 0..6 {
-                for w in 0..LANES {
-                    a[r][w] = s[r].mul_add(q[w], a[r][w]);
-                }
+        // Formed for leaves too (unused there): a conditional update of `a` made the compiler
+        // shuffle its lanes at every body.
+        a = a_parent;
+        for r in 0..6 {
+            for w in 0..LANES {
+                a[r][w] = s[r].mul_add(q[w], a[r][w]);
             }
-            if flags & BRANCHES != 0 {
-                fwd[slot] = a;
-            }
+        }
+        if flags & BRANCHES != 0 {
+            fwd[slot] = a;
         }
     }
 }

@@ -64,9 +64,13 @@
 //!
 //! Forward dynamics `q̈ = FD(q, q̇, τ)` satisfies `ID(q, q̇, FD(q, q̇, τ)) = τ`, so
 //! `∂q̈/∂q = −M⁻¹ ∂τ/∂q|_{q̈ = FD}`, `∂q̈/∂q̇ = −M⁻¹ ∂τ/∂q̇|_{q̈ = FD}` and `∂q̈/∂τ = M⁻¹`.
+//! `M⁻¹` and the two products come from articulated-body sweeps over the articulated inertias
+//! of the ABA that gave `q̈` (`articulated_inverse.rs`: O(n²) each instead of the O(n³) of a
+//! dense inverse and dense products) on larger models, and from a Cholesky inverse and dense
+//! products on small ones, where they take fewer instructions.
 //!
-//! All of it is one forward and one backward pass, O(n d) with `d` the depth of the tree
-//! (O(n²) on a chain), and allocates nothing.
+//! The derivative passes are one forward and one backward pass, O(n d) with `d` the depth of
+//! the tree (O(n²) on a chain), and allocate nothing.
 
 use super::aba::articulated_body;
 use super::articulated_inverse::articulated_inverse_and_products;
@@ -174,7 +178,8 @@ fn velocity_coupling<T: Real>(
     (d, f)
 }
 
-/// Both passes of [`rnea_derivatives`] given `ws.pose_in_world`.
+/// Both passes of [`rnea_derivatives`] given `ws.pose_in_world` (one copy, shared with
+/// [`aba_derivatives`]).
 #[inline(never)]
 fn derivative_passes<T: Real>(
     model: &Model<T>,
@@ -291,7 +296,9 @@ fn derivative_passes<T: Real>(
 /// `∂q̈/∂q = −M⁻¹ ∂τ/∂q`, `∂q̈/∂q̇ = −M⁻¹ ∂τ/∂q̇` (the inverse-dynamics derivatives of
 /// [`rnea_derivatives`] taken at `q̈ = FD(q, q̇, τ)`) and `∂q̈/∂τ = M⁻¹`. Writes `ws.qdd`
 /// (forward dynamics by the articulated-body algorithm, [`aba`](super::aba)), `ws.dqdd_dq`, `ws.dqdd_dv`, `ws.mass_matrix_inverse`,
-/// and everything [`rnea_derivatives`] writes. Entry `(i, j)` is `∂q̈_i/∂x_j`.
+/// and everything [`rnea_derivatives`] writes. Entry `(i, j)` is `∂q̈_i/∂x_j`. From 10 joints
+/// on `M⁻¹` is formed by an articulated-body sweep over ABA's articulated inertias, and from
+/// 20 joints on the products too (O(n²) each instead of O(n³)).
 ///
 /// # Errors
 /// As [`rnea_derivatives`] (with `tau` for `a`), and
@@ -345,7 +352,7 @@ const INVERSE_SWEEP_FROM: usize = 10;
 
 /// From this many joints on, `−M⁻¹ ∂τ/∂x` is formed by articulated-body sweeps, below by dense
 /// products with `M⁻¹`.
-const PRODUCT_SWEEP_FROM: usize = 28;
+const PRODUCT_SWEEP_FROM: usize = 20;
 
 /// `out = −a b` for n×n matrices, column by column as sums of columns of `a` (a plain loop:
 /// `gemm` may allocate packing buffers), compiled for the size at hand ([`with_small_size`]).
