@@ -44,7 +44,7 @@ use crate::workspace::Workspace;
 use nalgebra::DMatrix;
 
 /// The number of columns one sweep carries (the width of the blocks `F_i`, `A_i`).
-pub(crate) const LANES: usize = 4;
+pub(crate) const LANES: usize = 8;
 
 /// One 6 × [`LANES`] block: row `r` of `F_i` or `A_i` for the lanes' columns.
 type Block<T> = [[T; LANES]; 6];
