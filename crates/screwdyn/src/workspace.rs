@@ -8,9 +8,10 @@ use crate::spatial::{Se3, Twist, Wrench};
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3};
 
 /// Preallocated per-model buffers. Algorithms read a [`Model`] and write here; after
-/// `Workspace::new` no algorithm call allocates. Every field is public and documented with the
-/// quantity it holds after the algorithm that writes it (results such as `tau` or
-/// `mass_matrix`, and the intermediate quantities of ABA, CRBA and the Coriolis matrix).
+/// `Workspace::new` no algorithm call allocates. Every field but the scratch of the
+/// ABA-derivative sweeps is public and documented with the quantity it holds after the
+/// algorithm that writes it (results such as `tau` or `mass_matrix`, and the intermediate
+/// quantities of ABA, CRBA and the Coriolis matrix).
 ///
 /// Field names follow the notation of docs/notation.md: `pose_in_parent[i] = H_i^{λ(i)}(q)`,
 /// `pose_in_world[i] = H_i^0(q)`, `twist[i] = V_i^{i,0}`, `twist_dot[i] = V̇_i^{i,0}`,
