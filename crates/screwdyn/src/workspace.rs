@@ -8,9 +8,10 @@ use crate::spatial::{Se3, Twist, Wrench};
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3};
 
 /// Preallocated per-model buffers. Algorithms read a [`Model`] and write here; after
-/// `Workspace::new` no algorithm call allocates. Every field is public and documented with the
-/// quantity it holds after the algorithm that writes it (results such as `tau` or
-/// `mass_matrix`, and the intermediate quantities of ABA, CRBA and the Coriolis matrix).
+/// `Workspace::new` no algorithm call allocates. Every field but the scratch of the
+/// ABA-derivative sweeps is public and documented with the quantity it holds after the
+/// algorithm that writes it (results such as `tau` or `mass_matrix`, and the intermediate
+/// quantities of ABA, CRBA and the Coriolis matrix).
 ///
 /// Field names follow the notation of docs/notation.md: `pose_in_parent[i] = H_i^{λ(i)}(q)`,
 /// `pose_in_world[i] = H_i^0(q)`, `twist[i] = V_i^{i,0}`, `twist_dot[i] = V̇_i^{i,0}`,
@@ -121,6 +122,10 @@ pub struct Workspace<T: Real = f64> {
     pub subtree_wrench_in_world: Vec<Wrench<T>>,
     /// Derivatives: `Eᶜ_i`, the subtree's external wrenches given in the base frame.
     pub subtree_fixed_external_wrench: Vec<Wrench<T>>,
+    /// ABA derivatives: scratch of the articulated-body sweeps that form `M⁻¹` and `M⁻¹ X`
+    /// (`1 / D_i`, one block of rows, the slots of the blocks `F_i` and `A_i`; empty until the
+    /// first call).
+    pub(crate) articulated_sweep: crate::dynamics::ArticulatedSweep<T>,
     /// The number of bodies of the model this workspace was made for.
     nbodies: usize,
 }
@@ -193,6 +198,7 @@ impl<T: Real> Workspace<T> {
             subtree_linear_momentum: vec![Vector3::zeros(); n],
             subtree_wrench_in_world: vec![Wrench::zeros(); n],
             subtree_fixed_external_wrench: vec![Wrench::zeros(); n],
+            articulated_sweep: crate::dynamics::ArticulatedSweep::empty(),
             nbodies: n,
         }
     }
@@ -253,6 +259,9 @@ impl<T: Real> Workspace<T> {
             self.dtau_dv = try_square(n)?;
             self.dqdd_dq = try_square(n)?;
             self.dqdd_dv = try_square(n)?;
+        }
+        if self.articulated_sweep.len() != n {
+            self.articulated_sweep = crate::dynamics::ArticulatedSweep::new(n);
         }
         Ok(())
     }

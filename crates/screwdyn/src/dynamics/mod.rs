@@ -18,6 +18,7 @@
 //! ```
 
 mod aba;
+mod articulated_inverse;
 mod cholesky;
 mod classic_newton_euler;
 mod closed_form;
@@ -38,6 +39,7 @@ mod wrenches;
 
 pub use aba::aba;
 pub(crate) use aba::singular as singular_articulated_inertia;
+pub(crate) use articulated_inverse::ArticulatedSweep;
 pub(crate) use cholesky::singular_threshold;
 pub use classic_newton_euler::{classic_newton_euler, ClassicLink};
 pub use closed_form::{closed_form, ClosedForm, MAX_CLOSED_FORM_JOINTS};
