@@ -1,14 +1,14 @@
 //! Forward dynamics by Featherstone's articulated-body algorithm (O(n)), in the notation of docs/notation.md.
 
 use super::cholesky::singular_threshold;
-use super::fused::{ad_fused, dot6, mat6_vec};
-use super::inertia_in_world::{velocity_product_wrench, InertiaInWorld};
 use super::inputs::checked_poses;
 use super::rnea::base_acceleration;
 use super::wrenches::ExternalWrenches;
 use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::scalar::Real;
+use crate::spatial::fused::{ad_fused, dot6, mat6_vec};
+use crate::spatial::inertia_in_world::{velocity_product_wrench, InertiaInWorld};
 use crate::spatial::Twist;
 use crate::workspace::Workspace;
 use nalgebra::DVector;

@@ -6,6 +6,7 @@ use crate::error::Result;
 use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::Real;
+use crate::spatial::fused::{cross, dot6};
 use crate::spatial::{ang, lin, twist, CompositeInertia, Twist, Wrench};
 use crate::workspace::Workspace;
 use nalgebra::DMatrix;
@@ -258,25 +259,6 @@ fn composite_times_screw<T: Real>(c: &CompositeInertia<T>, s: &Twist<T>) -> Wren
     });
     let f = Vector3::from_fn(|r, _| v[r].mul_add(m, -h_x_w[r]));
     twist(l, f)
-}
-
-/// `xᵀ y` of two 6-vectors, fused, summed as a tree (three independent pairs).
-#[inline(always)]
-fn dot6<T: Real>(x: &Twist<T>, y: &Wrench<T>) -> T {
-    let p0 = x[1].mul_add(y[1], x[0] * y[0]);
-    let p1 = x[3].mul_add(y[3], x[2] * y[2]);
-    let p2 = x[5].mul_add(y[5], x[4] * y[4]);
-    (p0 + p1) + p2
-}
-
-/// `a × b`, fused.
-#[inline(always)]
-fn cross<T: Real>(a: &Vector3<T>, b: &Vector3<T>) -> Vector3<T> {
-    Vector3::new(
-        a.y.mul_add(b.z, -(a.z * b.y)),
-        a.z.mul_add(b.x, -(a.x * b.z)),
-        a.x.mul_add(b.y, -(a.y * b.x)),
-    )
 }
 
 /// `M(q)⁻¹` by CRBA and a Cholesky factorisation. Returns `ws.mass_matrix_inverse`;

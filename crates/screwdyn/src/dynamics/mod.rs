@@ -27,8 +27,6 @@ mod crba;
 mod derivatives;
 pub(crate) mod energy;
 mod forward;
-mod fused;
-mod inertia_in_world;
 mod inputs;
 mod lagrange;
 mod regressor;

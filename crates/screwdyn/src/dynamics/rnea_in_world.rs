@@ -4,12 +4,12 @@
 //! run: every twist, wrench and inertia is written in {0}, so nothing is carried from one
 //! body's frame to another's.
 
-use super::fused::{ad_fused, cross, dot6};
-use super::inertia_in_world::{com_in_world, velocity_product_wrench, InertiaInWorld};
 use super::rnea::base_acceleration;
 use super::wrenches::ExternalWrenches;
 use crate::model::Model;
 use crate::scalar::Real;
+use crate::spatial::fused::{ad_fused, cross, dot6};
+use crate::spatial::inertia_in_world::{com_in_world, velocity_product_wrench, InertiaInWorld};
 use crate::spatial::{lin, twist, Twist};
 use crate::workspace::Workspace;
 

@@ -3,6 +3,7 @@
 //! `M = Σ_i J_iᵀ 𝔍_i J_i` summed over subtrees).
 
 use super::inertia::SpatialInertia;
+use super::inertia_in_world::InertiaInWorld;
 use super::se3::Se3;
 use super::so3::hat;
 use super::twist::{Twist, Wrench};
@@ -108,45 +109,23 @@ impl<T: Real> CompositeInertia<T> {
     /// ```
     #[inline(always)]
     pub fn rigid_in_world(body: &SpatialInertia<T>, pose_in_world: &Se3<T>) -> Self {
-        let (r, ic, m, c) = (
-            &pose_in_world.rotation,
-            &body.inertia_com,
-            body.mass,
-            &body.com,
-        );
-        // A = R I_c.
-        let a = Matrix3::from_fn(|row, k| {
-            r[(row, 2)].mul_add(
-                ic[(2, k)],
-                r[(row, 1)].mul_add(ic[(1, k)], r[(row, 0)] * ic[(0, k)]),
-            )
-        });
-        // (A Rᵀ)_jk = row j of A · row k of R.
-        let dot = |j: usize, k: usize| {
-            a[(j, 2)].mul_add(
-                r[(k, 2)],
-                a[(j, 1)].mul_add(r[(k, 1)], a[(j, 0)] * r[(k, 0)]),
-            )
-        };
-        // c⁰ = R c + p, h = m c⁰.
-        let p = &pose_in_world.translation;
-        let c0 = Vector3::from_fn(|row, _| {
-            r[(row, 2)].mul_add(
-                c.z,
-                r[(row, 1)].mul_add(c.y, r[(row, 0)].mul_add(c.x, p[row])),
-            )
-        });
+        // m, c⁰ = R c + p and the six entries of R I_c Rᵀ; then h = m c⁰.
+        let InertiaInWorld {
+            mass: m,
+            com: c0,
+            rotational: [i00, i11, i22, i01, i02, i12],
+        } = InertiaInWorld::new(body, pose_in_world);
         let h = c0 * m;
         // m(|c⁰|² 1 − c⁰ c⁰ᵀ): the diagonal is h_y c⁰_y + h_z c⁰_z, …, the rest −h_a c⁰_b.
         let (xx, yy, zz) = (h.x * c0.x, h.y * c0.y, h.z * c0.z);
-        let i01 = dot(0, 1) - h.x * c0.y;
-        let i02 = dot(0, 2) - h.x * c0.z;
-        let i12 = dot(1, 2) - h.y * c0.z;
+        let i01 = i01 - h.x * c0.y;
+        let i02 = i02 - h.x * c0.z;
+        let i12 = i12 - h.y * c0.z;
         #[rustfmt::skip]
         let inertia_origin = Matrix3::new(
-            dot(0, 0) + (yy + zz), i01, i02,
-            i01, dot(1, 1) + (xx + zz), i12,
-            i02, i12, dot(2, 2) + (xx + yy),
+            i00 + (yy + zz), i01, i02,
+            i01, i11 + (xx + zz), i12,
+            i02, i12, i22 + (xx + yy),
         );
         CompositeInertia {
             mass: m,

@@ -12,7 +12,9 @@
 //! ```
 
 mod composite_inertia;
+pub(crate) mod fused;
 mod inertia;
+pub(crate) mod inertia_in_world;
 mod pose;
 mod se3;
 mod so3;

@@ -1,5 +1,5 @@
 //! A body's rigid inertia moved to the base frame {0} from its ten parameters, for the
-//! base-frame algorithms (ABA and the RNEA in {0}): `𝔍^0 = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i}` is never
+//! base-frame algorithms (ABA, the RNEA in {0} and the CRBA's composite inertias): `𝔍^0 = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i}` is never
 //! formed by 6×6 products, only `m`, `c^0` and the six entries of `I_c^0`.
 
 use super::fused::cross;
@@ -9,17 +9,17 @@ use nalgebra::{Matrix3, Matrix6, Vector3};
 
 /// Body `i`'s inertia in {0}, given `h = H_i^0 = (R, p)`: the mass `m`, the centre of mass
 /// `c^0 = R c + p` and the rotational inertia about it `I_c^0 = R I_c Rᵀ` (symmetric, six entries).
-pub(super) struct InertiaInWorld<T: Real> {
-    mass: T,
-    com: Vector3<T>,
+pub(crate) struct InertiaInWorld<T: Real> {
+    pub(crate) mass: T,
+    pub(crate) com: Vector3<T>,
     /// `I_c^0` as `(I₀₀, I₁₁, I₂₂, I₀₁, I₀₂, I₁₂)`.
-    rotational: [T; 6],
+    pub(crate) rotational: [T; 6],
 }
 
 impl<T: Real> InertiaInWorld<T> {
     /// `m`, `c^0 = R c + p` and `I_c^0 = R I_c Rᵀ` of `body` (given in its own frame) at `h = H_i^0`.
     #[inline(always)]
-    pub(super) fn new(body: &SpatialInertia<T>, h: &Se3<T>) -> Self {
+    pub(crate) fn new(body: &SpatialInertia<T>, h: &Se3<T>) -> Self {
         let (r, ic) = (&h.rotation, &body.inertia_com);
         // A = R I_c, row by row.
         let a = Matrix3::from_fn(|row, k| {
@@ -52,7 +52,7 @@ impl<T: Real> InertiaInWorld<T> {
     /// The momentum `(l, f) = 𝔍^0 x` of the twist `x = (x_ω, x_v)`:
     /// `f = m (x_v − c^0 × x_ω)`, `l = I_c^0 x_ω + c^0 × f`.
     #[inline(always)]
-    pub(super) fn momentum(&self, x: &Twist<T>) -> Wrench<T> {
+    pub(crate) fn momentum(&self, x: &Twist<T>) -> Wrench<T> {
         let [i00, i11, i22, i01, i02, i12] = self.rotational;
         let (w, v) = (ang(x), lin(x));
         let f = (v - cross(&self.com, &w)) * self.mass;
@@ -67,7 +67,7 @@ impl<T: Real> InertiaInWorld<T> {
     /// Writes the 6×6 `𝔍^0 = [I_c^0 − m[c^0][c^0]  m[c^0]; −m[c^0]  m·1]` into `out`, entry by
     /// entry in place (column-major order), with no 6×6 temporary to copy.
     #[inline(always)]
-    pub(super) fn write_matrix(&self, out: &mut Matrix6<T>) {
+    pub(crate) fn write_matrix(&self, out: &mut Matrix6<T>) {
         let (m, c0) = (self.mass, &self.com);
         let [i00, i11, i22, i01, i02, i12] = self.rotational;
         let (mx, my, mz) = (m * c0.x, m * c0.y, m * c0.z);
@@ -96,7 +96,7 @@ impl<T: Real> InertiaInWorld<T> {
 
 /// `c^0 = R c + p`: the centre of mass of `body` in {0} at `h = H_i^0 = (R, p)`.
 #[inline(always)]
-pub(super) fn com_in_world<T: Real>(body: &SpatialInertia<T>, h: &Se3<T>) -> Vector3<T> {
+pub(crate) fn com_in_world<T: Real>(body: &SpatialInertia<T>, h: &Se3<T>) -> Vector3<T> {
     let (r, c) = (&h.rotation, &body.com);
     Vector3::from_fn(|row, _| {
         r[(row, 2)].mul_add(
@@ -109,7 +109,7 @@ pub(super) fn com_in_world<T: Real>(body: &SpatialInertia<T>, h: &Se3<T>) -> Vec
 /// The bias wrench `−ad_Vᵀ 𝔍^0 V = (ω × l + v × f, ω × f)` of the twist `V = (ω, v)` whose
 /// momentum is `(l, f) = 𝔍^0 V`.
 #[inline(always)]
-pub(super) fn velocity_product_wrench<T: Real>(vel: &Twist<T>, momentum: &Wrench<T>) -> Wrench<T> {
+pub(crate) fn velocity_product_wrench<T: Real>(vel: &Twist<T>, momentum: &Wrench<T>) -> Wrench<T> {
     let (w, v) = (ang(vel), lin(vel));
     let (l, f) = (ang(momentum), lin(momentum));
     twist(cross(&w, &l) + cross(&v, &f), cross(&w, &f))
