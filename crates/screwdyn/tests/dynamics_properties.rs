@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{assert_close, random_tree, random_vec};
+use common::{assert_close, random_external, random_tree, random_vec};
 use nalgebra::{DMatrix, DVector, Matrix6xX, Vector3, Vector6};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -35,22 +35,6 @@ fn models(seed: u64) -> Vec<(Model, StdRng)> {
 
 fn mat(m: &DMatrix<f64>) -> Vec<f64> {
     m.as_slice().to_vec()
-}
-
-fn random_external(model: &Model, rng: &mut StdRng) -> ExternalWrenches {
-    let mut ext = ExternalWrenches::new(model);
-    for i in 0..model.nbodies() {
-        let w = Vector6::from_vec(random_vec(rng, 6, 2.0));
-        if rng.gen_bool(0.5) {
-            ext.add_local(i, w).unwrap();
-        } else {
-            ext.add_world(i, w).unwrap();
-        }
-    }
-    let tool = model.frame_id("tool").unwrap();
-    ext.add_tip(model, tool, Vector6::from_vec(random_vec(rng, 6, 2.0)))
-        .unwrap();
-    ext
 }
 
 #[test]

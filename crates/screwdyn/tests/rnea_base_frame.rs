@@ -7,93 +7,21 @@
 //! prismatic and helical joints, the built-in arms and a 200-joint chain, all with armatures.
 mod common;
 
-use common::{assert_close, random_inertia, random_tree, random_vec};
-use nalgebra::{DVector, Vector3, Vector6};
+use common::{assert_close, random_chain, random_external, random_tree, random_vec};
+use nalgebra::DVector;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use screwdyn::dynamics::{
     closed_form, coriolis_matrix, crba, gravity_torque, inverse_dynamics, nonlinear_effects, rnea,
-    rnea_trace, ExternalWrenches, MAX_CLOSED_FORM_JOINTS,
+    rnea_trace, MAX_CLOSED_FORM_JOINTS,
 };
-use screwdyn::model::{JointSpec, ModelBuilder};
-use screwdyn::spatial::{exp_so3, Se3};
 use screwdyn::{builtin, Model, Workspace};
 
 const TOL: f64 = 1e-10;
 
-fn unit(rng: &mut StdRng) -> Vector3<f64> {
-    Vector3::new(
-        rng.gen_range(-1.0..1.0),
-        rng.gen_range(-1.0..1.0),
-        rng.gen_range(-1.0..1.0),
-    )
-    .try_normalize(0.1)
-    .unwrap_or(Vector3::z())
-}
-
-/// A serial chain of `n` revolute and prismatic joints with random axes, home poses (links of
-/// 0.05–0.2 m) and physical inertias.
-fn random_chain(rng: &mut StdRng, n: usize) -> Model {
-    let mut b = ModelBuilder::new("chain");
-    b.gravity(Vector3::new(0.2, 0.1, -9.81));
-    for i in 0..n {
-        let parent = if i == 0 {
-            "base".to_string()
-        } else {
-            format!("l{}", i - 1)
-        };
-        let axis = unit(rng);
-        let (spec, screw) = if rng.gen_bool(0.8) {
-            let point = unit(rng) * 0.05;
-            let l = -axis.cross(&point);
-            (
-                JointSpec::revolute(&format!("j{i}")),
-                Vector6::new(axis.x, axis.y, axis.z, l.x, l.y, l.z),
-            )
-        } else {
-            (
-                JointSpec::prismatic(&format!("j{i}")),
-                Vector6::new(0.0, 0.0, 0.0, axis.x, axis.y, axis.z),
-            )
-        };
-        let home = Se3::new(
-            exp_so3(&(unit(rng) * rng.gen_range(0.0..3.0))),
-            unit(rng) * rng.gen_range(0.05..0.2),
-        );
-        b.link(
-            &format!("l{i}"),
-            &parent,
-            spec.screw_in_child(screw),
-            home,
-            random_inertia(rng),
-        );
-    }
-    b.frame("tool", &format!("l{}", n - 1), Se3::identity());
-    b.build().expect("random chain is valid")
-}
-
 fn with_armature(model: &Model, rng: &mut StdRng) -> Model {
     let a: Vec<f64> = (0..model.nq()).map(|_| rng.gen_range(0.0..0.5)).collect();
     model.with_armature(&a).unwrap()
-}
-
-/// Wrenches on every body, given in the body's frame or in {0} at random, and one at the first
-/// frame on a moving body.
-fn random_external(model: &Model, rng: &mut StdRng) -> ExternalWrenches {
-    let mut ext = ExternalWrenches::new(model);
-    for i in 0..model.nbodies() {
-        let w = Vector6::from_vec(random_vec(rng, 6, 2.0));
-        if rng.gen_bool(0.5) {
-            ext.add_local(i, w).unwrap();
-        } else {
-            ext.add_world(i, w).unwrap();
-        }
-    }
-    if let Some(tool) = model.frames().iter().position(|f| f.body.is_some()) {
-        ext.add_tip(model, tool, Vector6::from_vec(random_vec(rng, 6, 2.0)))
-            .unwrap();
-    }
-    ext
 }
 
 fn models() -> Vec<(String, Model)> {

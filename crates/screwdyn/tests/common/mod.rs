@@ -4,11 +4,13 @@
 use nalgebra::{Matrix3, Vector3, Vector6};
 use rand::rngs::StdRng;
 use rand::Rng;
+use screwdyn::dynamics::ExternalWrenches;
 use screwdyn::model::{JointSpec, ModelBuilder};
 use screwdyn::spatial::{exp_so3, Se3, SpatialInertia};
 use screwdyn::Model;
 
-fn unit(rng: &mut StdRng) -> Vector3<f64> {
+/// A random unit vector.
+pub fn unit(rng: &mut StdRng) -> Vector3<f64> {
     loop {
         let v = Vector3::new(
             rng.gen_range(-1.0..1.0),
@@ -139,4 +141,64 @@ pub fn massless_tip() -> Model {
         SpatialInertia::zero(),
     );
     b.build().unwrap()
+}
+
+/// A serial chain of `n` revolute and prismatic joints with random axes, home poses (links of
+/// 0.05–0.2 m) and physical inertias.
+pub fn random_chain(rng: &mut StdRng, n: usize) -> Model {
+    let mut b = ModelBuilder::new("chain");
+    b.gravity(Vector3::new(0.2, 0.1, -9.81));
+    for i in 0..n {
+        let parent = if i == 0 {
+            "base".to_string()
+        } else {
+            format!("l{}", i - 1)
+        };
+        let axis = unit(rng);
+        let (spec, screw) = if rng.gen_bool(0.8) {
+            let point = unit(rng) * 0.05;
+            let l = -axis.cross(&point);
+            (
+                JointSpec::revolute(&format!("j{i}")),
+                Vector6::new(axis.x, axis.y, axis.z, l.x, l.y, l.z),
+            )
+        } else {
+            (
+                JointSpec::prismatic(&format!("j{i}")),
+                Vector6::new(0.0, 0.0, 0.0, axis.x, axis.y, axis.z),
+            )
+        };
+        let home = Se3::new(
+            exp_so3(&(unit(rng) * rng.gen_range(0.0..3.0))),
+            unit(rng) * rng.gen_range(0.05..0.2),
+        );
+        b.link(
+            &format!("l{i}"),
+            &parent,
+            spec.screw_in_child(screw),
+            home,
+            random_inertia(rng),
+        );
+    }
+    b.frame("tool", &format!("l{}", n - 1), Se3::identity());
+    b.build().expect("random chain is valid")
+}
+
+/// Wrenches on every body, given in the body's frame or in {0} at random, and one at the first
+/// frame on a moving body.
+pub fn random_external(model: &Model, rng: &mut StdRng) -> ExternalWrenches {
+    let mut ext = ExternalWrenches::new(model);
+    for i in 0..model.nbodies() {
+        let w = Vector6::from_vec(random_vec(rng, 6, 2.0));
+        if rng.gen_bool(0.5) {
+            ext.add_local(i, w).unwrap();
+        } else {
+            ext.add_world(i, w).unwrap();
+        }
+    }
+    if let Some(tool) = model.frames().iter().position(|f| f.body.is_some()) {
+        ext.add_tip(model, tool, Vector6::from_vec(random_vec(rng, 6, 2.0)))
+            .unwrap();
+    }
+    ext
 }
