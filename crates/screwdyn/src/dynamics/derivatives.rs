@@ -84,7 +84,7 @@ use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::{real, Real};
 use crate::spatial::CompositeInertia;
-use crate::spatial::{ad, ad_transpose, hat, twist, Twist, Wrench};
+use crate::spatial::{ad, ad_transpose, ang, hat, lin, twist, Twist, Wrench};
 use crate::workspace::Workspace;
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
@@ -128,7 +128,7 @@ pub fn rnea_derivatives<T: Real>(
     ws.check(model)?;
     ws.ensure_derivatives()?;
     checked_poses(model, ws, q, &[(v, "v"), (a, "a")], fext)?;
-    derivative_passes(model, ws, v, a, fext);
+    derivative_passes(model, ws, v, a, fext, Kinematics::Form);
     Ok(())
 }
 
@@ -141,15 +141,10 @@ fn coupling_apply<T: Real>(d11: &Matrix3<T>, f: &Vector3<T>, x: &Twist<T>) -> Wr
     twist(top, bottom)
 }
 
-/// `Dᵀ y = (D₁₁ᵀ y_a + 2 f × y_l, 0)`.
+/// The angular part of `Dᵀ y = (D₁₁ᵀ y_a + 2 f × y_l, 0)` (its linear part is zero).
 #[inline]
-fn coupling_transpose_apply<T: Real>(d11: &Matrix3<T>, f: &Vector3<T>, y: &Twist<T>) -> Twist<T> {
-    let ya = Vector3::new(y[0], y[1], y[2]);
-    let yl = Vector3::new(y[3], y[4], y[5]);
-    twist(
-        d11.tr_mul(&ya) + f.cross(&yl) * real::<T>(2.0),
-        Vector3::zeros(),
-    )
+fn coupling_transpose_apply<T: Real>(d11: &Matrix3<T>, f: &Vector3<T>, y: &Twist<T>) -> Vector3<T> {
+    d11.tr_mul(&ang(y)) + f.cross(&lin(y)) * real::<T>(2.0)
 }
 
 /// `D = (𝔍 V)⊼ − ad_Vᵀ 𝔍 − 𝔍 ad_V` of one body, which has only two non-zero blocks: with
@@ -178,76 +173,135 @@ fn velocity_coupling<T: Real>(
     (d, f)
 }
 
+/// Where the forward pass of [`derivative_passes`] takes `s_i`, `V_i` and `A_i` from.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Kinematics {
+    /// Formed here from `ws.pose_in_world`, `q̇` and `q̈` (inverse-dynamics derivatives).
+    Form,
+    /// Read from `ws.screw_in_world`, `ws.twist_in_world` and `ws.twist_dot_in_world`, left
+    /// there by the ABA of the same call (the `q̈` passed in is that ABA's), which forms
+    /// `s_i` and `V_i` by the same operations and `A_i = A_{λ(i)} + ṡ_i q̇_i + s_i q̈_i`.
+    FromAba,
+}
+
 /// Both passes of [`rnea_derivatives`] given `ws.pose_in_world` (one copy, shared with
-/// [`aba_derivatives`]).
-#[inline(never)]
+/// [`aba_derivatives`]). Each body's inertia `𝔍_i` in {0} is formed from its ten parameters
+/// ([`CompositeInertia::rigid_in_world`]: `m`, `h = m c⁰`, `I_o`).
+#[multiversion::multiversion(targets(
+    "x86_64+avx512f+avx512vl+avx512dq+avx512bw+avx2+fma",
+    "x86_64+avx2+fma"
+))]
 fn derivative_passes<T: Real>(
     model: &Model<T>,
     ws: &mut Workspace<T>,
     v: &[T],
     a: &[T],
     fext: Option<&ExternalWrenches<T>>,
+    kinematics: Kinematics,
 ) {
     let n = model.nbodies();
-    let (motions, parents, bodies) = (model.motions(), model.parents(), &model.body_composite);
+    let (motions, parents, bodies, joints) = (
+        &model.motions()[..n],
+        &model.parents()[..n],
+        &model.bodies()[..n],
+        &model.joints()[..n],
+    );
+    let (v, a) = (&v[..n], &a[..n]);
     let base = base_acceleration(model);
     let two: T = real(2.0);
     let fixed = fext.is_some_and(|f| f.has_world());
+    // The workspace's buffers borrowed once, as slices of length n (the n×n matrices column
+    // by column, entry (r, c) at r + c n): their addresses stay in registers across the stores.
+    let Workspace {
+        pose_in_world,
+        screw_in_world,
+        screw_rate_in_world,
+        twist_in_world,
+        twist_dot_in_world,
+        acceleration_derivative_in_world,
+        composite_inertia,
+        subtree_velocity_coupling,
+        subtree_linear_momentum,
+        subtree_wrench_in_world,
+        subtree_fixed_external_wrench,
+        tau,
+        dtau_dq,
+        dtau_dv,
+        mass_matrix,
+        ..
+    } = ws;
+    let poses = &pose_in_world[..n];
+    let screws = &mut screw_in_world[..n];
+    let screw_rates = &mut screw_rate_in_world[..n];
+    let twists = &mut twist_in_world[..n];
+    let accels = &mut twist_dot_in_world[..n];
+    let alphas = &mut acceleration_derivative_in_world[..n];
+    let inertias = &mut composite_inertia[..n];
+    let couplings = &mut subtree_velocity_coupling[..n];
+    let momenta = &mut subtree_linear_momentum[..n];
+    let wrenches = &mut subtree_wrench_in_world[..n];
+    let fixed_wrenches = &mut subtree_fixed_external_wrench[..n];
+    let tau = &mut tau.as_mut_slice()[..n];
+    let dtau_dq = &mut dtau_dq.as_mut_slice()[..n * n];
+    let dtau_dv = &mut dtau_dv.as_mut_slice()[..n * n];
+    let mass_matrix = &mut mass_matrix.as_mut_slice()[..n * n];
     // Forward pass: s_i, ṡ_i, V_i, A_i, α_i, 𝔍_i, D_i and W_i (+ E_i), all in {0}.
     for i in 0..n {
-        let h = ws.pose_in_world[i];
-        let s = motions[i].act(&h);
+        let h = &poses[i];
         let (vp, ap) = match parents[i] {
-            Some(p) => (ws.twist_in_world[p], ws.twist_dot_in_world[p]),
+            Some(p) => (twists[p], accels[p]),
             None => (Twist::zeros(), base),
         };
-        let sdot = ad(&vp, &s);
-        let vi = vp + s * v[i];
-        let ai = ap + s * a[i] + sdot * v[i];
+        // s_i, V_i = V_λ + s_i q̇_i, ṡ_i = ad_{V_λ} s_i, A_i = A_λ + s_i q̈_i + ṡ_i q̇_i.
+        let (s, vi, sdot, ai) = match kinematics {
+            Kinematics::Form => {
+                let s = motions[i].act(h);
+                let sdot = ad(&vp, &s);
+                (s, vp + s * v[i], sdot, ap + s * a[i] + sdot * v[i])
+            }
+            Kinematics::FromAba => {
+                let s = screws[i];
+                (s, twists[i], ad(&vp, &s), accels[i])
+            }
+        };
         let alpha = ad(&ap, &s) + ad(&vp, &sdot);
-        let inertia = bodies[i].transformed(&h);
+        let inertia = CompositeInertia::rigid_in_world(&bodies[i].inertia, h);
         let momentum = inertia.apply(&vi);
         let mut w = inertia.apply(&ai) - ad_transpose(&vi, &momentum);
         let mut fixed_in_space = Wrench::zeros();
         if let Some(f) = fext {
-            w -= f.in_world_at(&h, i);
+            w -= f.in_world_at(h, i);
             if let Some(e) = f.world_part(i) {
                 fixed_in_space = *e;
             }
         }
         let (d11, lin_momentum) = velocity_coupling(&inertia, &vi);
-        ws.screw_in_world[i] = s;
-        ws.screw_rate_in_world[i] = sdot;
-        ws.twist_in_world[i] = vi;
-        ws.twist_dot_in_world[i] = ai;
-        ws.acceleration_derivative_in_world[i] = alpha;
-        ws.composite_inertia[i] = inertia;
-        ws.subtree_velocity_coupling[i] = d11;
-        ws.subtree_linear_momentum[i] = lin_momentum;
-        ws.subtree_wrench_in_world[i] = w + fixed_in_space;
-        ws.subtree_fixed_external_wrench[i] = fixed_in_space;
+        screws[i] = s;
+        screw_rates[i] = sdot;
+        twists[i] = vi;
+        accels[i] = ai;
+        alphas[i] = alpha;
+        inertias[i] = inertia;
+        couplings[i] = d11;
+        momenta[i] = lin_momentum;
+        wrenches[i] = w + fixed_in_space;
+        fixed_wrenches[i] = fixed_in_space;
     }
     if !model.is_chain {
-        ws.dtau_dq.fill(T::zero());
-        ws.dtau_dv.fill(T::zero());
-        ws.mass_matrix.fill(T::zero());
+        dtau_dq.fill(T::zero());
+        dtau_dv.fill(T::zero());
+        mass_matrix.fill(T::zero());
     }
     // Backward pass: subtree sums, then the row and column of every joint with its ancestors.
     for j in (0..n).rev() {
-        let s = ws.screw_in_world[j];
-        let sdot = ws.screw_rate_in_world[j];
-        let alpha = ws.acceleration_derivative_in_world[j];
-        let ic = ws.composite_inertia[j];
-        let (d11, lm) = (
-            ws.subtree_velocity_coupling[j],
-            ws.subtree_linear_momentum[j],
-        );
-        let fc = ws.subtree_wrench_in_world[j];
-        let ec = ws.subtree_fixed_external_wrench[j];
+        let (s, sdot, alpha) = (screws[j], screw_rates[j], alphas[j]);
+        let ic = inertias[j];
+        let (d11, lm) = (couplings[j], momenta[j]);
+        let (fc, ec) = (wrenches[j], fixed_wrenches[j]);
         // τ_j = s_jᵀ W_j + I_a,j q̈_j; the armature adds I_a,j to M_jj = ∂τ_j/∂q̈_j and nothing
         // to ∂τ/∂q or ∂τ/∂q̇ (it is constant).
-        let armature = model.joints()[j].armature;
-        ws.tau[j] = s.dot(&(fc - ec)) + armature * a[j];
+        let armature = joints[j].armature;
+        tau[j] = s.dot(&(fc - ec)) + armature * a[j];
         let ic_sdot = ic.apply(&sdot);
         let phi = ic.apply(&alpha) + coupling_apply(&d11, &lm, &sdot) - ad_transpose(&s, &fc);
         let psi = ic_sdot * two + coupling_apply(&d11, &lm, &s);
@@ -255,38 +309,37 @@ fn derivative_passes<T: Real>(
         let g2 = g * two;
         let hh = coupling_transpose_apply(&d11, &lm, &s);
         let e = ad_transpose(&s, &ec);
-        ws.dtau_dq[(j, j)] = g.dot(&alpha) + hh.dot(&sdot);
-        ws.dtau_dv[(j, j)] = g2.dot(&sdot) + hh.dot(&s);
-        ws.mass_matrix[(j, j)] = g.dot(&s) + armature;
+        let jj = j + j * n;
+        dtau_dq[jj] = g.dot(&alpha) + hh.dot(&ang(&sdot));
+        dtau_dv[jj] = g2.dot(&sdot) + hh.dot(&ang(&s));
+        mass_matrix[jj] = g.dot(&s) + armature;
         let mut k = j;
         while let Some(p) = parents[k] {
             k = p;
-            let (sk, sdk, ak) = (
-                &ws.screw_in_world[k],
-                &ws.screw_rate_in_world[k],
-                &ws.acceleration_derivative_in_world[k],
-            );
-            let mut dq_jk = g.dot(ak) + hh.dot(sdk);
+            let (sk, sdk, ak) = (&screws[k], &screw_rates[k], &alphas[k]);
+            let mut dq_jk = g.dot(ak) + hh.dot(&ang(sdk));
             if fixed {
                 dq_jk += e.dot(sk);
             }
             let (dq_kj, dv_kj) = (sk.dot(&phi), sk.dot(&psi));
-            let dv_jk = g2.dot(sdk) + hh.dot(sk);
+            let dv_jk = g2.dot(sdk) + hh.dot(&ang(sk));
             let mkj = sk.dot(&g);
-            ws.dtau_dq[(k, j)] = dq_kj;
-            ws.dtau_dv[(k, j)] = dv_kj;
-            ws.dtau_dq[(j, k)] = dq_jk;
-            ws.dtau_dv[(j, k)] = dv_jk;
-            ws.mass_matrix[(k, j)] = mkj;
-            ws.mass_matrix[(j, k)] = mkj;
+            // Entry (k, j) of column j, and (j, k) of column k.
+            let (kj, jk) = (k + j * n, j + k * n);
+            dtau_dq[kj] = dq_kj;
+            dtau_dv[kj] = dv_kj;
+            dtau_dq[jk] = dq_jk;
+            dtau_dv[jk] = dv_jk;
+            mass_matrix[kj] = mkj;
+            mass_matrix[jk] = mkj;
         }
         if let Some(p) = parents[j] {
-            ws.composite_inertia[p].add(&ic);
-            ws.subtree_velocity_coupling[p] += d11;
-            ws.subtree_linear_momentum[p] += lm;
-            ws.subtree_wrench_in_world[p] += fc;
+            inertias[p].add(&ic);
+            couplings[p] += d11;
+            momenta[p] += lm;
+            wrenches[p] += fc;
             if fixed {
-                ws.subtree_fixed_external_wrench[p] += ec;
+                fixed_wrenches[p] += ec;
             }
         }
     }
@@ -328,7 +381,7 @@ pub fn aba_derivatives<T: Real>(
     articulated_body(model, ws, q, v, tau, fext)?;
     // Poses are those of `q` (set by ABA); q̈ is read from a moved-out buffer (no allocation).
     let qdd = std::mem::replace(&mut ws.qdd, DVector::zeros(0));
-    derivative_passes(model, ws, v, qdd.as_slice(), fext);
+    derivative_passes(model, ws, v, qdd.as_slice(), fext, Kinematics::FromAba);
     ws.qdd = qdd;
     // M⁻¹ and ∂q̈/∂x = −M⁻¹ ∂τ/∂x: by articulated-body sweeps on larger models, by a Cholesky
     // inverse and dense products (fewer instructions there) on small ones.
