@@ -640,6 +640,16 @@ impl<T: Real> Model<T> {
 }
 
 impl Model<f64> {
+    /// `τ += k ∘ (q − q_spring) + f ∘ sign(q̇)`: every joint's spring and Coulomb friction
+    /// ([`Joint::spring_and_friction_torque`]) added to the torques `tau` at positions `q` moving
+    /// with speeds `qd` (all of the model's length), as torque profiles and the time-optimal
+    /// timing add them to inverse dynamics.
+    pub(crate) fn add_spring_and_friction_torques(&self, q: &[f64], qd: &[f64], tau: &mut [f64]) {
+        for ((t, j), (q, qd)) in tau.iter_mut().zip(&self.joints).zip(q.iter().zip(qd)) {
+            *t += j.spring_and_friction_torque(*q, *qd);
+        }
+    }
+
     /// The same model in another scalar type (e.g. `f32`).
     ///
     /// ```

@@ -28,11 +28,9 @@ pub(super) const SAMPLES_PER_CALL: usize = 8 * batch::LANES;
 /// time), the number of samples and their torque statistics.
 pub(super) type CheckResult = (f64, (LimitKind, usize, f64), usize, ProfileSummary);
 
-/// The buffers of [`check_limits`], made once per timing: the batch workspace and
-/// [`SAMPLES_PER_CALL`] samples' `q`, `q̇`, `q̈`, `τ` (row-major, one sample after the other),
+/// The buffers of [`check_limits`], made once per timing: [`SAMPLES_PER_CALL`] samples' `q`, `q̇`, `q̈`, `τ` (row-major, one sample after the other),
 /// and `1 / limit` of every limit.
 pub(super) struct CheckWorkspace {
-    batch: BatchWorkspace,
     q: Vec<f64>,
     qd: Vec<f64>,
     qdd: Vec<f64>,
@@ -49,7 +47,6 @@ impl CheckWorkspace {
         let rows = SAMPLES_PER_CALL * model.nq();
         let per_limit = |l: &[f64]| l.iter().map(|x| 1.0 / x).collect::<Vec<_>>();
         CheckWorkspace {
-            batch: BatchWorkspace::new(model),
             q: vec![0.0; rows],
             qd: vec![0.0; rows],
             qdd: vec![0.0; rows],
@@ -68,9 +65,11 @@ impl CheckWorkspace {
 /// `|value| / limit − 1` over velocity, acceleration and torque (inverse dynamics plus springs
 /// and Coulomb friction), where it occurs (the first sample, joint and kind of the largest), the
 /// number of samples and their torque statistics. A sample the inverse dynamics refuses
-/// (non-finite) ends the check with an infinite excess at its time.
+/// (non-finite) ends the check with an infinite excess at its time. `batch` is the timing's
+/// batch workspace (the grid's coefficients use it too).
 pub(super) fn check_limits(
     model: &Model,
+    batch: &mut BatchWorkspace,
     cw: &mut CheckWorkspace,
     path: &dyn Path,
     timing: &Timing,
@@ -103,7 +102,7 @@ pub(super) fn check_limits(
         let tau = &mut cw.tau[..rows];
         let batched = batch::rnea(
             model,
-            &mut cw.batch,
+            batch,
             Rows::Stacked(q),
             Rows::Stacked(qd),
             Rows::Stacked(qdd),
@@ -215,8 +214,9 @@ mod tests {
         };
         tight.effort[j] = 0.5 * (largest + second);
         let mut cw = CheckWorkspace::new(&m, &tight);
+        let mut batch = BatchWorkspace::new(&m);
         let (excess, (kind, joint, t), samples, _) =
-            check_limits(&m, &mut cw, timed.path(), timed.timing(), step);
+            check_limits(&m, &mut batch, &mut cw, timed.path(), timed.timing(), step);
         assert_eq!(samples, tau.len());
         assert_eq!((kind, joint, t), (LimitKind::Torque, j, p.samples.t[k]));
         let expected = largest / tight.effort[j] - 1.0;

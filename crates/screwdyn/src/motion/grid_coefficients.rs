@@ -34,11 +34,11 @@ impl<'a> From<&'a PathPoint> for PointView<'a> {
     }
 }
 
-/// The buffers of [`GridCoefficients::eval`], made once per timing: the batch workspace, the
-/// points' `q`, `q'`, `q''` and `[a, b, c]` (row-major, one point after the other), and a
+/// The buffers of [`GridCoefficients::eval`], made once per timing: the batch workspace (which
+/// the timing's check borrows too), the points' `q`, `q'`, `q''` and `[a, b, c]` (row-major, one point after the other), and a
 /// [`PathDynamics`] for points taken one at a time.
 pub(super) struct GridCoefficients {
-    batch: BatchWorkspace,
+    pub(super) batch: BatchWorkspace,
     q: Vec<f64>,
     dq: Vec<f64>,
     ddq: Vec<f64>,
@@ -108,9 +108,7 @@ impl GridCoefficients {
             .zip(q.chunks_exact(n))
             .zip(dq.chunks_exact(n))
         {
-            for (j, joint) in model.joints().iter().enumerate() {
-                row[2 * n + j] += joint.spring_and_friction_torque(q[j], dq[j]);
-            }
+            model.add_spring_and_friction_torques(q, dq, &mut row[2 * n..]);
         }
         self.points = s.len();
         true

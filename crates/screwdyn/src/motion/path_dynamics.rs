@@ -105,13 +105,7 @@ impl PathDynamics {
         three_passes(model, &mut self.ws, &mut self.extra, p);
         // c += k ∘ (q − q_spring) + f ∘ sign(q'): springs, and Coulomb friction moving forward
         // along the path (ṡ > 0, so sign(q̇) = sign(q')).
-        for ((c, j), (q, dq)) in
-            p.c.iter_mut()
-                .zip(model.joints())
-                .zip(p.q.iter().zip(&p.dq))
-        {
-            *c += j.spring_and_friction_torque(*q, *dq);
-        }
+        model.add_spring_and_friction_torques(&p.q, &p.dq, &mut p.c);
         Ok(&self.point)
     }
 }

@@ -346,7 +346,14 @@ pub fn time_optimal<P: Path>(
         durations.push((grid, duration));
         let finest = options.grid.is_some() || 2 * grid > options.max_grid;
         if converged || finest {
-            let check = check_limits(model, &mut check_ws, &path, &timing, options.check_step);
+            let check = check_limits(
+                model,
+                &mut dynamics.batch,
+                &mut check_ws,
+                &path,
+                &timing,
+                options.check_step,
+            );
             if check.0 <= 0.0 || finest {
                 if check.0 > 0.0 && options.grid.is_none() {
                     let (kind, j, at) = check.1;

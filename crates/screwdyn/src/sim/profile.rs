@@ -220,9 +220,7 @@ pub fn torque_profile_into(
         trajectory.sample(t, &mut q, &mut v, &mut a)?;
         // τ = M(q) q̈ + C(q, q̇) q̇ + g(q) by RNEA, plus k (q − q_spring) + f sign(q̇).
         tau.copy_from_slice(inverse_dynamics(model, &mut ws, &q, &v, &a, None)?.as_slice());
-        for ((t, j), (qi, vi)) in tau.iter_mut().zip(model.joints()).zip(q.iter().zip(&v)) {
-            *t += j.spring_and_friction_torque(*qi, *vi);
-        }
+        model.add_spring_and_friction_torques(&q, &v, &mut tau);
         for (i, &tau_i) in tau.iter().enumerate() {
             stats.add(i, t, tau_i);
         }
