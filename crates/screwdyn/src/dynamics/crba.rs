@@ -98,8 +98,8 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
     let screws = &mut screw_in_world[..n];
     let by_coordinate = &mut screw_in_world_by_coordinate[..6 * n];
     let composites = &mut composite_inertia[..n];
-    // 1. s_i = Ad_{H_i^0} S_i and 𝔍ᶜ_i = 𝔍_i^0, body by body (on a large model the screws are
-    // also stored coordinate by coordinate).
+    // 1. s_i = Ad_{H_i^0} S_i and, on a tree, 𝔍ᶜ_i = 𝔍_i^0, body by body (on a large model the
+    // screws are also stored coordinate by coordinate).
     let side_by_side = n >= LONG_RUN;
     for i in 0..n {
         let s = motions[i].act(&poses[i]);
@@ -109,7 +109,9 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
                 by_coordinate[r * n + i] = s[r];
             }
         }
-        composites[i] = CompositeInertia::rigid_in_world(&bodies[i].inertia, &poses[i]);
+        if !model.is_chain {
+            composites[i] = CompositeInertia::rigid_in_world(&bodies[i].inertia, &poses[i]);
+        }
     }
     // Bodies on different branches do not couple: those entries stay zero (on a chain every
     // entry is written below).
@@ -117,20 +119,24 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
     if !model.is_chain {
         data.fill(T::zero());
     }
-    // 2. Compiled apart for small models, whose runs of ancestors are all short: the vector
-    // loops' setup would otherwise be paid for every joint.
+    // 2. Compiled apart for small models, whose runs of ancestors are all short (the vector
+    // loops' setup would otherwise be paid for every joint), and for chains, whose composite
+    // is carried from child to parent in registers.
     let screws = &*screws;
     let pass = Columns {
         parents,
         run_start: &model.run_start[..n],
         joints,
+        bodies,
+        poses,
         screws,
         by_coordinate,
     };
-    if side_by_side {
-        pass.run::<true>(composites, data);
-    } else {
-        pass.run::<false>(composites, data);
+    match (side_by_side, model.is_chain) {
+        (true, true) => pass.run::<true, true>(composites, data),
+        (true, false) => pass.run::<true, false>(composites, data),
+        (false, true) => pass.run::<false, true>(composites, data),
+        (false, false) => pass.run::<false, false>(composites, data),
     }
 }
 
@@ -139,6 +145,8 @@ struct Columns<'a, T: Real> {
     parents: &'a [Option<usize>],
     run_start: &'a [usize],
     joints: &'a [crate::model::Joint<T>],
+    bodies: &'a [crate::model::Body<T>],
+    poses: &'a [crate::spatial::Se3<T>],
     screws: &'a [Twist<T>],
     by_coordinate: &'a [T],
 }
@@ -146,53 +154,93 @@ struct Columns<'a, T: Real> {
 impl<T: Real> Columns<'_, T> {
     /// Column `i` of `M` (column-major `data`) from the leaves: its upper part (entry `(k, i)`
     /// is `data[i n + k]`, every ancestor `k < i`) and row `i` left of the diagonal (entry
-    /// `(i, k)` is `data[k n + i]`); `composites` summed into the parents on the way. With
-    /// `SIDE_BY_SIDE`, runs of at least [`LONG_RUN`] ancestors read the screws coordinate by
-    /// coordinate, and the lower triangle is copied at the end; without, each entry is written
-    /// to both triangles as it is formed.
+    /// `(i, k)` is `data[k n + i]`). On a tree `composites` (each body's own inertia) are
+    /// summed into the parents on the way; on a `CHAIN` (`λ(i) = i − 1`) body `i`'s inertia is
+    /// moved to {0} here and added to its one child's composite, still in registers, and the
+    /// ancestors of `i` are the one run `0..i`. With `SIDE_BY_SIDE`, runs of at least
+    /// [`LONG_RUN`] ancestors read the screws coordinate by coordinate, and the lower triangle
+    /// is copied at the end; without, each entry is written to both triangles as it is formed.
     #[inline(always)]
-    fn run<const SIDE_BY_SIDE: bool>(
+    fn run<const SIDE_BY_SIDE: bool, const CHAIN: bool>(
         &self,
         composites: &mut [CompositeInertia<T>],
         data: &mut [T],
     ) {
         let n = self.screws.len();
         let (parents, screws) = (self.parents, self.screws);
+        // On a chain, 𝔍ᶜ_{i+1}, carried to its parent.
+        let mut child = CompositeInertia::zero();
         for i in (0..n).rev() {
-            let composite = composites[i];
+            // 𝔍ᶜ_i = 𝔍_i^0 + Σ_children 𝔍ᶜ_c: on a chain the one child's is still in registers;
+            // on a tree the children's were added into `composites[i]` when they were done.
+            let composite = if CHAIN {
+                let mut composite =
+                    CompositeInertia::rigid_in_world(&self.bodies[i].inertia, &self.poses[i]);
+                composite.add(&child);
+                composites[i] = composite;
+                child = composite;
+                composite
+            } else {
+                let composite = composites[i];
+                if let Some(p) = parents[i] {
+                    composites[p].add(&composite);
+                }
+                composite
+            };
             // F_i = 𝔍ᶜ_i s_i; M_ii = s_iᵀ F_i + I_a,i.
             let f = composite_times_screw(&composite, &screws[i]);
             let (left, right) = data.split_at_mut(i * n);
             let column = &mut right[..n];
             column[i] = dot6(&screws[i], &f) + self.joints[i].armature;
             // M_ki = M_ik = s_kᵀ F_i for the ancestors k, one unbranched run of them at a time.
-            let mut next = parents[i];
-            while let Some(end) = next {
-                let start = self.run_start[end];
-                let run = &mut column[start..=end];
-                if SIDE_BY_SIDE && run.len() >= LONG_RUN {
-                    screw_products(run, self.by_coordinate, n, start, &f);
-                } else if SIDE_BY_SIDE {
-                    for (m, s) in run.iter_mut().zip(&screws[start..=end]) {
-                        *m = dot6(s, &f);
-                    }
-                } else {
-                    // (An exclusive range: `start..=end` iterated costs twice the instructions.)
-                    for k in start..end + 1 {
-                        let x = dot6(&screws[k], &f);
-                        column[k] = x;
-                        left[k * n + i] = x;
-                    }
+            if CHAIN {
+                if i > 0 {
+                    self.ancestors::<SIDE_BY_SIDE>(i, 0, i, column, left, &f);
                 }
-                next = parents[start];
-            }
-            // 𝔍ᶜ_{λ(i)} += 𝔍ᶜ_i
-            if let Some(p) = parents[i] {
-                composites[p].add(&composite);
+            } else {
+                let mut next = parents[i];
+                while let Some(end) = next {
+                    let start = self.run_start[end];
+                    self.ancestors::<SIDE_BY_SIDE>(i, start, end + 1, column, left, &f);
+                    next = parents[start];
+                }
             }
         }
         if SIDE_BY_SIDE {
             mirror_columns(data, n);
+        }
+    }
+
+    /// `M_ki = s_kᵀ F_i` for the run of ancestors `start ≤ k < end` of joint `i`, into
+    /// `column` (column `i`) and, without `SIDE_BY_SIDE`, into row `i` of the columns before
+    /// (`left`, entry `(i, k)` at `left[k n + i]`).
+    #[inline(always)]
+    fn ancestors<const SIDE_BY_SIDE: bool>(
+        &self,
+        i: usize,
+        start: usize,
+        end: usize,
+        column: &mut [T],
+        left: &mut [T],
+        f: &Wrench<T>,
+    ) {
+        let n = self.screws.len();
+        if SIDE_BY_SIDE {
+            let run = &mut column[start..end];
+            if run.len() >= LONG_RUN {
+                screw_products(run, self.by_coordinate, n, start, f);
+            } else {
+                for (m, s) in run.iter_mut().zip(&self.screws[start..end]) {
+                    *m = dot6(s, f);
+                }
+            }
+        } else {
+            // (An exclusive range: `start..=end` iterated costs twice the instructions.)
+            for k in start..end {
+                let x = dot6(&self.screws[k], f);
+                column[k] = x;
+                left[k * n + i] = x;
+            }
         }
     }
 }
