@@ -181,11 +181,7 @@ impl<T: Real> Columns<'_, T> {
                 child = composite;
                 composite
             } else {
-                let composite = composites[i];
-                if let Some(p) = parents[i] {
-                    composites[p].add(&composite);
-                }
-                composite
+                composites[i]
             };
             // F_i = 𝔍ᶜ_i s_i; M_ii = s_iᵀ F_i + I_a,i.
             let f = composite_times_screw(&composite, &screws[i]);
@@ -203,6 +199,10 @@ impl<T: Real> Columns<'_, T> {
                     let start = self.run_start[end];
                     self.ancestors::<SIDE_BY_SIDE>(i, start, end + 1, column, left, &f);
                     next = parents[start];
+                }
+                // 𝔍ᶜ_{λ(i)} += 𝔍ᶜ_i
+                if let Some(p) = parents[i] {
+                    composites[p].add(&composite);
                 }
             }
         }
