@@ -22,7 +22,9 @@ use nalgebra::Vector3;
 /// 2. from the leaves: `𝔍ᶜ_i = 𝔍_i^0 + Σ_children 𝔍ᶜ_c` (ten additions per child),
 ///    `F_i = 𝔍ᶜ_i s_i = (I_o ω + h × v, m v − h × ω)` for `s_i = (ω, v)`,
 ///    `M_ii = s_iᵀ F_i + I_a,i` and `M_ki = M_ik = s_kᵀ F_i` for every ancestor `k` of `i`
-///    (entries of bodies on different branches are zero).
+///    (entries of bodies on different branches are zero). On a serial chain (`λ(i) = i − 1`)
+///    the body's inertia is moved to {0} in this pass instead, and added to its child's
+///    composite while that is still in registers; the ancestors are then the one run `0..i`.
 ///
 /// Equal to Lynch & Park's `M = Sᵀ Lᵀ 𝔍 L S` (*Modern Robotics*) and to `Σ_i J_iᵀ 𝔍^{i,i} J_i`.
 /// Each joint's armature `I_a,i` (the rotor inertia reflected to it,
