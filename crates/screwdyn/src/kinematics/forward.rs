@@ -32,8 +32,9 @@ use crate::workspace::Workspace;
 ))]
 pub fn forward_kinematics<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) -> Result<()> {
     // With fused multiply–adds, the sines and cosines of a block's joint angles side by side
-    // in vector registers before the joints that use them; without (a portable build's
-    // baseline clone, where `mul_add` is a library call) one scalar `sin_cos` per joint.
+    // in vector registers before the joints that use them, and the turned home columns and
+    // the compositions fused; without (a portable build's baseline clone, where `mul_add` is
+    // a library call) one scalar `sin_cos` per joint and unfused products.
     let lanes = multiversion::target::target_cfg_f!(target_feature = "fma");
     poses::<T, true>(model, ws, q, lanes)
 }
@@ -107,10 +108,15 @@ fn poses<T: Real, const WORLD: bool>(
                 (T::zero(), T::one())
             };
             // H_i^λ = H_i^λ(0) e^{[S_i] q_i},  H_i^0 = H_λ^0 H_i^λ.
-            let h = motions[i].pose_in_parent_given(&joints[i].home, q[i], sc);
+            let h = if lanes {
+                motions[i].pose_in_parent_given_fused(&joints[i].home, q[i], sc)
+            } else {
+                motions[i].pose_in_parent_given(&joints[i].home, q[i], sc)
+            };
             pip[i] = h;
             if WORLD {
                 piw[i] = match parents[i] {
+                    Some(p) if lanes => piw[p].compose_fused(&h),
                     Some(p) => piw[p].compose(&h),
                     None => h,
                 };

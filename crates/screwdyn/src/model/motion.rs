@@ -170,16 +170,40 @@ impl<T: Real> JointMotion<T> {
     /// assert!((given.to_matrix() - m.pose_in_parent(&home, q).to_matrix()).amax() < 1e-15);
     /// ```
     #[inline(always)]
-    pub fn pose_in_parent_given(&self, home: &Se3<T>, q: T, (s, c): (T, T)) -> Se3<T> {
+    pub fn pose_in_parent_given(&self, home: &Se3<T>, q: T, sin_cos: (T, T)) -> Se3<T> {
+        self.pose_in_parent_with::<false>(home, q, sin_cos)
+    }
+
+    /// [`JointMotion::pose_in_parent_given`] with the turned columns' products fused
+    /// (`mul_add`: for the CPU-specific clones of forward kinematics that have fused
+    /// multiply–adds; a library call without). Within rounding of the unfused form.
+    #[inline(always)]
+    pub(crate) fn pose_in_parent_given_fused(
+        &self,
+        home: &Se3<T>,
+        q: T,
+        sin_cos: (T, T),
+    ) -> Se3<T> {
+        self.pose_in_parent_with::<true>(home, q, sin_cos)
+    }
+
+    /// The pose of [`JointMotion::pose_in_parent_given`], its turned columns fused when `FUSED`.
+    #[inline(always)]
+    fn pose_in_parent_with<const FUSED: bool>(
+        &self,
+        home: &Se3<T>,
+        q: T,
+        (s, c): (T, T),
+    ) -> Se3<T> {
         match *self {
             JointMotion::RevoluteAxis { axis, .. } => {
-                let (rot, _) = rotate_about_axis(&home.rotation, axis, s, c);
+                let (rot, _) = rotate_about_axis::<_, FUSED>(&home.rotation, axis, s, c);
                 Se3::new(rot, home.translation)
             }
             JointMotion::RevoluteOffsetAxis { axis, point, .. } => {
                 // H(0) (Rot_k(θ), (1 − Rot_k(θ)) r): p = p(0) + R(0) r − R(0) Rot_k(θ) r, where
                 // r = r_i ê_i + r_j ê_j only meets the two columns that turn.
-                let (rot, (i, j)) = rotate_about_axis(&home.rotation, axis, s, c);
+                let (rot, (i, j)) = rotate_about_axis::<_, FUSED>(&home.rotation, axis, s, c);
                 let r0 = &home.rotation;
                 let p = home.translation
                     + (r0.column(i) - rot.column(i)) * point[i]
@@ -290,7 +314,7 @@ impl<T: Real> JointMotion<T> {
 /// `R Rot_k(θ)` given `s = sin θ`, `c = cos θ`: only the two columns `(i, j)` other than `k`
 /// change; returns them too.
 #[inline(always)]
-fn rotate_about_axis<T: Real>(
+fn rotate_about_axis<T: Real, const FUSED: bool>(
     r: &Matrix3<T>,
     axis: usize,
     s: T,
@@ -298,15 +322,16 @@ fn rotate_about_axis<T: Real>(
 ) -> (Matrix3<T>, (usize, usize)) {
     // One code path per axis, so that the columns are known at compile time.
     match axis {
-        0 => (rotate_columns::<_, 1, 2>(r, s, c), (1, 2)),
-        1 => (rotate_columns::<_, 2, 0>(r, s, c), (2, 0)),
-        _ => (rotate_columns::<_, 0, 1>(r, s, c), (0, 1)),
+        0 => (rotate_columns::<_, 1, 2, FUSED>(r, s, c), (1, 2)),
+        1 => (rotate_columns::<_, 2, 0, FUSED>(r, s, c), (2, 0)),
+        _ => (rotate_columns::<_, 0, 1, FUSED>(r, s, c), (0, 1)),
     }
 }
 
-/// Columns `I`, `J` of `R` turned by the angle whose sine and cosine are `s`, `c`.
+/// Columns `I`, `J` of `R` turned by the angle whose sine and cosine are `s`, `c`
+/// (`a c + b s` and `b c − a s`, each one product and one `mul_add` when `FUSED`).
 #[inline(always)]
-fn rotate_columns<T: Real, const I: usize, const J: usize>(
+fn rotate_columns<T: Real, const I: usize, const J: usize, const FUSED: bool>(
     r: &Matrix3<T>,
     s: T,
     c: T,
@@ -314,8 +339,13 @@ fn rotate_columns<T: Real, const I: usize, const J: usize>(
     let mut rot = *r;
     for k in 0..3 {
         let (a, b) = (r[(k, I)], r[(k, J)]);
-        rot[(k, I)] = a * c + b * s;
-        rot[(k, J)] = b * c - a * s;
+        if FUSED {
+            rot[(k, I)] = a.mul_add(c, b * s);
+            rot[(k, J)] = b.mul_add(c, -(a * s));
+        } else {
+            rot[(k, I)] = a * c + b * s;
+            rot[(k, J)] = b * c - a * s;
+        }
     }
     rot
 }
@@ -323,6 +353,34 @@ fn rotate_columns<T: Real, const I: usize, const J: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The fused poses of forward kinematics' FMA clones agree with the unfused ones to
+    /// rounding, for every joint shape (the unfused ones are checked against the general
+    /// screw formulas below).
+    #[test]
+    fn fused_poses_agree_with_the_unfused_ones() {
+        let screws: [Twist<f64>; 6] = [
+            Vector6::new(1.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+            Vector6::new(0.0, -1.0, 0.0, 0.0, 0.0, 0.0),
+            Vector6::new(0.0, 0.0, 1.0, 0.0, -0.425, 0.0),
+            Vector6::new(0.0, -1.0, 0.0, 0.2, 0.0, 0.1),
+            Vector6::new(0.0, 0.0, 0.0, 1.0, 0.0, 0.0),
+            Vector6::new(0.6, 0.8, 0.0, 0.1, -0.2, 0.3),
+        ];
+        let home = Se3::from_rpy(0.3, -1.2, 2.1).with_translation(Vector3::new(0.2, -0.4, 1.1));
+        for s in &screws {
+            let jm = JointMotion::classify(s);
+            for q in [0.0, 0.8, -2.3, 3.1] {
+                let sc = jm.angle(q).sin_cos();
+                let fused = jm.pose_in_parent_given_fused(&home, q, sc);
+                let plain = jm.pose_in_parent_given(&home, q, sc);
+                assert!(
+                    (fused.to_matrix() - plain.to_matrix()).amax() < 4.0 * f64::EPSILON,
+                    "{jm:?} q={q}"
+                );
+            }
+        }
+    }
 
     /// Every special case agrees with the general screw formulas it replaces (which are checked
     /// against the matrix-exponential series in the spatial tests).
