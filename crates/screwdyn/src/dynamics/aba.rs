@@ -138,6 +138,7 @@ fn aba_passes<T: Real>(
         articulated_joint_inertia,
         articulated_joint_force,
         acceleration_before_joint,
+        articulated_parent_coupling,
         qdd,
         ..
     } = ws;
@@ -153,6 +154,7 @@ fn aba_passes<T: Real>(
     let small_u_over_d = &mut articulated_joint_force.as_mut_slice()[..n];
     let qdd_out = &mut qdd.as_mut_slice()[..n];
     let a_pre = &mut acceleration_before_joint[..n];
+    let coupling = &mut articulated_parent_coupling.as_mut_slice()[..n];
     // Pass 1: joint screws, twists and velocity-product accelerations (root to leaves)...
     for i in 0..n {
         let s = motions[i].act(&poses[i]);
@@ -214,6 +216,7 @@ fn aba_passes<T: Real>(
             let sp = screws[p];
             let ia_sp = mat6_vec(ia, &sp);
             let u_sp = dot6(&u, &sp);
+            coupling[i] = u_sp * inv_d;
             let up = &mut u_over_d[p];
             for r in 0..6 {
                 up[r] = ud[r].mul_add(-u_sp, ia_sp[r] + up[r]);
@@ -248,7 +251,7 @@ fn aba_passes<T: Real>(
                 let (sp, qdd_p) = (&screws[p], qdd_out[p]);
                 let known = a_pre[p] + bias_acc[i];
                 let rest = small_u_over_d[i] - dot6(ud, &known);
-                let qdd_i = (-dot6(ud, sp)).mul_add(qdd_p, rest);
+                let qdd_i = (-coupling[i]).mul_add(qdd_p, rest);
                 (Twist::from_fn(|r, _| sp[r].mul_add(qdd_p, known[r])), qdd_i)
             }
             None => {
