@@ -84,6 +84,11 @@ pub struct Workspace<T: Real = f64> {
     /// ABA: `u_i / D_i`, where `u_i = τ_i − s_iᵀ pᴬ_i` is the joint torque left for
     /// accelerating it.
     pub articulated_joint_force: DVector<T>,
+    /// ABA: `V̇'_i = V̇_{λ(i)} + c_i`, body `i`'s acceleration before its own joint's `s_i q̈_i`,
+    /// in the base frame (pass 3 keeps it so that a child's `q̈` waits on one product only).
+    pub(crate) acceleration_before_joint: Vec<Twist<T>>,
+    /// ABA: `(U_i / D_i)ᵀ s_{λ(i)}`, how much of the parent's `q̈_λ` joint `i`'s `q̈_i` loses.
+    pub(crate) articulated_parent_coupling: DVector<T>,
     /// Forward dynamics by CRBA: the Cholesky factor of `M` (lower triangle).
     pub cholesky: DMatrix<T>,
     /// Forward dynamics: the bias `b = C q̇ + g − Σ Jᵀ W_ext`.
@@ -183,6 +188,8 @@ impl<T: Real> Workspace<T> {
             articulated_force: vec![Wrench::zeros(); n],
             articulated_joint_inertia: DVector::zeros(n),
             articulated_joint_force: DVector::zeros(n),
+            acceleration_before_joint: vec![Twist::zeros(); n],
+            articulated_parent_coupling: DVector::zeros(n),
             cholesky: DMatrix::zeros(sq, sq),
             bias: DVector::zeros(n),
             screw_rate_in_world: vec![Twist::zeros(); n],

@@ -22,9 +22,14 @@ use nalgebra::DVector;
 ///    `V̇_i = V̇_λ + s_i q̈_i + ṡ_i q̇_i`), `𝔍ᴬ_i = 𝔍_i^0`, `pᴬ_i = −ad_{V_i}ᵀ 𝔍_i^0 V_i − W_ext,i`;
 /// 2. backward: `U_i = 𝔍ᴬ_i s_i`, `D_i = s_iᵀ U_i + I_a,i` (with the joint's armature
 ///    [`Joint::armature`](crate::model::Joint::armature)), `u_i = τ_i − s_iᵀ pᴬ_i`; the parent
-///    receives `𝔍ᴬ_i − U_i U_iᵀ / D_i` and `pᴬ_i + 𝔍ᵃ_i c_i + U_i u_i / D_i`;
+///    receives `𝔍ᵃ_i = 𝔍ᴬ_i − U_i U_iᵀ / D_i` and `pᴬ_i + 𝔍ᵃ_i c_i + U_i u_i / D_i`, and
+///    `U_λ`, `D_λ` are summed as the children are reached: `U_λ = 𝔍_λ^0 s_λ + Σ_i 𝔍ᵃ_i s_λ`
+///    with `𝔍ᵃ_i s_λ = 𝔍ᴬ_i s_λ − U_i (U_iᵀ s_λ) / D_i`, and
+///    `D_λ = s_λᵀ 𝔍_λ^0 s_λ + I_a,λ + Σ_i (s_λᵀ 𝔍ᴬ_i s_λ − (U_iᵀ s_λ)² / D_i)`;
 /// 3. forward: `V̇'_i = V̇_λ + c_i`, `q̈_i = u_i / D_i − (U_i / D_i)ᵀ V̇'_i`,
-///    `V̇_i = V̇'_i + s_i q̈_i`, with `V̇_base = (0, −g)` (Lynch & Park, *Modern Robotics*).
+///    `V̇_i = V̇'_i + s_i q̈_i`, with `V̇_base = (0, −g)` (Lynch & Park, *Modern Robotics*);
+///    as `V̇'_i = V̇'_λ + c_i + s_λ q̈_λ`, `q̈_i` is formed as
+///    `u_i / D_i − (U_i / D_i)ᵀ (V̇'_λ + c_i) − ((U_i / D_i)ᵀ s_λ) q̈_λ`.
 ///
 /// Writes `ws.qdd`, and `ws.screw_in_world`, `ws.twist_in_world`, `ws.twist_dot_in_world`
 /// (`V̇_i^0`, the base-frame spatial acceleration) and the articulated quantities, all in the
@@ -132,6 +137,8 @@ fn aba_passes<T: Real>(
         articulated_force,
         articulated_joint_inertia,
         articulated_joint_force,
+        acceleration_before_joint,
+        articulated_parent_coupling,
         qdd,
         ..
     } = ws;
@@ -146,6 +153,8 @@ fn aba_passes<T: Real>(
     let d_joint = &mut articulated_joint_inertia.as_mut_slice()[..n];
     let small_u_over_d = &mut articulated_joint_force.as_mut_slice()[..n];
     let qdd_out = &mut qdd.as_mut_slice()[..n];
+    let a_pre = &mut acceleration_before_joint[..n];
+    let coupling = &mut articulated_parent_coupling.as_mut_slice()[..n];
     // Pass 1: joint screws, twists and velocity-product accelerations (root to leaves)...
     for i in 0..n {
         let s = motions[i].act(&poses[i]);
@@ -162,7 +171,8 @@ fn aba_passes<T: Real>(
         bias_acc[i] = ci;
     }
     // ... then, body by body (each on its own), 𝔍_i^0 = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i} written into
-    // 𝔍ᴬ_i, and pᴬ_i = −ad_{V_i}ᵀ 𝔍_i^0 V_i − W_ext,i.
+    // 𝔍ᴬ_i, pᴬ_i = −ad_{V_i}ᵀ 𝔍_i^0 V_i − W_ext,i, and the body's own shares 𝔍_i^0 s_i of U_i
+    // (kept in `u_over_d` until pass 2 divides it) and s_iᵀ 𝔍_i^0 s_i + I_a,i of D_i.
     for i in 0..n {
         let h = &poses[i];
         let inertia = InertiaInWorld::new(&bodies[i].inertia, h);
@@ -173,17 +183,18 @@ fn aba_passes<T: Real>(
             p -= f.in_world_at(h, i);
         }
         biases[i] = p;
+        let s = &screws[i];
+        let own = inertia.momentum(s);
+        u_over_d[i] = own;
+        d_joint[i] = dot6(s, &own) + joints[i].armature;
     }
-    // Pass 2: articulated inertias, from the leaves to the root.
+    // Pass 2: articulated inertias, from the leaves to the root. U_i and D_i are complete when
+    // body i is reached: every child (index above i) has added its share.
     let tiny = singular_threshold(model.inertia_scale());
     for i in (0..n).rev() {
         let s = screws[i];
-        // 𝔍ᴬ_i read in place, next to its parent's (whose index is below i) being written.
-        let (before, from_i) = inertias.split_at_mut(i);
-        let ia = &from_i[0];
-        let u = mat6_vec(ia, &s);
-        // D_i = s_iᵀ 𝔍ᴬ_i s_i + I_a,i: the armature is inertia only joint i's coordinate sees.
-        let d = dot6(&s, &u) + joints[i].armature;
+        let u = u_over_d[i];
+        let d = d_joint[i];
         // Written to also catch NaN.
         if d.partial_cmp(&tiny) != Some(std::cmp::Ordering::Greater) {
             return Err(singular(model, i, d));
@@ -193,9 +204,24 @@ fn aba_passes<T: Real>(
         let inv_d = T::one() / d;
         let ud = u * inv_d;
         u_over_d[i] = ud;
-        d_joint[i] = d;
         small_u_over_d[i] = small_u * inv_d;
         if let Some(p) = parents[i] {
+            // 𝔍ᴬ_i read in place, next to its parent's (whose index is below i) being written.
+            let (before, from_i) = inertias.split_at_mut(i);
+            let ia = &from_i[0];
+            // The parent's U_λ and D_λ receive 𝔍ᵃ_i s_λ = 𝔍ᴬ_i s_λ − U_i (U_iᵀ s_λ) / D_i and
+            // s_λᵀ 𝔍ᵃ_i s_λ = s_λᵀ 𝔍ᴬ_i s_λ − (U_iᵀ s_λ)² / D_i: the products with 𝔍ᴬ_i do not
+            // wait for 1/D_i, only the last fused product does (so the chain through the
+            // parents is a division and two products per body, not a 6×6 update and 𝔍ᴬ s).
+            let sp = screws[p];
+            let ia_sp = mat6_vec(ia, &sp);
+            let u_sp = dot6(&u, &sp);
+            coupling[i] = u_sp * inv_d;
+            let up = &mut u_over_d[p];
+            for r in 0..6 {
+                up[r] = ud[r].mul_add(-u_sp, ia_sp[r] + up[r]);
+            }
+            d_joint[p] = (u_sp * u_sp).mul_add(-inv_d, dot6(&sp, &ia_sp) + d_joint[p]);
             // 𝔍ᵃ = 𝔍ᴬ − U Uᵀ / D (symmetric), added to the parent's as it is formed.
             let parent = &mut before[p];
             for c in 0..6 {
@@ -214,17 +240,29 @@ fn aba_passes<T: Real>(
             }
         }
     }
-    // Pass 3: accelerations, from the root to the leaves.
+    // Pass 3: accelerations, from the root to the leaves, with V̇'_i = V̇_λ + c_i kept per body.
     let base = base_acceleration(model);
     for i in 0..n {
-        let a_par = match parents[i] {
-            Some(p) => accels[p],
-            None => base,
-        } + bias_acc[i];
-        let qdd_i = small_u_over_d[i] - dot6(&u_over_d[i], &a_par);
+        let ud = &u_over_d[i];
+        let (a_before, qdd_i) = match parents[i] {
+            Some(p) => {
+                // V̇'_i = V̇'_λ + c_i + s_λ q̈_λ, so q̈_i = u_i/D_i − (U_i/D_i)ᵀ(V̇'_λ + c_i)
+                // − ((U_i/D_i)ᵀ s_λ) q̈_λ: only the last product waits for q̈_λ.
+                let (sp, qdd_p) = (&screws[p], qdd_out[p]);
+                let known = a_pre[p] + bias_acc[i];
+                let rest = small_u_over_d[i] - dot6(ud, &known);
+                let qdd_i = (-coupling[i]).mul_add(qdd_p, rest);
+                (Twist::from_fn(|r, _| sp[r].mul_add(qdd_p, known[r])), qdd_i)
+            }
+            None => {
+                let a_before = base + bias_acc[i];
+                (a_before, small_u_over_d[i] - dot6(ud, &a_before))
+            }
+        };
+        a_pre[i] = a_before;
         qdd_out[i] = qdd_i;
         let s = &screws[i];
-        accels[i] = Twist::from_fn(|r, _| s[r].mul_add(qdd_i, a_par[r]));
+        accels[i] = Twist::from_fn(|r, _| s[r].mul_add(qdd_i, a_before[r]));
     }
     Ok(())
 }
