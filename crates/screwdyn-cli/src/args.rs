@@ -29,7 +29,12 @@ pub struct Cli {
     pub command: Command,
 }
 
+// `defer`: a subcommand's arguments are built only when that subcommand is chosen, not the
+// argument lists of every subcommand on each start (BENCHMARKS.md, "The CLI's fixed costs").
+// The deferred arguments are added after the variant's doc comment, so the argument structs
+// below carry plain comments: a doc comment there would replace the subcommand's help line.
 #[derive(Subcommand, Debug)]
+#[command(defer = true)]
 pub enum Command {
     /// Joints (kind, screw axis, limits), bodies (mass, CoM), frames and the kinematic tree.
     Info(ModelArgs),
@@ -207,7 +212,7 @@ pub struct CheckArgs {
     pub format: Option<Format>,
 }
 
-/// Model, gravity override and batch input shared by the numeric commands.
+// Model, gravity override and batch input shared by the numeric commands.
 #[derive(Args, Debug)]
 pub struct Common {
     #[command(flatten)]
@@ -269,7 +274,7 @@ pub struct JacobianArgs {
     pub reference: ReferenceArg,
 }
 
-/// `screwdyn ik MODEL --frame NAME --target x,y,z,qw,qx,qy,qz` (docs/cli.md, docs/ik.md).
+// `screwdyn ik MODEL --frame NAME --target x,y,z,qw,qx,qy,qz` (docs/cli.md, docs/ik.md).
 #[derive(Args, Debug)]
 pub struct IkArgs {
     #[command(flatten)]
@@ -317,7 +322,7 @@ pub struct IkArgs {
     pub threads: Option<usize>,
 }
 
-/// External wrenches on bodies and at frames.
+// External wrenches on bodies and at frames.
 #[derive(Args, Debug)]
 pub struct WrenchArgs {
     /// A wrench of the environment on a link (one attached by a fixed joint too), moment first,
@@ -441,7 +446,7 @@ pub enum ReferenceArg {
     WorldAligned,
 }
 
-/// `screwdyn bench MODEL`: per-call medians over batches of random states.
+// `screwdyn bench MODEL`: per-call medians over batches of random states.
 #[derive(Args, Debug)]
 pub struct BenchArgs {
     /// A .urdf or .toml file, or builtin:<name>.
@@ -482,7 +487,7 @@ pub enum SymbolicFormat {
     Json,
 }
 
-/// `screwdyn symbolic MODEL --quantity …` (issue 14).
+// `screwdyn symbolic MODEL --quantity …` (issue 14).
 #[derive(Args, Debug)]
 pub struct SymbolicArgs {
     /// A .urdf or .toml file, or builtin:<name>.
@@ -527,7 +532,7 @@ pub struct SymbolicArgs {
     pub allow_nonphysical: bool,
 }
 
-/// `screwdyn inertia SHAPE --mass M --size … [--about x,y,z] [--rotate r,p,y]`.
+// `screwdyn inertia SHAPE --mass M --size … [--about x,y,z] [--rotate r,p,y]`.
 #[derive(Args, Debug)]
 pub struct InertiaArgs {
     /// box, cylinder, sphere, rod or point.
@@ -552,7 +557,7 @@ pub struct InertiaArgs {
     pub format: Option<Format>,
 }
 
-/// `closed-form`: `--q`, `--v` and the acceleration `--a` for the stacked V̇, W and τ.
+// `closed-form`: `--q`, `--v` and the acceleration `--a` for the stacked V̇, W and τ.
 #[derive(Args, Debug)]
 pub struct ClosedFormArgs {
     #[command(flatten)]
@@ -562,8 +567,8 @@ pub struct ClosedFormArgs {
     pub a: Option<String>,
 }
 
-/// `lagrange`: numeric `D_ij`, `D_ijk`, `D_i` at `--q`, or with `--steps` the symbolic
-/// steps.
+// `lagrange`: numeric `D_ij`, `D_ijk`, `D_i` at `--q`, or with `--steps` the symbolic
+// steps.
 #[derive(Args, Debug)]
 pub struct LagrangeArgs {
     #[command(flatten)]
@@ -581,7 +586,7 @@ pub struct LagrangeArgs {
     #[arg(long, default_value_t = screwdyn::symbolic::DEFAULT_MAX_TERMS)]
     pub max_terms: usize,
 }
-/// `screwdyn view MODEL`: the robot in 3-D in one self-contained HTML page (docs/view.md).
+// `screwdyn view MODEL`: the robot in 3-D in one self-contained HTML page (docs/view.md).
 #[derive(Args, Debug)]
 pub struct ViewArgs {
     /// A .urdf, .xml (MJCF) or .toml file, or builtin:<name>.

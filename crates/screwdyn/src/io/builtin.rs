@@ -13,8 +13,12 @@
 //!   `models/branched.toml`.
 //!
 //! The last three are the files in `models/`, compiled in with `include_str!`, so a built-in
-//! and its file are the same robot.
+//! and its file are the same robot. The DH tables of `ur5` and `panda` are also compiled in as
+//! values (`builtin_tables.rs`, written out from the files and checked against them by a test),
+//! so that loading them reads no TOML at run time.
 
+use super::builtin_tables;
+use super::dh::dh_model;
 use super::options::LoadOptions;
 use super::toml_format::load_toml_str;
 use crate::error::{Error, Result};
@@ -88,11 +92,15 @@ pub fn load(name: &str) -> Result<Model> {
         "planar2" => Ok(planar2()),
         "pendulum" => Ok(pendulum()),
         _ => match shipped(name) {
-            Some((file, text)) => load_toml_str(
-                text,
-                &format!("builtin:{name} (models/{file})"),
-                &LoadOptions::default(),
-            ),
+            Some((file, text)) => {
+                let label = format!("builtin:{name} (models/{file})");
+                // A DH table compiled in as a value is built as its file would be, without
+                // parsing the text (kept for the lines an error names).
+                match builtin_tables::table(name) {
+                    Some(table) => dh_model(&table, text, &label, &LoadOptions::default()),
+                    None => load_toml_str(text, &label, &LoadOptions::default()),
+                }
+            }
             None => Err(Error::UnknownName {
                 kind: "built-in robot",
                 name: name.into(),
@@ -155,4 +163,239 @@ pub fn pendulum_with(l: f64, m: f64) -> Model {
 /// The 1 m, 1 kg pendulum.
 pub fn pendulum() -> Model {
     pendulum_with(1.0, 1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::common::{from_toml, FrameSpec, LimitSpec, PoseSpec};
+    use super::super::dh::{DhFile, Row};
+    use super::*;
+    use std::fmt::Write;
+
+    /// The built-ins compiled in as values are the models of their files, parsed: the same
+    /// `Model`, every field (the tables' numbers are the files' to the bit: the test below
+    /// compares their shortest round-trip digits, which tell −0.0 from 0.0).
+    #[test]
+    fn builtin_tables_give_the_models_of_their_files() {
+        for name in GIVEN {
+            let (file, text) = shipped(name).unwrap();
+            let label = format!("builtin:{name} (models/{file})");
+            let parsed = load_toml_str(text, &label, &LoadOptions::default()).unwrap();
+            let direct = load(name).unwrap();
+            assert_eq!(direct, parsed, "{name}");
+        }
+    }
+
+    /// `builtin_tables.rs` is what the files in `models/` say, spans included (the lines of
+    /// errors): it is written out from them here. `SCREWDYN_WRITE_TABLES=1 cargo test -p
+    /// screwdyn --lib builtin_tables_are_the_model_files` rewrites it after a file changed.
+    #[test]
+    fn builtin_tables_are_the_model_files() {
+        let mut out = String::from(HEADER);
+        for name in GIVEN {
+            let (file, text) = shipped(name).unwrap();
+            let parsed: DhFile = from_toml(text, file).unwrap();
+            render(&mut out, name, file, &parsed);
+            let Some(direct) = builtin_tables::table(name) else {
+                continue; // not written out yet: the comparison of the texts below fails
+            };
+            assert_eq!(direct, parsed, "{name}");
+            let spans = |f: &DhFile| {
+                let rows = f.row.iter().map(|r| r.span());
+                rows.chain(f.frame.iter().map(|r| r.span()))
+                    .collect::<Vec<_>>()
+            };
+            assert_eq!(spans(&direct), spans(&parsed), "{name}");
+        }
+        render_index(&mut out);
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/io/builtin_tables.rs");
+        if std::env::var_os("SCREWDYN_WRITE_TABLES").is_some() {
+            std::fs::write(path, &out).unwrap();
+        }
+        assert!(
+            out == include_str!("builtin_tables.rs"),
+            "src/io/builtin_tables.rs differs from models/: rewrite it with \
+             SCREWDYN_WRITE_TABLES=1 cargo test -p screwdyn --lib builtin_tables_are_the_model_files"
+        );
+    }
+
+    /// The built-in robots whose DH tables are compiled in as values.
+    const GIVEN: [&str; 2] = ["ur5", "panda"];
+
+    const HEADER: &str = "\
+//! The DH tables of `models/ur5.toml` and `models/panda.toml` as values, so that `builtin:ur5`
+//! and `builtin:panda` are built without parsing TOML at run time (BENCHMARKS.md, \"The CLI's
+//! fixed costs\"). Written out from the files by the test
+//! `io::builtin::tests::builtin_tables_are_the_model_files`, which fails when a file and this
+//! one differ; `SCREWDYN_WRITE_TABLES=1 cargo test -p screwdyn --lib
+//! builtin_tables_are_the_model_files` rewrites it. Edit the files in `models/`, not this one.
+
+// The files' digits as written (π/2 and 2π among them), not the named constants.
+#![allow(clippy::approx_constant)]
+
+use super::common::{FrameSpec, LimitSpec, PoseSpec};
+use super::dh::{DhFile, Row};
+use toml::Spanned;
+";
+
+    fn string(s: &str) -> String {
+        format!("{s:?}.into()")
+    }
+    fn option<T>(x: &Option<T>, f: impl Fn(&T) -> String) -> String {
+        x.as_ref()
+            .map_or("None".into(), |v| format!("Some({})", f(v)))
+    }
+    fn number(x: &f64) -> String {
+        format!("{x:?}")
+    }
+    fn numbers(xs: &[f64]) -> String {
+        let items: Vec<String> = xs.iter().map(number).collect();
+        format!("[{}]", items.join(", "))
+    }
+
+    fn render_row(out: &mut String, r: &Row) {
+        let LimitSpec {
+            lower,
+            upper,
+            velocity,
+            effort,
+        } = &r.limits;
+        let o = |x: &Option<f64>| option(x, number);
+        let s = |x: &Option<String>| option(x, |v| string(v));
+        writeln!(out, "                kind: {},", string(&r.kind)).unwrap();
+        writeln!(out, "                a: {},", number(&r.a)).unwrap();
+        writeln!(out, "                alpha: {},", number(&r.alpha)).unwrap();
+        writeln!(out, "                d: {},", number(&r.d)).unwrap();
+        writeln!(out, "                theta: {},", number(&r.theta)).unwrap();
+        writeln!(out, "                name: {},", s(&r.name)).unwrap();
+        writeln!(out, "                link: {},", s(&r.link)).unwrap();
+        writeln!(out, "                parent: {},", s(&r.parent)).unwrap();
+        writeln!(
+            out,
+            "                limits: LimitSpec {{ lower: {}, upper: {}, velocity: {}, effort: {} }},",
+            o(lower),
+            o(upper),
+            o(velocity),
+            o(effort)
+        )
+        .unwrap();
+        for (key, x) in [
+            ("damping", &r.damping),
+            ("friction", &r.friction),
+            ("armature", &r.armature),
+            ("stiffness", &r.stiffness),
+            ("springref", &r.springref),
+            ("mass", &r.mass),
+        ] {
+            writeln!(out, "                {key}: {},", o(x)).unwrap();
+        }
+        writeln!(
+            out,
+            "                com: {},",
+            option(&r.com, |v| numbers(v))
+        )
+        .unwrap();
+        writeln!(
+            out,
+            "                inertia: {},",
+            option(&r.inertia, |v| numbers(v))
+        )
+        .unwrap();
+    }
+
+    fn render_frame(out: &mut String, f: &FrameSpec) {
+        let PoseSpec {
+            xyz,
+            rpy,
+            quaternion,
+            rotation,
+        } = &f.pose;
+        let rows = |m: &[[f64; 3]; 3]| {
+            let r: Vec<String> = m.iter().map(|r| numbers(r)).collect();
+            format!("[{}]", r.join(", "))
+        };
+        writeln!(out, "                name: {},", string(&f.name)).unwrap();
+        writeln!(out, "                link: {},", string(&f.link)).unwrap();
+        writeln!(out, "                pose: PoseSpec {{").unwrap();
+        writeln!(
+            out,
+            "                    xyz: {},",
+            option(xyz, |v| numbers(v))
+        )
+        .unwrap();
+        writeln!(
+            out,
+            "                    rpy: {},",
+            option(rpy, |v| numbers(v))
+        )
+        .unwrap();
+        writeln!(
+            out,
+            "                    quaternion: {},",
+            option(quaternion, |v| numbers(v))
+        )
+        .unwrap();
+        writeln!(
+            out,
+            "                    rotation: {},",
+            option(rotation, rows)
+        )
+        .unwrap();
+        writeln!(out, "                }},").unwrap();
+    }
+
+    fn render(out: &mut String, name: &str, file: &str, f: &DhFile) {
+        let g = option(&f.gravity, |v| numbers(v));
+        let s = |x: &Option<String>| option(x, |v| string(v));
+        writeln!(out, "\n/// `models/{file}`.").unwrap();
+        writeln!(out, "fn {name}() -> DhFile {{").unwrap();
+        writeln!(out, "    DhFile {{").unwrap();
+        writeln!(out, "        format: {},", string(&f.format)).unwrap();
+        writeln!(out, "        name: {},", s(&f.name)).unwrap();
+        writeln!(out, "        base: {},", s(&f.base)).unwrap();
+        writeln!(out, "        gravity: {g},").unwrap();
+        writeln!(out, "        row: vec![").unwrap();
+        for r in &f.row {
+            let span = r.span();
+            writeln!(
+                out,
+                "            Spanned::new({}..{}, Row {{",
+                span.start, span.end
+            )
+            .unwrap();
+            render_row(out, r.get_ref());
+            writeln!(out, "            }}),").unwrap();
+        }
+        writeln!(out, "        ],").unwrap();
+        writeln!(out, "        frame: vec![").unwrap();
+        for fr in &f.frame {
+            let span = fr.span();
+            let start = format!(
+                "            Spanned::new({}..{}, FrameSpec {{",
+                span.start, span.end
+            );
+            writeln!(out, "{start}").unwrap();
+            render_frame(out, fr.get_ref());
+            writeln!(out, "            }}),").unwrap();
+        }
+        writeln!(out, "        ],").unwrap();
+        writeln!(out, "    }}").unwrap();
+        writeln!(out, "}}").unwrap();
+    }
+
+    fn render_index(out: &mut String) {
+        writeln!(
+            out,
+            "\n/// The DH table of the built-in robot `name`, if it is given here."
+        )
+        .unwrap();
+        writeln!(out, "pub(super) fn table(name: &str) -> Option<DhFile> {{").unwrap();
+        writeln!(out, "    match name {{").unwrap();
+        for n in GIVEN {
+            writeln!(out, "        {n:?} => Some({n}()),").unwrap();
+        }
+        writeln!(out, "        _ => None,").unwrap();
+        writeln!(out, "    }}").unwrap();
+        writeln!(out, "}}").unwrap();
+    }
 }

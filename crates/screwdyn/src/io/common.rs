@@ -12,7 +12,8 @@ use serde::Deserialize;
 pub(crate) fn line_col(text: &str, at: usize) -> (usize, usize) {
     let at = at.min(text.len());
     let before = &text[..at];
-    let line = before.matches('\n').count() + 1;
+    // Bytes, not chars: a newline byte is always a newline (UTF-8), and the count vectorises.
+    let line = before.bytes().filter(|&b| b == b'\n').count() + 1;
     let col = before.rsplit('\n').next().map_or(0, |s| s.chars().count()) + 1;
     (line, col)
 }
@@ -80,7 +81,7 @@ pub(crate) fn build(b: &ModelBuilder, file: &str) -> Result<Model> {
 
 /// A rigid placement in a TOML file: `xyz` plus at most one of `rpy` (URDF convention
 /// `Rz·Ry·Rx`), `quaternion` (`[w, x, y, z]`, normalised) or `rotation` (3×3, rows).
-#[derive(Clone, Debug, Default, Deserialize)]
+#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct PoseSpec {
     #[serde(default)]
@@ -196,7 +197,7 @@ impl InertiaSpec {
 }
 
 /// An extra named frame: `name`, `link`, and its `pose` in the link frame.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct FrameSpec {
     pub name: String,
@@ -224,7 +225,7 @@ pub(crate) fn add_frames(
 
 /// The `limits = { lower, upper, velocity, effort }` table of a TOML joint (each optional,
 /// infinite when absent).
-#[derive(Clone, Debug, Default, Deserialize)]
+#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct LimitSpec {
     #[serde(default)]

@@ -58,59 +58,62 @@ use crate::spatial::{Se3, SpatialInertia};
 use nalgebra::{Vector3, Vector6};
 use serde::Deserialize;
 
-#[derive(Deserialize)]
+/// A DH file's keys as read from its TOML text (the built-in tables of `builtin_tables.rs` are
+/// values of this type, written out from `models/`).
+#[derive(Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
-struct DhFile {
-    format: String,
+pub(crate) struct DhFile {
+    pub format: String,
     #[serde(default)]
-    name: Option<String>,
+    pub name: Option<String>,
     #[serde(default)]
-    base: Option<String>,
+    pub base: Option<String>,
     #[serde(default)]
-    gravity: Option<[f64; 3]>,
+    pub gravity: Option<[f64; 3]>,
     #[serde(default)]
-    row: Vec<toml::Spanned<Row>>,
+    pub row: Vec<toml::Spanned<Row>>,
     #[serde(default)]
-    frame: Vec<toml::Spanned<FrameSpec>>,
+    pub frame: Vec<toml::Spanned<FrameSpec>>,
 }
 
-#[derive(Deserialize)]
+/// One `[[row]]` of a DH table.
+#[derive(Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
-struct Row {
+pub(crate) struct Row {
     #[serde(rename = "type")]
-    kind: String,
+    pub kind: String,
     #[serde(default)]
-    a: f64,
+    pub a: f64,
     #[serde(default)]
-    alpha: f64,
+    pub alpha: f64,
     #[serde(default)]
-    d: f64,
+    pub d: f64,
     #[serde(default)]
-    theta: f64,
+    pub theta: f64,
     #[serde(default)]
-    name: Option<String>,
+    pub name: Option<String>,
     #[serde(default)]
-    link: Option<String>,
+    pub link: Option<String>,
     #[serde(default)]
-    parent: Option<String>,
+    pub parent: Option<String>,
     #[serde(default)]
-    limits: LimitSpec,
+    pub limits: LimitSpec,
     #[serde(default)]
-    damping: Option<f64>,
+    pub damping: Option<f64>,
     #[serde(default)]
-    friction: Option<f64>,
+    pub friction: Option<f64>,
     #[serde(default)]
-    armature: Option<f64>,
+    pub armature: Option<f64>,
     #[serde(default)]
-    stiffness: Option<f64>,
+    pub stiffness: Option<f64>,
     #[serde(default)]
-    springref: Option<f64>,
+    pub springref: Option<f64>,
     #[serde(default)]
-    mass: Option<f64>,
+    pub mass: Option<f64>,
     #[serde(default)]
-    com: Option<[f64; 3]>,
+    pub com: Option<[f64; 3]>,
     #[serde(default)]
-    inertia: Option<[f64; 6]>,
+    pub inertia: Option<[f64; 6]>,
 }
 
 fn rot_z(t: f64) -> Se3 {
@@ -146,6 +149,12 @@ pub fn modified_dh_transform(a_prev: f64, alpha_prev: f64, d: f64, theta: f64) -
 /// physical-consistency problem).
 pub fn parse_dh(text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let f: DhFile = common::from_toml(text, file)?;
+    dh_model(&f, text, file, options)
+}
+
+/// The model of a DH table already read from `text` (the spans of its rows and frames are
+/// byte offsets in `text`, for the line an error names).
+pub(crate) fn dh_model(f: &DhFile, text: &str, file: &str, options: &LoadOptions) -> Result<Model> {
     let modified = match f.format.as_str() {
         "dh" => false,
         "modified-dh" => true,

@@ -52,6 +52,9 @@ pub mod urdf;
 pub mod visual;
 mod xml_text;
 
+// Written out from models/ by a test (builtin.rs), in the layout the test writes.
+#[rustfmt::skip]
+mod builtin_tables;
 mod common;
 mod options;
 mod source;
