@@ -44,7 +44,7 @@ def v(xs):
 
 INERTIA = [cylinder(MASS[i], *CYL[i]) for i in range(6)]
 HEAD = __doc__.strip().splitlines()
-toml = ["# UR5 as a standard DH table (seed 004), written by models/scripts/ur5.py."]
+toml = ["# UR5 as a standard DH table (docs/formats.md, "DH tables"), written by models/scripts/ur5.py."]
 toml += ["# " + line if line else "#" for line in HEAD[1:-1]]
 toml += ['format = "dh"', 'name = "ur5"', 'base = "base_link"', ""]
 for i in range(6):

@@ -191,11 +191,16 @@ mod tests {
     /// screwdyn --lib builtin_tables_are_the_model_files` rewrites it after a file changed.
     #[test]
     fn builtin_tables_are_the_model_files() {
+        let rewrite = std::env::var_os("SCREWDYN_WRITE_TABLES").is_some();
         let mut out = String::from(HEADER);
         for name in GIVEN {
             let (file, text) = shipped(name).unwrap();
             let parsed: DhFile = from_toml(text, file).unwrap();
             render(&mut out, name, file, &parsed);
+            // Rewriting: the compiled-in tables are the old ones, compared on the next run.
+            if rewrite {
+                continue;
+            }
             let Some(direct) = builtin_tables::table(name) else {
                 continue; // not written out yet: the comparison of the texts below fails
             };
@@ -209,7 +214,7 @@ mod tests {
         }
         render_index(&mut out);
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/io/builtin_tables.rs");
-        if std::env::var_os("SCREWDYN_WRITE_TABLES").is_some() {
+        if rewrite {
             std::fs::write(path, &out).unwrap();
         }
         assert!(

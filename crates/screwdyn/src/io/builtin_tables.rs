@@ -20,7 +20,7 @@ fn ur5() -> DhFile {
         base: Some("base_link".into()),
         gravity: None,
         row: vec![
-            Spanned::new(804..811, Row {
+            Spanned::new(824..831, Row {
                 kind: "R".into(),
                 a: 0.0,
                 alpha: 1.5707963267948966,
@@ -39,7 +39,7 @@ fn ur5() -> DhFile {
                 com: Some([0.0, -0.02561, 0.00193]),
                 inertia: Some([0.010267499999999999, 0.0, 0.0, 0.00666, 0.0, 0.010267499999999999]),
             }),
-            Spanned::new(1195..1202, Row {
+            Spanned::new(1215..1222, Row {
                 kind: "R".into(),
                 a: -0.425,
                 alpha: 0.0,
@@ -58,7 +58,7 @@ fn ur5() -> DhFile {
                 com: Some([0.2125, 0.0, 0.11336]),
                 inertia: Some([0.0151074, 0.0, 0.0, 0.13388583541666668, 0.0, 0.13388583541666668]),
             }),
-            Spanned::new(1572..1579, Row {
+            Spanned::new(1592..1599, Row {
                 kind: "R".into(),
                 a: -0.39225,
                 alpha: 0.0,
@@ -77,7 +77,7 @@ fn ur5() -> DhFile {
                 com: Some([0.15, 0.0, 0.0265]),
                 inertia: Some([0.0029125, 0.0, 0.0, 0.03133074546875, 0.0, 0.03133074546875]),
             }),
-            Spanned::new(1933..1940, Row {
+            Spanned::new(1953..1960, Row {
                 kind: "R".into(),
                 a: 0.0,
                 alpha: 1.5707963267948966,
@@ -96,7 +96,7 @@ fn ur5() -> DhFile {
                 com: Some([0.0, -0.0018, 0.01634]),
                 inertia: Some([0.0019504, 0.0, 0.0, 0.0019504, 0.0, 0.0009752000000000001]),
             }),
-            Spanned::new(2309..2316, Row {
+            Spanned::new(2329..2336, Row {
                 kind: "R".into(),
                 a: 0.0,
                 alpha: -1.5707963267948966,
@@ -115,7 +115,7 @@ fn ur5() -> DhFile {
                 com: Some([0.0, 0.0018, 0.01634]),
                 inertia: Some([0.0019504, 0.0, 0.0, 0.0019504, 0.0, 0.0009752000000000001]),
             }),
-            Spanned::new(2685..2692, Row {
+            Spanned::new(2705..2712, Row {
                 kind: "R".into(),
                 a: 0.0,
                 alpha: 0.0,
@@ -136,7 +136,7 @@ fn ur5() -> DhFile {
             }),
         ],
         frame: vec![
-            Spanned::new(3050..3059, FrameSpec {
+            Spanned::new(3070..3079, FrameSpec {
                 name: "tool0".into(),
                 link: "wrist_3_link".into(),
                 pose: PoseSpec {
@@ -158,7 +158,7 @@ fn panda() -> DhFile {
         base: Some("panda_link0".into()),
         gravity: None,
         row: vec![
-            Spanned::new(1047..1054, Row {
+            Spanned::new(1067..1074, Row {
                 kind: "R".into(),
                 a: 0.0,
                 alpha: 0.0,
@@ -177,7 +177,7 @@ fn panda() -> DhFile {
                 com: Some([0.003875, 0.002081, -0.04762]),
                 inertia: Some([0.70337, -0.000139, 0.006772, 0.70661, 0.019169, 0.009117]),
             }),
-            Spanned::new(1321..1328, Row {
+            Spanned::new(1341..1348, Row {
                 kind: "R".into(),
                 a: 0.0,
                 alpha: -1.5707963267948966,
@@ -196,7 +196,7 @@ fn panda() -> DhFile {
                 com: Some([-0.003141, -0.02872, 0.003495]),
                 inertia: Some([0.007962, -0.003925, 0.010254, 0.02811, 0.000704, 0.025995]),
             }),
-            Spanned::new(1615..1622, Row {
+            Spanned::new(1635..1642, Row {
                 kind: "R".into(),
                 a: 0.0,
                 alpha: 1.5707963267948966,
@@ -215,7 +215,7 @@ fn panda() -> DhFile {
                 com: Some([0.027518, 0.039252, -0.066502]),
                 inertia: Some([0.037242, -0.004761, -0.011396, 0.036155, -0.012805, 0.01083]),
             }),
-            Spanned::new(1920..1927, Row {
+            Spanned::new(1940..1947, Row {
                 kind: "R".into(),
                 a: 0.0825,
                 alpha: 1.5707963267948966,
@@ -234,7 +234,7 @@ fn panda() -> DhFile {
                 com: Some([-0.05317, 0.104419, 0.027454]),
                 inertia: Some([0.025853, 0.007796, -0.001332, 0.019552, 0.008641, 0.028323]),
             }),
-            Spanned::new(2225..2232, Row {
+            Spanned::new(2245..2252, Row {
                 kind: "R".into(),
                 a: -0.0825,
                 alpha: -1.5707963267948966,
@@ -253,7 +253,7 @@ fn panda() -> DhFile {
                 com: Some([-0.011953, 0.041065, -0.038437]),
                 inertia: Some([0.035549, -0.002117, -0.004037, 0.029474, 0.000229, 0.008627]),
             }),
-            Spanned::new(2543..2550, Row {
+            Spanned::new(2563..2570, Row {
                 kind: "R".into(),
                 a: 0.0,
                 alpha: 1.5707963267948966,
@@ -272,7 +272,7 @@ fn panda() -> DhFile {
                 com: Some([0.060149, -0.014117, -0.010517]),
                 inertia: Some([0.001964, 0.000109, -0.001158, 0.004354, 0.000341, 0.005433]),
             }),
-            Spanned::new(2837..2844, Row {
+            Spanned::new(2857..2864, Row {
                 kind: "R".into(),
                 a: 0.088,
                 alpha: 1.5707963267948966,
@@ -293,7 +293,7 @@ fn panda() -> DhFile {
             }),
         ],
         frame: vec![
-            Spanned::new(3210..3219, FrameSpec {
+            Spanned::new(3230..3239, FrameSpec {
                 name: "panda_link8".into(),
                 link: "panda_link7".into(),
                 pose: PoseSpec {
