@@ -17,10 +17,7 @@ use crate::scalar::Real;
 use nalgebra::{Matrix3, Vector3};
 
 /// How many bodies are moved to {0} side by side: one AVX-512 register of `f64`, two AVX2 ones.
-pub(crate) const LANES: usize = 8;
-
-/// The symmetric entries `(00, 11, 22, 01, 02, 12)` of a 3×3 matrix, in that order.
-const SYMMETRIC: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
+pub(crate) const LANES: usize = 4;
 
 /// [`LANES`] bodies' inertias in their own frames, coordinate by coordinate: lane `l` of chunk
 /// `k` is body `k L + l` (the lanes past the last body are zero).
@@ -114,27 +111,43 @@ pub(crate) fn body_lanes<'a, T: Real>(
 /// Every body's inertia in {0} (`out[k]` lane `l` for body `k L + l`), from the bodies in their
 /// own frames (`bodies`, as [`body_lanes`] made them) at the world poses `poses`
 /// (`H_i^0`, one per body): the equations of the module, lane by lane. The lanes past the last
-/// body get zero poses and hold zero inertias.
+/// body hold zero inertias.
 #[inline(always)]
 pub(crate) fn inertias_in_world<T: Real>(
     bodies: &[BodyLanes<T>],
     poses: &[Se3<T>],
     out: &mut [InertiaLanes<T>],
 ) {
-    for ((body, poses), out) in bodies.iter().zip(poses.chunks(LANES)).zip(out.iter_mut()) {
-        // (R, p) of the chunk's bodies, coordinate by coordinate (R column-major: R_rc at 3c + r).
-        let mut r = [[T::zero(); LANES]; 9];
-        let mut p = [[T::zero(); LANES]; 3];
-        for (l, pose) in poses.iter().enumerate() {
-            for (k, x) in pose.rotation.as_slice().iter().enumerate() {
-                r[k][l] = *x;
-            }
-            for (p, x) in p.iter_mut().zip(pose.translation.iter()) {
-                p[l] = *x;
-            }
-        }
+    let n = poses.len();
+    for (k, (body, out)) in bodies.iter().zip(out.iter_mut()).enumerate() {
+        let start = k * LANES;
+        let (r, p) = if start + LANES <= n {
+            gather(|l| &poses[start + l])
+        } else {
+            // The tail chunk: its lanes past the last body repeat the last pose (their bodies
+            // are zero, so are their inertias).
+            gather(|l| &poses[(start + l).min(n - 1)])
+        };
         chunk_in_world(body, &r, &p, out);
     }
+}
+
+/// `(R, p)` of the [`LANES`] poses `pose(l)`, coordinate by coordinate (`R` column-major:
+/// `R_rc` at `3c + r`).
+#[inline(always)]
+fn gather<'a, T: Real>(pose: impl Fn(usize) -> &'a Se3<T>) -> ([[T; LANES]; 9], [[T; LANES]; 3]) {
+    let mut r = [[T::zero(); LANES]; 9];
+    let mut p = [[T::zero(); LANES]; 3];
+    for l in 0..LANES {
+        let pose = pose(l);
+        for (k, x) in pose.rotation.as_slice().iter().enumerate() {
+            r[k][l] = *x;
+        }
+        for (p, x) in p.iter_mut().zip(pose.translation.iter()) {
+            p[l] = *x;
+        }
+    }
+    (r, p)
 }
 
 /// One chunk of [`inertias_in_world`]: plain elementwise loops over the lanes, nothing indexed
@@ -148,18 +161,6 @@ fn chunk_in_world<T: Real>(
 ) {
     let rot = |row: usize, col: usize| &r[3 * col + row];
     let ic = |a: usize, b: usize| &body.inertia_com[3 * b + a];
-    // A = R I_c, entry by entry.
-    let mut a = [[T::zero(); LANES]; 9];
-    for row in 0..3 {
-        for k in 0..3 {
-            let (r0, r1, r2) = (rot(row, 0), rot(row, 1), rot(row, 2));
-            let (i0, i1, i2) = (ic(0, k), ic(1, k), ic(2, k));
-            let out = &mut a[3 * k + row];
-            for l in 0..LANES {
-                out[l] = r2[l].mul_add(i2[l], r1[l].mul_add(i1[l], r0[l] * i0[l]));
-            }
-        }
-    }
     // c⁰ = R c + p and h = m c⁰.
     let mut c0 = [[T::zero(); LANES]; 3];
     for row in 0..3 {
@@ -175,28 +176,41 @@ fn chunk_in_world<T: Real>(
         }
     }
     out.mass = body.mass;
-    // I_o = A Rᵀ + m(|c⁰|² 1 − c⁰ c⁰ᵀ): (A Rᵀ)_{jk} = row j of A · row k of R; the shift's
-    // diagonal is h_y c⁰_y + h_z c⁰_z, …, the rest −h_j c⁰_k.
+    // I_o = R I_c Rᵀ + m(|c⁰|² 1 − c⁰ c⁰ᵀ), row j at a time: a = row j of R I_c, then
+    // (R I_c Rᵀ)_{jk} = a · row k of R for k ≥ j; the shift's diagonal is h_y c⁰_y + h_z c⁰_z,
+    // …, the rest −h_j c⁰_k.
     let h = &out.first_moment;
-    for (e, &(j, k)) in SYMMETRIC.iter().enumerate() {
-        let (a0, a1, a2) = (&a[j], &a[3 + j], &a[6 + j]);
-        let (r0, r1, r2) = (rot(k, 0), rot(k, 1), rot(k, 2));
-        let mut io = [T::zero(); LANES];
-        for l in 0..LANES {
-            let arr = a2[l].mul_add(r2[l], a1[l].mul_add(r1[l], a0[l] * r0[l]));
-            io[l] = if j == k {
-                let (u, v) = ((j + 1) % 3, (j + 2) % 3);
-                let (hu, hv) = (h[u][l] * c0[u][l], h[v][l] * c0[v][l]);
-                // The order of rigid_in_world: (xx + zz) etc. with the lower index first.
-                let (first, second) = if u < v { (hu, hv) } else { (hv, hu) };
-                arr + (first + second)
-            } else {
-                arr - h[j][l] * c0[k][l]
-            };
+    for j in 0..3 {
+        let (r0, r1, r2) = (rot(j, 0), rot(j, 1), rot(j, 2));
+        let mut a = [[T::zero(); LANES]; 3];
+        for (k, a) in a.iter_mut().enumerate() {
+            let (i0, i1, i2) = (ic(0, k), ic(1, k), ic(2, k));
+            for l in 0..LANES {
+                a[l] = r2[l].mul_add(i2[l], r1[l].mul_add(i1[l], r0[l] * i0[l]));
+            }
         }
-        out.inertia_origin[e] = io;
+        for k in j..3 {
+            let (q0, q1, q2) = (rot(k, 0), rot(k, 1), rot(k, 2));
+            let mut io = [T::zero(); LANES];
+            for l in 0..LANES {
+                let arr = a[2][l].mul_add(q2[l], a[1][l].mul_add(q1[l], a[0][l] * q0[l]));
+                io[l] = if j == k {
+                    let (u, v) = ((j + 1) % 3, (j + 2) % 3);
+                    let (hu, hv) = (h[u][l] * c0[u][l], h[v][l] * c0[v][l]);
+                    // The order of rigid_in_world: the lower coordinate's term first.
+                    let (first, second) = if u < v { (hu, hv) } else { (hv, hu) };
+                    arr + (first + second)
+                } else {
+                    arr - h[j][l] * c0[k][l]
+                };
+            }
+            out.inertia_origin[SYMMETRIC_INDEX[j][k]] = io;
+        }
     }
 }
+
+/// Where entry `(j, k)` of a symmetric 3×3 matrix is in the order `(00, 11, 22, 01, 02, 12)`.
+const SYMMETRIC_INDEX: [[usize; 3]; 3] = [[0, 3, 4], [3, 1, 5], [4, 5, 2]];
 
 #[cfg(test)]
 mod tests {
