@@ -63,8 +63,6 @@ pub struct Workspace<T: Real = f64> {
 
     /// CRBA: composite spatial inertia of the subtree rooted at body `i`, in the base frame.
     pub composite_inertia: Vec<CompositeInertia<T>>,
-    /// CRBA: each body's own inertia in the base frame, bodies side by side in chunks of lanes.
-    pub(crate) inertia_lanes: Vec<crate::spatial::inertia_lanes::InertiaLanes<T>>,
     /// ABA and RNEA: `V_i^0 = Ad_{H_i^0} V_i^{i,0}`, body `i`'s twist written in the base frame.
     pub twist_in_world: Vec<Twist<T>>,
     /// ABA and RNEA: `V̇_i^0`, its time derivative (the base-frame spatial acceleration).
@@ -181,7 +179,6 @@ impl<T: Real> Workspace<T> {
             nonlinear_effects: DVector::zeros(n),
             qdd: DVector::zeros(n),
             composite_inertia: vec![CompositeInertia::zero(); n],
-            inertia_lanes: crate::spatial::inertia_lanes::InertiaLanes::for_bodies(n),
             twist_in_world: vec![Twist::zeros(); n],
             twist_dot_in_world: vec![Twist::zeros(); n],
             wrench_in_world: vec![Wrench::zeros(); n],

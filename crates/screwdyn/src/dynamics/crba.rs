@@ -7,7 +7,6 @@ use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::scalar::Real;
 use crate::spatial::fused::{cross, dot6};
-use crate::spatial::inertia_lanes::{inertias_in_world, InertiaLanes, LANES};
 use crate::spatial::{ang, lin, twist, CompositeInertia, Twist, Wrench};
 use crate::workspace::Workspace;
 use nalgebra::DMatrix;
@@ -16,17 +15,16 @@ use nalgebra::Vector3;
 /// The mass matrix `M(q)` by the composite-rigid-body algorithm, everything in the base frame
 /// {0} (Featherstone's composite inertias, summed where no change of frame is needed):
 ///
-/// 1. forward kinematics `H_i^0 = (R_i, p_i)`; every body's inertia in {0} by its ten
-///    parameters, eight bodies side by side in vector lanes: `c_i⁰ = R_i c_i + p_i`,
-///    `h = m_i c_i⁰`, `I_o = R_i I_{c,i} R_iᵀ + m_i(|c_i⁰|² 1 − c_i⁰ c_i⁰ᵀ)` (about the origin
-///    of {0}); then body by body the joint's screw `s_i = Ad_{H_i^0} S_i` (a space-Jacobian
-///    column);
+/// 1. forward kinematics `H_i^0 = (R_i, p_i)`, then body by body the joint's screw
+///    `s_i = Ad_{H_i^0} S_i` (a space-Jacobian column) and the body's inertia in {0} by its ten
+///    parameters: `c_i⁰ = R_i c_i + p_i`, `h = m_i c_i⁰`,
+///    `I_o = R_i I_{c,i} R_iᵀ + m_i(|c_i⁰|² 1 − c_i⁰ c_i⁰ᵀ)` (about the origin of {0});
 /// 2. from the leaves: `𝔍ᶜ_i = 𝔍_i^0 + Σ_children 𝔍ᶜ_c` (ten additions per child),
 ///    `F_i = 𝔍ᶜ_i s_i = (I_o ω + h × v, m v − h × ω)` for `s_i = (ω, v)`,
 ///    `M_ii = s_iᵀ F_i + I_a,i` and `M_ki = M_ik = s_kᵀ F_i` for every ancestor `k` of `i`
 ///    (entries of bodies on different branches are zero). On a serial chain (`λ(i) = i − 1`)
-///    the body's inertia is added to its child's composite while that is still in registers;
-///    the ancestors are then the one run `0..i`.
+///    the body's inertia is moved to {0} in this pass instead, and added to its child's
+///    composite while that is still in registers; the ancestors are then the one run `0..i`.
 ///
 /// Equal to Lynch & Park's `M = Sᵀ Lᵀ 𝔍 L S` (*Modern Robotics*) and to `Σ_i J_iᵀ 𝔍^{i,i} J_i`.
 /// Each joint's armature `I_a,i` (the rotor inertia reflected to it,
@@ -84,9 +82,10 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
     if n == 0 {
         return;
     }
-    let (motions, parents, joints) = (
+    let (motions, parents, bodies, joints) = (
         &model.motions()[..n],
         &model.parents()[..n],
+        &model.bodies()[..n],
         &model.joints()[..n],
     );
     let Workspace {
@@ -94,7 +93,6 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
         screw_in_world,
         screw_in_world_by_coordinate,
         composite_inertia,
-        inertia_lanes,
         mass_matrix,
         ..
     } = ws;
@@ -102,11 +100,8 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
     let screws = &mut screw_in_world[..n];
     let by_coordinate = &mut screw_in_world_by_coordinate[..6 * n];
     let composites = &mut composite_inertia[..n];
-    // 1. 𝔍_i^0 for every body, side by side in lanes; then s_i = Ad_{H_i^0} S_i and, on a
-    // tree, 𝔍ᶜ_i = 𝔍_i^0, body by body (on a large model the screws are also stored coordinate
-    // by coordinate).
-    inertias_in_world(&model.body_lanes, poses, inertia_lanes);
-    let inertias = &*inertia_lanes;
+    // 1. s_i = Ad_{H_i^0} S_i and, on a tree, 𝔍ᶜ_i = 𝔍_i^0, body by body (on a large model the
+    // screws are also stored coordinate by coordinate).
     let side_by_side = n >= LONG_RUN;
     for i in 0..n {
         let s = motions[i].act(&poses[i]);
@@ -117,7 +112,7 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
             }
         }
         if !model.is_chain {
-            composites[i] = inertias[i / LANES].get(i % LANES);
+            composites[i] = CompositeInertia::rigid_in_world(&bodies[i].inertia, &poses[i]);
         }
     }
     // Bodies on different branches do not couple: those entries stay zero (on a chain every
@@ -134,7 +129,8 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
         parents,
         run_start: &model.run_start[..n],
         joints,
-        inertias,
+        bodies,
+        poses,
         screws,
         by_coordinate,
     };
@@ -151,7 +147,8 @@ struct Columns<'a, T: Real> {
     parents: &'a [Option<usize>],
     run_start: &'a [usize],
     joints: &'a [crate::model::Joint<T>],
-    inertias: &'a [InertiaLanes<T>],
+    bodies: &'a [crate::model::Body<T>],
+    poses: &'a [crate::spatial::Se3<T>],
     screws: &'a [Twist<T>],
     by_coordinate: &'a [T],
 }
@@ -160,8 +157,8 @@ impl<T: Real> Columns<'_, T> {
     /// Column `i` of `M` (column-major `data`) from the leaves: its upper part (entry `(k, i)`
     /// is `data[i n + k]`, every ancestor `k < i`) and row `i` left of the diagonal (entry
     /// `(i, k)` is `data[k n + i]`). On a tree `composites` (each body's own inertia) are
-    /// summed into the parents on the way; on a `CHAIN` (`λ(i) = i − 1`) body `i`'s inertia in
-    /// {0} (`inertias`) is added to its one child's composite, still in registers, and the
+    /// summed into the parents on the way; on a `CHAIN` (`λ(i) = i − 1`) body `i`'s inertia is
+    /// moved to {0} here and added to its one child's composite, still in registers, and the
     /// ancestors of `i` are the one run `0..i`. With `SIDE_BY_SIDE`, runs of at least
     /// [`LONG_RUN`] ancestors read the screws coordinate by coordinate, and the lower triangle
     /// is copied at the end; without, each entry is written to both triangles as it is formed.
@@ -179,7 +176,8 @@ impl<T: Real> Columns<'_, T> {
             // 𝔍ᶜ_i = 𝔍_i^0 + Σ_children 𝔍ᶜ_c: on a chain the one child's is still in registers;
             // on a tree the children's were added into `composites[i]` when they were done.
             let composite = if CHAIN {
-                let mut composite = self.inertias[i / LANES].get(i % LANES);
+                let mut composite =
+                    CompositeInertia::rigid_in_world(&self.bodies[i].inertia, &self.poses[i]);
                 composite.add(&child);
                 composites[i] = composite;
                 child = composite;

@@ -441,7 +441,6 @@ impl<T: Real> ModelBuilder<T> {
             motions: Vec::new(),
             inertia_scale: T::zero(),
             body_composite: Vec::new(),
-            body_lanes: Vec::new(),
             is_chain: false,
             run_start: Vec::new(),
             body_frames: Vec::new(),

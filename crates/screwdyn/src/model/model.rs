@@ -66,9 +66,6 @@ pub struct Model<T: Real = f64> {
     pub(crate) inertia_scale: T,
     /// Derived: each body's inertia in the parameters CRBA sums (`m`, `m c`, `I_o`).
     pub(crate) body_composite: Vec<crate::spatial::CompositeInertia<T>>,
-    /// Derived: the bodies' inertias in chunks of lanes, coordinate by coordinate (moved to {0}
-    /// side by side by CRBA).
-    pub(crate) body_lanes: Vec<crate::spatial::inertia_lanes::BodyLanes<T>>,
     /// Derived: the tree is a single chain (`λ(i) = i − 1`).
     pub(crate) is_chain: bool,
     /// Derived: for each body `k`, the first body `j ≤ k` of the unbranched run ending at `k`
@@ -241,8 +238,6 @@ impl<T: Real> Model<T> {
             .iter()
             .map(|b| crate::spatial::CompositeInertia::from(&b.inertia))
             .collect();
-        self.body_lanes =
-            crate::spatial::inertia_lanes::body_lanes(self.bodies.iter().map(|b| &b.inertia));
         self.is_chain = self
             .parents
             .iter()
@@ -723,7 +718,6 @@ impl Model<f64> {
             motions: Vec::new(),
             inertia_scale: U::zero(),
             body_composite: Vec::new(),
-            body_lanes: Vec::new(),
             is_chain: false,
             run_start: Vec::new(),
             body_frames: Vec::new(),

@@ -15,7 +15,6 @@ mod composite_inertia;
 pub(crate) mod fused;
 mod inertia;
 pub(crate) mod inertia_in_world;
-pub(crate) mod inertia_lanes;
 mod pose;
 mod se3;
 mod so3;
