@@ -52,9 +52,17 @@ if [ -n "${BASELINE:-}" ]; then
     SRC=$ROOT/target/bench-baseline/src
     rm -rf "$SRC" && mkdir -p "$SRC"
     git archive "$BASELINE" | tar -x -C "$SRC"
+    # The unpacked files carry the commit's time, which can be older than the last baseline
+    # build of another commit: cargo would then reuse that build. Touched when the commit changed.
+    STAMP=$ROOT/target/bench-baseline/commit
+    WANT=$(git rev-parse "$BASELINE^{commit}")
+    if [ "$(cat "$STAMP" 2>/dev/null)" != "$WANT" ]; then
+        find "$SRC" -type f -exec touch {} +
+    fi
     echo "building screwdyn at $BASELINE (release, target-cpu=native) ..." >&2
     (cd "$SRC" && RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR=$ROOT/target/bench-baseline/target \
         cargo build --release -q -p screwdyn-cli)
+    echo "$WANT" > "$STAMP"
     BASE=$ROOT/target/bench-baseline/target/release/screwdyn
 fi
 
