@@ -8,7 +8,7 @@ use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::scalar::Real;
 use crate::spatial::fused::{ad_fused, dot6, mat6_vec};
-use crate::spatial::inertia_in_world::{velocity_product_wrench, InertiaInWorld};
+use crate::spatial::inertia_in_world::InertiaInWorld;
 use crate::spatial::Twist;
 use crate::workspace::Workspace;
 use nalgebra::DVector;
@@ -178,7 +178,7 @@ fn aba_passes<T: Real>(
         let inertia = InertiaInWorld::new(&bodies[i].inertia, h);
         inertia.write_matrix(&mut inertias[i]);
         let vi = &twists[i];
-        let mut p = velocity_product_wrench(vi, &inertia.momentum(vi));
+        let mut p = inertia.velocity_product_wrench(vi);
         if let Some(f) = fext {
             p -= f.in_world_at(h, i);
         }
