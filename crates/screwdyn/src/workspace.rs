@@ -70,7 +70,8 @@ pub struct Workspace<T: Real = f64> {
     /// RNEA: `W_i^0 = Ad_{H_0^i}ᵀ W_{λ(i)}^{i,i}`, the wrench of the parent on body `i` written
     /// in the base frame (moment about the base origin).
     pub wrench_in_world: Vec<Wrench<T>>,
-    /// ABA: articulated-body inertia `𝔍ᴬ_i`, in the base frame.
+    /// ABA: articulated-body inertia `𝔍ᴬ_i`, in the base frame, for the bodies that have a
+    /// parent (a root body's is left at its rigid inertia `𝔍_i^0`: no pass reads it).
     pub articulated_inertia: Vec<Matrix6<T>>,
     /// ABA: articulated bias wrench `pᴬ_i`, in the base frame.
     pub articulated_bias: Vec<Wrench<T>>,

@@ -8,7 +8,7 @@ use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::scalar::Real;
 use crate::spatial::fused::{ad_fused, dot6, mat6_vec};
-use crate::spatial::inertia_in_world::{velocity_product_wrench, InertiaInWorld};
+use crate::spatial::inertia_in_world::InertiaInWorld;
 use crate::spatial::Twist;
 use crate::workspace::Workspace;
 use nalgebra::DVector;
@@ -33,7 +33,7 @@ use nalgebra::DVector;
 ///
 /// Writes `ws.qdd`, and `ws.screw_in_world`, `ws.twist_in_world`, `ws.twist_dot_in_world`
 /// (`V̇_i^0`, the base-frame spatial acceleration) and the articulated quantities, all in the
-/// base frame. Returns `ws.qdd`.
+/// base frame (a root's `𝔍ᴬ` is left at its rigid `𝔍^0`: nothing reads it). Returns `ws.qdd`.
 ///
 /// # Errors
 /// [`Error::DimensionMismatch`]/[`Error::NonFinite`] for bad `q`, `v`, `tau`;
@@ -178,7 +178,7 @@ fn aba_passes<T: Real>(
         let inertia = InertiaInWorld::new(&bodies[i].inertia, h);
         inertia.write_matrix(&mut inertias[i]);
         let vi = &twists[i];
-        let mut p = velocity_product_wrench(vi, &inertia.momentum(vi));
+        let mut p = inertia.velocity_product_wrench(vi);
         if let Some(f) = fext {
             p -= f.in_world_at(h, i);
         }
@@ -222,12 +222,15 @@ fn aba_passes<T: Real>(
                 up[r] = ud[r].mul_add(-u_sp, ia_sp[r] + up[r]);
             }
             d_joint[p] = (u_sp * u_sp).mul_add(-inv_d, dot6(&sp, &ia_sp) + d_joint[p]);
-            // 𝔍ᵃ = 𝔍ᴬ − U Uᵀ / D (symmetric), added to the parent's as it is formed.
-            let parent = &mut before[p];
-            for c in 0..6 {
-                let uc = -u[c];
-                for r in 0..6 {
-                    parent[(r, c)] += ud[r].mul_add(uc, ia[(r, c)]);
+            // 𝔍ᵃ = 𝔍ᴬ − U Uᵀ / D (symmetric), added to the parent's as it is formed, unless the
+            // parent is a root.
+            if parents[p].is_some() {
+                let parent = &mut before[p];
+                for c in 0..6 {
+                    let uc = -u[c];
+                    for r in 0..6 {
+                        parent[(r, c)] += ud[r].mul_add(uc, ia[(r, c)]);
+                    }
                 }
             }
             // pᵃ = pᴬ + 𝔍ᵃ c + U u / D = pᴬ + 𝔍ᴬ c + (U / D)(u − Uᵀ c).

@@ -64,6 +64,39 @@ impl<T: Real> InertiaInWorld<T> {
         twist(l, f)
     }
 
+    /// The bias wrench `−ad_Vᵀ 𝔍^0 V` of the twist `V = (ω, v)` from the ten parameters:
+    /// with the centre of mass's velocity `v_c = v + ω × c^0` and `g = m ω × v_c`,
+    /// `−ad_Vᵀ 𝔍^0 V = (ω × I_c^0 ω + c^0 × g, g)`. (It equals
+    /// [`velocity_product_wrench`]`(V, 𝔍^0 V)`: with `f = m v_c` and `l = I_c^0 ω + c^0 × f`,
+    /// `v × f = −(ω × c^0) × f` as `v_c × f = 0`, and `ω × (c^0 × f) − (ω × c^0) × f =
+    /// c^0 × (ω × f)` by the Jacobi identity.) 36 products against 51 through the momentum.
+    #[inline(always)]
+    pub(crate) fn velocity_product_wrench(&self, vel: &Twist<T>) -> Wrench<T> {
+        let [i00, i11, i22, i01, i02, i12] = self.rotational;
+        let (w, v, c) = (ang(vel), lin(vel), &self.com);
+        // v_c = v + ω × c^0.
+        let vc = Vector3::new(
+            w.y.mul_add(c.z, (-w.z).mul_add(c.y, v.x)),
+            w.z.mul_add(c.x, (-w.x).mul_add(c.z, v.y)),
+            w.x.mul_add(c.y, (-w.y).mul_add(c.x, v.z)),
+        );
+        // g = ω × (m v_c).
+        let g = cross(&w, &(vc * self.mass));
+        // I_c^0 ω, then ω × I_c^0 ω + c^0 × g.
+        let iw = Vector3::new(
+            i02.mul_add(w.z, i01.mul_add(w.y, i00 * w.x)),
+            i12.mul_add(w.z, i11.mul_add(w.y, i01 * w.x)),
+            i22.mul_add(w.z, i12.mul_add(w.y, i02 * w.x)),
+        );
+        let wiw = cross(&w, &iw);
+        let l = Vector3::new(
+            c.y.mul_add(g.z, (-c.z).mul_add(g.y, wiw.x)),
+            c.z.mul_add(g.x, (-c.x).mul_add(g.z, wiw.y)),
+            c.x.mul_add(g.y, (-c.y).mul_add(g.x, wiw.z)),
+        );
+        twist(l, g)
+    }
+
     /// Writes the 6×6 `𝔍^0 = [I_c^0 − m[c^0][c^0]  m[c^0]; −m[c^0]  m·1]` into `out`, entry by
     /// entry in place (column-major order), with no 6×6 temporary to copy.
     #[inline(always)]
@@ -113,4 +146,32 @@ pub(crate) fn velocity_product_wrench<T: Real>(vel: &Twist<T>, momentum: &Wrench
     let (w, v) = (ang(vel), lin(vel));
     let (l, f) = (ang(momentum), lin(momentum));
     twist(cross(&w, &l) + cross(&v, &f), cross(&w, &f))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spatial::ad_matrix;
+    use nalgebra::Vector6;
+
+    /// The ten-parameter bias wrench against `−ad_Vᵀ 𝔍^0 V` by 6×6 products:
+    /// `𝔍^0 = Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i}` from the body-frame matrix.
+    #[test]
+    fn velocity_product_wrench_matches_six_by_six_products() {
+        let body = SpatialInertia::new(
+            2.3,
+            Vector3::new(0.1, -0.25, 0.4),
+            Matrix3::new(0.3, 0.02, -0.01, 0.02, 0.25, 0.03, -0.01, 0.03, 0.2),
+        );
+        let h = Se3::new(
+            Se3::from_rpy(0.4, -0.7, 1.1).rotation,
+            Vector3::new(0.5, -0.3, 0.8),
+        );
+        let vel = Vector6::new(0.7, -1.2, 0.4, 0.9, 0.3, -1.5);
+        let ad_inv = h.inverse().adjoint_matrix();
+        let inertia_in_world = ad_inv.transpose() * body.matrix() * ad_inv;
+        let expected = -ad_matrix(&vel).transpose() * (inertia_in_world * vel);
+        let got = InertiaInWorld::new(&body, &h).velocity_product_wrench(&vel);
+        assert!((got - expected).norm() < 1e-13, "{got} vs {expected}");
+    }
 }
