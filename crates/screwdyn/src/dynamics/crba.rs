@@ -123,9 +123,10 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
         }
     }
     // Bodies on different branches do not couple: those entries stay zero (on a chain every
-    // entry is written below).
+    // entry is written below, on a chain with leaves the leaves' rows and columns are zeroed
+    // when they are reached).
     let data = &mut mass_matrix.as_mut_slice()[..n * n];
-    if spine.map_or(true, |s| !s.leaves.is_empty()) {
+    if tree {
         data.fill(T::zero());
     }
     // 2. Compiled apart for small models, whose runs of ancestors are all short (the vector
@@ -228,6 +229,16 @@ impl<T: Real> Columns<'_, T> {
         } else {
             (0, n)
         };
+        // A leaf couples with its ancestors only: zero its column and its row in the spine's
+        // columns after its parent.
+        for leaf in spine.leaves.iter().filter(|_| LEAVES) {
+            let l = leaf.body;
+            let after_parent = leaf.parent.map_or(start, |p| p + 1);
+            for later in data[after_parent * n..end * n].chunks_exact_mut(n) {
+                later[l] = T::zero();
+            }
+            data[l * n..(l + 1) * n].fill(T::zero());
+        }
         let mut leaves = spine.leaves.iter().peekable();
         // 𝔍ᶜ_{i+1}, carried to its parent.
         let mut child = CompositeInertia::zero();
@@ -256,7 +267,7 @@ impl<T: Real> Columns<'_, T> {
 
     /// Column `l` of `M` for a leaf body whose ancestors are the run `ancestors`: its inertia
     /// `𝔍ᶜ_l = 𝔍_l^0` moved to {0} (returned, and stored in `composites`), `M_ll` and
-    /// `M_kl = M_lk`.
+    /// `M_kl = M_lk` for the ancestors (the other entries were zeroed before).
     #[inline(always)]
     fn leaf<const SIDE_BY_SIDE: bool>(
         &self,
@@ -551,7 +562,8 @@ mod tests {
     }
 
     /// The pass for chains with leaves against the general tree pass (the same model with no
-    /// spine): the same `M` and composite inertias up to rounding.
+    /// spine): the same `M` and composite inertias up to rounding, from a workspace whose `M`
+    /// held NaN.
     #[test]
     fn chain_with_leaves_equals_the_tree_pass() {
         let mut rng = StdRng::seed_from_u64(4);
@@ -570,6 +582,8 @@ mod tests {
             let (mut ws, mut ws_tree) = (Workspace::new(&model), Workspace::new(&tree));
             for _ in 0..3 {
                 let q: Vec<f64> = (0..model.nq()).map(|_| rng.gen_range(-3.0..3.0)).collect();
+                // Every entry is written (the zeros too), whatever the matrix held before.
+                ws.mass_matrix.fill(f64::NAN);
                 let m = crba(&model, &mut ws, &q).unwrap().clone();
                 let m_tree = crba(&tree, &mut ws_tree, &q).unwrap();
                 let scale = m_tree.amax();
