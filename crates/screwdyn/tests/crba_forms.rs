@@ -199,8 +199,8 @@ fn crba_equals_sum_of_body_jacobians_on_chains_and_long_trees() {
 }
 
 /// Chains with leaf bodies (the Panda's shape: two fingers on the last arm link; several leaves
-/// on one link; leaves on the base before and after the chain; a long chain whose leaves have
-/// runs of 16 and more ancestors).
+/// on one link; leaves on the base before and after the chain; a long chain with leaves whose
+/// runs of ancestors are 16 and more long).
 #[test]
 fn crba_equals_sum_of_body_jacobians_on_chains_with_leaves() {
     let mut rng = StdRng::seed_from_u64(8);
