@@ -4,7 +4,7 @@
 use super::cholesky::{singular_error, with_small_size};
 use crate::error::Result;
 use crate::kinematics::forward_kinematics;
-use crate::model::Model;
+use crate::model::{Model, Spine};
 use crate::scalar::Real;
 use crate::spatial::fused::{cross, dot6};
 use crate::spatial::{ang, lin, twist, CompositeInertia, Twist, Wrench};
@@ -25,6 +25,9 @@ use nalgebra::Vector3;
 ///    (entries of bodies on different branches are zero). On a serial chain (`λ(i) = i − 1`)
 ///    the body's inertia is moved to {0} in this pass instead, and added to its child's
 ///    composite while that is still in registers; the ancestors are then the one run `0..i`.
+///    The same on a chain with leaf bodies (fingers, tool bodies: the Panda), where
+///    `𝔍ᶜ_i = 𝔍_i^0 + 𝔍ᶜ_{i+1} + Σ_leaves 𝔍_l^0`: each leaf's column is formed when its
+///    parent is reached, and its inertia added to the parent's composite in registers.
 ///
 /// Equal to Lynch & Park's `M = Sᵀ Lᵀ 𝔍 L S` (*Modern Robotics*) and to `Σ_i J_iᵀ 𝔍^{i,i} J_i`.
 /// Each joint's armature `I_a,i` (the rotor inertia reflected to it,
@@ -100,9 +103,17 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
     let screws = &mut screw_in_world[..n];
     let by_coordinate = &mut screw_in_world_by_coordinate[..6 * n];
     let composites = &mut composite_inertia[..n];
+    // A chain, or a small chain with leaf bodies, carries its composite in registers; other
+    // trees sum the bodies' inertias stored here (large chains with leaves too: one variant of
+    // the pass fewer to compile, which kept the whole pass inlined in its CPU-specific clone).
+    let side_by_side = n >= LONG_RUN;
+    let spine = model
+        .spine
+        .as_ref()
+        .filter(|s| !side_by_side || s.leaves.is_empty());
+    let tree = spine.is_none();
     // 1. s_i = Ad_{H_i^0} S_i and, on a tree, 𝔍ᶜ_i = 𝔍_i^0, body by body (on a large model the
     // screws are also stored coordinate by coordinate).
-    let side_by_side = n >= LONG_RUN;
     for i in 0..n {
         let s = motions[i].act(&poses[i]);
         screws[i] = s;
@@ -111,14 +122,15 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
                 by_coordinate[r * n + i] = s[r];
             }
         }
-        if !model.is_chain {
+        if tree {
             composites[i] = CompositeInertia::rigid_in_world(&bodies[i].inertia, &poses[i]);
         }
     }
     // Bodies on different branches do not couple: those entries stay zero (on a chain every
-    // entry is written below).
+    // entry is written below, on a chain with leaves the leaves' rows and columns are zeroed
+    // when they are reached).
     let data = &mut mass_matrix.as_mut_slice()[..n * n];
-    if !model.is_chain {
+    if tree {
         data.fill(T::zero());
     }
     // 2. Compiled apart for small models, whose runs of ancestors are all short (the vector
@@ -134,11 +146,19 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
         screws,
         by_coordinate,
     };
-    match (side_by_side, model.is_chain) {
-        (true, true) => pass.run::<true, true>(composites, data),
-        (true, false) => pass.run::<true, false>(composites, data),
-        (false, true) => pass.run::<false, true>(composites, data),
-        (false, false) => pass.run::<false, false>(composites, data),
+    match spine {
+        None if side_by_side => pass.tree::<true>(composites, data),
+        None => pass.tree::<false>(composites, data),
+        Some(spine) if side_by_side => {
+            pass.chain_with_leaves::<true, false>(spine, composites, data)
+        }
+        Some(spine) if spine.leaves.is_empty() => {
+            pass.chain_with_leaves::<false, false>(spine, composites, data)
+        }
+        Some(spine) => pass.chain_with_leaves::<false, true>(spine, composites, data),
+    }
+    if side_by_side {
+        mirror_columns(data, n);
     }
 }
 
@@ -154,63 +174,121 @@ struct Columns<'a, T: Real> {
 }
 
 impl<T: Real> Columns<'_, T> {
-    /// Column `i` of `M` (column-major `data`) from the leaves: its upper part (entry `(k, i)`
-    /// is `data[i n + k]`, every ancestor `k < i`) and row `i` left of the diagonal (entry
-    /// `(i, k)` is `data[k n + i]`). On a tree `composites` (each body's own inertia) are
-    /// summed into the parents on the way; on a `CHAIN` (`λ(i) = i − 1`) body `i`'s inertia is
-    /// moved to {0} here and added to its one child's composite, still in registers, and the
-    /// ancestors of `i` are the one run `0..i`. With `SIDE_BY_SIDE`, runs of at least
-    /// [`LONG_RUN`] ancestors read the screws coordinate by coordinate, and the lower triangle
-    /// is copied at the end; without, each entry is written to both triangles as it is formed.
+    /// `F_i = 𝔍ᶜ_i s_i`, then `M_ii = s_iᵀ F_i + I_a,i` into `column` (column `i` of `M`).
     #[inline(always)]
-    fn run<const SIDE_BY_SIDE: bool, const CHAIN: bool>(
+    fn diagonal(&self, i: usize, composite: &CompositeInertia<T>, column: &mut [T]) -> Wrench<T> {
+        let f = composite_times_screw(composite, &self.screws[i]);
+        column[i] = dot6(&self.screws[i], &f) + self.joints[i].armature;
+        f
+    }
+
+    /// Column `i` of `M` (column-major `data`) for every body of a tree, from the leaves: its
+    /// upper part (entry `(k, i)` is `data[i n + k]`, every ancestor `k < i`, walked one
+    /// unbranched run at a time) and, without `SIDE_BY_SIDE`, row `i` left of the diagonal
+    /// (entry `(i, k)` is `data[k n + i]`). `composites` hold each body's own inertia and are
+    /// summed into the parents on the way.
+    #[inline(always)]
+    fn tree<const SIDE_BY_SIDE: bool>(
         &self,
         composites: &mut [CompositeInertia<T>],
         data: &mut [T],
     ) {
         let n = self.screws.len();
-        let (parents, screws) = (self.parents, self.screws);
-        // On a chain, 𝔍ᶜ_{i+1}, carried to its parent.
-        let mut child = CompositeInertia::zero();
+        let parents = self.parents;
         for i in (0..n).rev() {
-            // 𝔍ᶜ_i = 𝔍_i^0 + Σ_children 𝔍ᶜ_c: on a chain the one child's is still in registers;
-            // on a tree the children's were added into `composites[i]` when they were done.
-            let composite = if CHAIN {
-                let mut composite =
-                    CompositeInertia::rigid_in_world(&self.bodies[i].inertia, &self.poses[i]);
-                composite.add(&child);
-                composites[i] = composite;
-                child = composite;
-                composite
-            } else {
-                composites[i]
-            };
-            // F_i = 𝔍ᶜ_i s_i; M_ii = s_iᵀ F_i + I_a,i.
-            let f = composite_times_screw(&composite, &screws[i]);
+            // 𝔍ᶜ_i = 𝔍_i^0 + Σ_children 𝔍ᶜ_c: the children's were added when they were done.
+            let composite = composites[i];
             let (left, right) = data.split_at_mut(i * n);
             let column = &mut right[..n];
-            column[i] = dot6(&screws[i], &f) + self.joints[i].armature;
+            let f = self.diagonal(i, &composite, column);
             // M_ki = M_ik = s_kᵀ F_i for the ancestors k, one unbranched run of them at a time.
-            if CHAIN {
-                if i > 0 {
-                    self.ancestors::<SIDE_BY_SIDE>(i, 0, i, column, left, &f);
-                }
-            } else {
-                let mut next = parents[i];
-                while let Some(end) = next {
-                    let start = self.run_start[end];
-                    self.ancestors::<SIDE_BY_SIDE>(i, start, end + 1, column, left, &f);
-                    next = parents[start];
-                }
-                // 𝔍ᶜ_{λ(i)} += 𝔍ᶜ_i
-                if let Some(p) = parents[i] {
-                    composites[p].add(&composite);
-                }
+            let mut next = parents[i];
+            while let Some(end) = next {
+                let start = self.run_start[end];
+                self.ancestors::<SIDE_BY_SIDE>(i, start, end + 1, column, left, &f);
+                next = parents[start];
+            }
+            // 𝔍ᶜ_{λ(i)} += 𝔍ᶜ_i
+            if let Some(p) = parents[i] {
+                composites[p].add(&composite);
             }
         }
-        if SIDE_BY_SIDE {
-            mirror_columns(data, n);
+    }
+
+    /// Columns of `M` for a chain with leaf bodies ([`Spine`]; a chain has no leaves), entries
+    /// as in [`Self::tree`], from the chain's end: `𝔍ᶜ_i = 𝔍_i^0 + 𝔍ᶜ_{i+1} + Σ_leaves 𝔍_l^0`,
+    /// each body's inertia moved to {0} here and the child's and leaves' added in registers;
+    /// the ancestors of spine body `i` are the run `start..i`, those of a leaf on it
+    /// `start..=i`. The leaves on the base come last (no ancestors).
+    #[inline(always)]
+    fn chain_with_leaves<const SIDE_BY_SIDE: bool, const LEAVES: bool>(
+        &self,
+        spine: &Spine,
+        composites: &mut [CompositeInertia<T>],
+        data: &mut [T],
+    ) {
+        let n = self.screws.len();
+        // (A chain: the whole model, `0..n`.)
+        let (start, end) = if LEAVES {
+            (spine.start, spine.end)
+        } else {
+            (0, n)
+        };
+        // A leaf couples with its ancestors only: zero its column and its row in the spine's
+        // columns after its parent.
+        for leaf in spine.leaves.iter().filter(|_| LEAVES) {
+            let l = leaf.body;
+            let after_parent = leaf.parent.map_or(start, |p| p + 1);
+            for later in data[after_parent * n..end * n].chunks_exact_mut(n) {
+                later[l] = T::zero();
+            }
+            data[l * n..(l + 1) * n].fill(T::zero());
         }
+        let mut leaves = spine.leaves.iter().peekable();
+        // 𝔍ᶜ_{i+1}, carried to its parent.
+        let mut child = CompositeInertia::zero();
+        for i in (start..end).rev() {
+            let mut composite =
+                CompositeInertia::rigid_in_world(&self.bodies[i].inertia, &self.poses[i]);
+            composite.add(&child);
+            // The leaves on body i: their columns, and their inertias into 𝔍ᶜ_i.
+            while let Some(leaf) = leaves.next_if(|l| LEAVES && l.parent == Some(i)) {
+                let c = self.leaf::<SIDE_BY_SIDE>(leaf.body, start..i + 1, composites, data);
+                composite.add(&c);
+            }
+            composites[i] = composite;
+            child = composite;
+            let (left, right) = data.split_at_mut(i * n);
+            let column = &mut right[..n];
+            let f = self.diagonal(i, &composite, column);
+            if i > start {
+                self.ancestors::<SIDE_BY_SIDE>(i, start, i, column, left, &f);
+            }
+        }
+        for leaf in leaves.filter(|_| LEAVES) {
+            self.leaf::<SIDE_BY_SIDE>(leaf.body, start..start, composites, data);
+        }
+    }
+
+    /// Column `l` of `M` for a leaf body whose ancestors are the run `ancestors`: its inertia
+    /// `𝔍ᶜ_l = 𝔍_l^0` moved to {0} (returned, and stored in `composites`), `M_ll` and
+    /// `M_kl = M_lk` for the ancestors (the other entries were zeroed before).
+    #[inline(always)]
+    fn leaf<const SIDE_BY_SIDE: bool>(
+        &self,
+        l: usize,
+        ancestors: std::ops::Range<usize>,
+        composites: &mut [CompositeInertia<T>],
+        data: &mut [T],
+    ) -> CompositeInertia<T> {
+        let n = self.screws.len();
+        let composite = CompositeInertia::rigid_in_world(&self.bodies[l].inertia, &self.poses[l]);
+        composites[l] = composite;
+        let (left, right) = data.split_at_mut(l * n);
+        let column = &mut right[..n];
+        let f = self.diagonal(l, &composite, column);
+        self.ancestors::<SIDE_BY_SIDE>(l, ancestors.start, ancestors.end, column, left, &f);
+        composite
     }
 
     /// `M_ki = s_kᵀ F_i` for the run of ancestors `start ≤ k < end` of joint `i`, into
@@ -436,6 +514,89 @@ fn mirror_upper_triangle<T: Real>(data: &mut [T], n: usize) {
     for c in 0..n {
         for r in c + 1..n {
             data[c * n + r] = data[r * n + c];
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{JointSpec, ModelBuilder};
+    use crate::spatial::{Se3, SpatialInertia};
+    use nalgebra::{Matrix3, Vector6};
+    use rand::rngs::StdRng;
+    use rand::{Rng, SeedableRng};
+
+    /// A chain `l0 … l{len−1}` with leaf bodies (`leaves[j]`: the chain link the j-th leaf
+    /// hangs on, `None` the base; leaves on the base declared before the chain), random
+    /// revolute or prismatic axes, home poses, inertias and armatures.
+    fn chain_with_leaves(rng: &mut StdRng, len: usize, leaves: &[Option<usize>]) -> Model {
+        let mut b = ModelBuilder::new("leaves");
+        let mut link = |b: &mut ModelBuilder, name: String, parent: String| {
+            let axis =
+                Vector3::new(rng.gen_range(-1.0..1.0), 0.5, rng.gen_range(-1.0..1.0)).normalize();
+            let (screw, spec) = if rng.gen_bool(0.2) {
+                let s = Vector6::new(0.0, 0.0, 0.0, axis.x, axis.y, axis.z);
+                (s, JointSpec::prismatic(&format!("j{name}")))
+            } else {
+                let v = Vector3::new(0.1, -0.2, 0.05).cross(&axis);
+                let s = Vector6::new(axis.x, axis.y, axis.z, v.x, v.y, v.z);
+                (s, JointSpec::revolute(&format!("j{name}")))
+            };
+            let home = Se3::from_rpy(rng.gen(), rng.gen(), rng.gen())
+                .with_translation(Vector3::new(rng.gen(), rng.gen(), rng.gen()));
+            let inertia = SpatialInertia::new(
+                rng.gen_range(0.5..2.0),
+                Vector3::new(rng.gen(), rng.gen(), rng.gen()) * 0.2,
+                Matrix3::new(0.3, 0.01, 0.02, 0.01, 0.2, 0.03, 0.02, 0.03, 0.25),
+            );
+            let spec = spec.screw_in_child(screw).armature(rng.gen_range(0.0..0.1));
+            b.link(&name, &parent, spec, home, inertia);
+        };
+        let on = |p: &Option<usize>| p.map_or("base".to_string(), |p| format!("l{p}"));
+        for (j, p) in leaves.iter().enumerate().filter(|(_, p)| p.is_none()) {
+            link(&mut b, format!("leaf{j}"), on(p));
+        }
+        for i in 0..len {
+            link(&mut b, format!("l{i}"), on(&i.checked_sub(1)));
+        }
+        for (j, p) in leaves.iter().enumerate().filter(|(_, p)| p.is_some()) {
+            link(&mut b, format!("leaf{j}"), on(p));
+        }
+        b.build().unwrap()
+    }
+
+    /// The pass for chains with leaves against the general tree pass (the same model with no
+    /// spine): the same `M` and composite inertias up to rounding, from a workspace whose `M`
+    /// held NaN.
+    #[test]
+    fn chain_with_leaves_equals_the_tree_pass() {
+        let mut rng = StdRng::seed_from_u64(4);
+        let shapes: [(usize, Vec<Option<usize>>); 4] = [
+            (7, vec![Some(6), Some(6)]),
+            (5, vec![None, Some(2), Some(2), Some(2), Some(4), None]),
+            (2, vec![Some(0), None]),
+            (12, vec![Some(11), Some(8), Some(8), None]),
+        ];
+        for (len, leaves) in &shapes {
+            let model = chain_with_leaves(&mut rng, *len, leaves);
+            let spine = model.spine.as_ref().expect("a chain with leaves");
+            assert!(!spine.leaves.is_empty() && !model.is_chain);
+            let mut tree = model.clone();
+            tree.spine = None;
+            let (mut ws, mut ws_tree) = (Workspace::new(&model), Workspace::new(&tree));
+            for _ in 0..3 {
+                let q: Vec<f64> = (0..model.nq()).map(|_| rng.gen_range(-3.0..3.0)).collect();
+                // Every entry is written (the zeros too), whatever the matrix held before.
+                ws.mass_matrix.fill(f64::NAN);
+                let m = crba(&model, &mut ws, &q).unwrap().clone();
+                let m_tree = crba(&tree, &mut ws_tree, &q).unwrap();
+                let scale = m_tree.amax();
+                assert!((&m - m_tree).amax() < 1e-13 * scale, "{m}\n{m_tree}");
+                for (a, b) in ws.composite_inertia.iter().zip(&ws_tree.composite_inertia) {
+                    assert!((a.matrix() - b.matrix()).amax() < 1e-12 * b.matrix().amax());
+                }
+            }
         }
     }
 }

@@ -443,6 +443,7 @@ impl<T: Real> ModelBuilder<T> {
             body_composite: Vec::new(),
             is_chain: false,
             run_start: Vec::new(),
+            spine: None,
             body_frames: Vec::new(),
             findings: Vec::new(),
             frame_index: HashMap::new(),

@@ -19,6 +19,8 @@ mod joint;
 mod model;
 pub(crate) use model::{check_finite, first_non_finite};
 mod motion;
+mod spine;
+pub(crate) use spine::Spine;
 
 pub use builder::{JointSpec, ModelBuilder};
 pub use configuration::SplitMix64;

@@ -3,6 +3,7 @@
 use super::findings::PhysicalFinding;
 use super::joint::Joint;
 use super::motion::JointMotion;
+use super::spine::Spine;
 use crate::error::{Error, Result};
 use crate::scalar::Real;
 use crate::spatial::{Se3, SpatialInertia};
@@ -72,6 +73,9 @@ pub struct Model<T: Real = f64> {
     /// (`λ(t) = t − 1` for every `t` in `j + 1..=k`): the ancestors of a body are a few runs of
     /// consecutive indices (CRBA's base-frame form walks them run by run).
     pub(crate) run_start: Vec<usize>,
+    /// Derived: the chain and the leaf bodies on it, when the tree is one (see [`Spine`];
+    /// CRBA's pass for such trees).
+    pub(crate) spine: Option<Spine>,
     /// Derived: the index of each body's frame in `frames`.
     pub(crate) body_frames: Vec<usize>,
     /// Frame name → index in `frames`.
@@ -251,6 +255,7 @@ impl<T: Real> Model<T> {
             };
             self.run_start.push(start);
         }
+        self.spine = Spine::find(&self.parents);
         self.body_frames = vec![0; self.bodies.len()];
         for (k, f) in self.frames.iter().enumerate() {
             if let (FrameKind::Body, Some(b)) = (f.kind, f.body) {
@@ -720,6 +725,7 @@ impl Model<f64> {
             body_composite: Vec::new(),
             is_chain: false,
             run_start: Vec::new(),
+            spine: None,
             body_frames: Vec::new(),
             frame_index: self.frame_index.clone(),
             findings: self.findings.clone(),
