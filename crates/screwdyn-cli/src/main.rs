@@ -1,5 +1,14 @@
 //! `screwdyn`: the command-line program (docs/cli.md). A thin shell over the library: parse
 //! arguments, load the model, call the library, format the result.
+//!
+//! On Linux the program starts at its own C `main` (`#![no_main]`) rather than through the
+//! standard library's runtime, whose start-up reads `/proc/self/maps` to place a guard for
+//! the main thread's stack (≈ 0.1 ms of a 2 ms process; BENCHMARKS.md, "The CLI's start and
+//! finish"). What else that start-up does is done here: `SIGPIPE` ignored (a closed pipe is
+//! an `EPIPE` error), closed standard descriptors reopened onto `/dev/null` (so an output file
+//! never becomes fd 1), stdout flushed at the end. A stack overflow then ends the process by
+//! `SIGSEGV` without the runtime's one-line report.
+#![cfg_attr(target_os = "linux", no_main)]
 
 mod args;
 mod commands;
@@ -8,7 +17,6 @@ mod plot;
 mod write;
 
 use clap::Parser;
-use std::process::ExitCode;
 
 /// A failure with its exit status: 2 for bad input, 1 for an internal failure.
 #[derive(Debug)]
@@ -54,7 +62,7 @@ impl CliError {
 
 /// Help and version go to stdout with status 0; a usage error becomes one line on stderr with
 /// status 2 (clap's usage block and tips are dropped).
-fn clap_error(e: clap::Error) -> ExitCode {
+fn clap_error(e: clap::Error) -> u8 {
     use clap::error::ErrorKind;
     if matches!(
         e.kind(),
@@ -64,9 +72,9 @@ fn clap_error(e: clap::Error) -> ExitCode {
     ) {
         let _ = e.print();
         return if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
-            ExitCode::from(2)
+            2
         } else {
-            ExitCode::SUCCESS
+            0
         };
     }
     let text = e.render().to_string();
@@ -89,7 +97,7 @@ fn clap_error(e: clap::Error) -> ExitCode {
         Some(names) => eprintln!("screwdyn: {line}; did you mean {names}?"),
         None => eprintln!("screwdyn: {line}"),
     }
-    ExitCode::from(2)
+    2
 }
 
 /// The most similar name of clap's "similar … exist(s): 'a', 'b'" tip (clap lists them from
@@ -154,7 +162,8 @@ fn end_cleanly_on_signals() {
     });
 }
 
-fn main() -> ExitCode {
+/// The program: its exit status.
+fn run() -> u8 {
     #[cfg(unix)]
     ignore_file_size_signal();
     #[cfg(unix)]
@@ -174,12 +183,39 @@ fn main() -> ExitCode {
         Err(e) => return clap_error(e),
     };
     match std::panic::catch_unwind(|| commands::run(cli)) {
-        Ok(Ok(())) => ExitCode::SUCCESS,
-        Ok(Err(e)) if e.code == 0 => ExitCode::SUCCESS,
+        Ok(Ok(())) => 0,
+        Ok(Err(e)) if e.code == 0 => 0,
         Ok(Err(e)) => {
             eprintln!("screwdyn: {}", e.message);
-            ExitCode::from(e.code)
+            e.code
         }
-        Err(_) => ExitCode::from(1),
+        Err(_) => 1,
     }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn main() -> std::process::ExitCode {
+    std::process::ExitCode::from(run())
+}
+
+/// The C entry point (see the module documentation): the standard library's start-up without
+/// its stack-guard lookup, then [`run`], then stdout flushed as the runtime would at exit.
+/// `std::env::args` does not depend on the runtime here (glibc hands the arguments to the
+/// standard library before `main`).
+#[cfg(target_os = "linux")]
+#[no_mangle]
+pub extern "C" fn main(_argc: libc::c_int, _argv: *const *const libc::c_char) -> libc::c_int {
+    // SAFETY: at the start of the process, before any other thread exists: SIG_IGN for
+    // SIGPIPE, and /dev/null opened onto the lowest closed descriptor among 0, 1, 2.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_IGN);
+        for fd in 0..3 {
+            if libc::fcntl(fd, libc::F_GETFD) == -1 {
+                libc::open(c"/dev/null".as_ptr(), libc::O_RDWR);
+            }
+        }
+    }
+    let code = run();
+    let _ = std::io::Write::flush(&mut std::io::stdout());
+    libc::c_int::from(code)
 }
