@@ -1,14 +1,14 @@
 //! `screwdyn`: the command-line program (docs/cli.md). A thin shell over the library: parse
 //! arguments, load the model, call the library, format the result.
 //!
-//! On Linux the program starts at its own C `main` (`#![no_main]`) rather than through the
-//! standard library's runtime, whose start-up reads `/proc/self/maps` to place a guard for
-//! the main thread's stack (≈ 0.1 ms of a 2 ms process; BENCHMARKS.md, "The CLI's start and
-//! finish"). What else that start-up does is done here: `SIGPIPE` ignored (a closed pipe is
-//! an `EPIPE` error), closed standard descriptors reopened onto `/dev/null` (so an output file
-//! never becomes fd 1), stdout flushed at the end. A stack overflow then ends the process by
-//! `SIGSEGV` without the runtime's one-line report.
-#![cfg_attr(target_os = "linux", no_main)]
+//! On Linux with glibc the program starts at its own C `main` (`#![no_main]`) rather than
+//! through the standard library's runtime, whose start-up reads `/proc/self/maps` to place a
+//! guard for the main thread's stack (≈ 0.1 ms of a 2 ms process; BENCHMARKS.md, "The CLI's
+//! start and finish"). What else that start-up does is done here: `SIGPIPE` ignored (a closed
+//! pipe is an `EPIPE` error), closed standard descriptors reopened onto `/dev/null` (so an
+//! output file never becomes fd 1), stdout flushed at the end. A stack overflow then ends the
+//! process by `SIGSEGV` without the runtime's one-line report.
+#![cfg_attr(all(target_os = "linux", target_env = "gnu"), no_main)]
 
 mod args;
 mod commands;
@@ -221,7 +221,7 @@ fn run() -> u8 {
     }
 }
 
-#[cfg(not(target_os = "linux"))]
+#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
 fn main() -> std::process::ExitCode {
     std::process::ExitCode::from(run())
 }
@@ -230,7 +230,7 @@ fn main() -> std::process::ExitCode {
 /// its stack-guard lookup, then [`run`], then stdout flushed as the runtime would at exit.
 /// `std::env::args` does not depend on the runtime here (glibc hands the arguments to the
 /// standard library before `main`).
-#[cfg(target_os = "linux")]
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
 #[no_mangle]
 pub extern "C" fn main(_argc: libc::c_int, _argv: *const *const libc::c_char) -> libc::c_int {
     // SAFETY: at the start of the process, before any other thread exists: SIG_IGN for
