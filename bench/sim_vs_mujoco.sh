@@ -9,7 +9,9 @@
 #   mj C     MuJoCo's C `mj_step` loop,
 #   rollout  MuJoCo through Python's `mujoco.rollout`,
 # and the ratios lib/mj C, cli/mj C (medians of per-round ratios) and lib/rollout (lower is
-# faster for screwdyn).
+# faster for screwdyn). Below each model's row, what the CLI process costs besides simulating:
+# the same command with --duration 0 and `/bin/true` (the floor of any process started from
+# Python), timed in the same rounds after the others (medians).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # MJ_VENV: an existing venv with mujoco and numpy to use instead of .venv-mujoco.
@@ -46,13 +48,19 @@ def run(args):
     return json.loads(subprocess.run(args, check=True, capture_output=True, text=True).stdout)
 # Rounds alternate the three so that a change of the machine's speed (other jobs, the VM's
 # neighbours) hits all of them alike; each ratio is the median of the per-round ratios.
-lib, mjc, cli = [], [], []
+lib, mjc, cli, cli0, true = [], [], [], [], []
+cmd0 = cmd.copy()
+cmd0[cmd.index("--duration") + 1] = "0"
 for _ in range(rounds):
     lib.append(run(["./target/release/examples/sim_bench", f"builtin:{robot}", "--repeat", "1"])["median_s"])
     mjc.append(run([f"{tmp}/mj_step_loop", f"{tmp}/{robot}.urdf", "10000", "1", q0])["median_s"])
     start = time.perf_counter()
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
     cli.append(time.perf_counter() - start)
+    for runs, args in ((cli0, cmd0), (true, ["/bin/true"])):
+        start = time.perf_counter()
+        subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
+        runs.append(time.perf_counter() - start)
 med = statistics.median
 roll = r["mujoco_median_s"]
 lib_c = med(a / b for a, b in zip(lib, mjc))
@@ -62,5 +70,7 @@ print(f"{robot:<6} {med(lib):8.4f} {med(cli):8.4f} {med(mjc):8.4f} {roll:8.4f} {
       f"{med(lib) / roll:12.3f} {dq:.2e}  (MuJoCo {json.load(open(f'{tmp}/{robot}-c-short.json')).get('mujoco_version', '')})")
 print(f"       per-round lib/mj C: {' '.join(f'{a / b:.3f}' for a, b in zip(lib, mjc))}")
 print(f"       per-round cli/mj C: {' '.join(f'{a / b:.3f}' for a, b in zip(cli, mjc))}")
+print(f"       cli --duration 0: {med(cli0) * 1e3:.2f} ms, /bin/true: {med(true) * 1e3:.2f} ms, "
+      f"cli - lib: {med(a - b for a, b in zip(cli, lib)) * 1e3:.2f} ms")
 PY
 done

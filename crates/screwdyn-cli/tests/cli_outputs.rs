@@ -227,6 +227,44 @@ fn a_reader_going_away_ends_a_streamed_run_quietly() {
     }
 }
 
+#[test]
+fn closed_standard_descriptors_do_not_receive_an_output() {
+    // Started with stdin, stdout and stderr closed, the program reopens them onto /dev/null
+    // before it opens anything, as the standard library's start-up does (otherwise its own
+    // files would get descriptors 0–2, and the report or a warning could land in one of them):
+    // it succeeds and writes the run file it writes with them open.
+    let dir = fresh_dir("closed-descriptors");
+    let (open, closed) = (dir.join("open.csv"), dir.join("closed.csv"));
+    fn run(out: &Path) -> Vec<&str> {
+        vec![
+            "simulate",
+            "builtin:ur5",
+            "--duration",
+            "0.01",
+            "--output",
+            s(out),
+            "--format",
+            "json",
+        ]
+    }
+    let reference = Process::new(env!("CARGO_BIN_EXE_screwdyn"))
+        .args(run(&open))
+        .output()
+        .unwrap();
+    assert!(reference.status.success());
+    let script = format!("exec <&- >&- 2>&-; exec \"$0\" {}", run(&closed).join(" "));
+    let status = Process::new("sh")
+        .args(["-c", &script, env!("CARGO_BIN_EXE_screwdyn")])
+        .status()
+        .unwrap();
+    assert_eq!(status.code(), Some(0));
+    assert_eq!(
+        std::fs::read_to_string(&closed).unwrap(),
+        std::fs::read_to_string(&open).unwrap()
+    );
+    assert!(others(&dir, "open.csv").iter().all(|f| f == "closed.csv"));
+}
+
 /// `rnea --format csv` on `text` (header and rows of q.shoulder_pan_joint): stdout, stderr and
 /// the exit status.
 fn rnea_rows(name: &str, text: &str) -> (String, String, Option<i32>) {

@@ -40,9 +40,40 @@ impl std::fmt::Display for At<'_> {
 
 /// The place of an element of a TOML file, from its span (the start of its table).
 pub(crate) fn at_line<'f, T>(file: &'f str, text: &str, element: &toml::Spanned<T>) -> At<'f> {
-    At {
-        file,
-        line: line_col(text, element.span().start).0,
+    Lines::new(text).at(file, element)
+}
+
+/// Line numbers of the elements of one text, each counted on from the previous element's
+/// line (the tables of a file come in file order), not from the text's start for every one.
+pub(crate) struct Lines<'t> {
+    text: &'t str,
+    /// The byte offset counted up to, and its line (1-based).
+    offset: usize,
+    line: usize,
+}
+
+impl<'t> Lines<'t> {
+    pub fn new(text: &'t str) -> Self {
+        Lines {
+            text,
+            offset: 0,
+            line: 1,
+        }
+    }
+
+    /// The place of `element` (as [`at_line`]).
+    pub fn at<'f, T>(&mut self, file: &'f str, element: &toml::Spanned<T>) -> At<'f> {
+        let at = element.span().start.min(self.text.len());
+        if at < self.offset {
+            (self.offset, self.line) = (0, 1);
+        }
+        let between = &self.text.as_bytes()[self.offset..at];
+        self.line += between.iter().filter(|&&b| b == b'\n').count();
+        self.offset = at;
+        At {
+            file,
+            line: self.line,
+        }
     }
 }
 
@@ -321,4 +352,33 @@ impl Header<'_> {
 pub(crate) fn gravity(g: Option<[f64; 3]>) -> Vector3<f64> {
     g.map(Vector3::from)
         .unwrap_or_else(|| Vector3::new(0.0, 0.0, -9.81))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The counted-on line of each table, in file order and out of it, is the line that
+    /// [`line_col`] counts from the text's start.
+    #[test]
+    fn lines_counted_on_are_the_lines_from_the_start() {
+        #[derive(Deserialize)]
+        struct File {
+            row: Vec<toml::Spanned<toml::Table>>,
+        }
+        let text = "name = \"x\"\n\n[[row]]\na = 1\n\n\n[[row]]\na = 2\n[[row]] # é\na = 3\n";
+        let f: File = toml::from_str(text).unwrap();
+        let mut lines = Lines::new(text);
+        let order = [0, 1, 2, 1, 0, 2];
+        let counted: Vec<usize> = order
+            .iter()
+            .map(|&k| lines.at("f", &f.row[k]).line)
+            .collect();
+        let from_start: Vec<usize> = order
+            .iter()
+            .map(|&k| line_col(text, f.row[k].span().start).0)
+            .collect();
+        assert_eq!(counted, from_start);
+        assert_eq!(from_start[..3], [3, 7, 9]);
+    }
 }

@@ -179,9 +179,10 @@ pub(crate) fn dh_model(f: &DhFile, text: &str, file: &str, options: &LoadOptions
     let mut previous = base.clone();
     let z = Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0);
     let z_lin = Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, 1.0);
+    let mut lines = common::Lines::new(text);
     for (k, spanned) in f.row.iter().enumerate() {
         let row = spanned.get_ref();
-        let at = common::at_line(file, text, spanned);
+        let at = lines.at(file, spanned);
         let i = k + 1;
         let jname = row.name.clone().unwrap_or_else(|| format!("joint{i}"));
         let lname = row.link.clone().unwrap_or_else(|| format!("link{i}"));

@@ -173,9 +173,10 @@ pub fn parse_native(text: &str, file: &str, options: &LoadOptions) -> Result<Mod
         frames: &f.frame,
     };
     let mut b = header.builder(file, options);
+    let mut lines = common::Lines::new(text);
     for spanned in &f.body {
         let body = spanned.get_ref();
-        let at = common::at_line(file, text, spanned);
+        let at = lines.at(file, spanned);
         let what = format!("body '{}'", body.name);
         let bad = |why: String| at.error(format!("{what} {why}"));
         let home = body

@@ -445,7 +445,7 @@ impl<W: Write> JsonSampleWriter<W> {
     /// # Errors
     /// [`Error::Io`] when a spool cannot be read back or the writer fails.
     pub fn finish(mut self) -> Result<W> {
-        use std::io::{Read, Seek};
+        use std::io::{BufRead, Seek};
         let names = serde_json::to_string(&self.joints).map_err(json_error)?;
         write!(self.out, "{{\"joints\":{names}").map_err(io_error)?;
         for (name, spool) in self.columns {
@@ -453,19 +453,22 @@ impl<W: Write> JsonSampleWriter<W> {
             write!(self.out, ",{key}:[").map_err(io_error)?;
             let mut file = spool.into_inner().map_err(|e| io_error(e.into_error()))?;
             file.rewind().map_err(io_error)?;
-            let mut reader = std::io::BufReader::new(file);
+            // Copied through the reader's own (heap) buffer: a 64 KB array on the stack would
+            // be touched page by page on entry, in every run that finishes a writer.
+            let mut reader = std::io::BufReader::with_capacity(1 << 16, file);
             let mut first = true;
-            let mut buf = [0u8; 1 << 16];
             loop {
-                let k = reader.read(&mut buf).map_err(io_error)?;
+                let buf = reader.fill_buf().map_err(io_error)?;
+                let k = buf.len();
                 if k == 0 {
                     break;
                 }
-                // Every value is spooled followed by a comma; drop the very first separator by
-                // writing commas before values instead: the spool starts with ",".
-                let chunk = if first { &buf[1..k] } else { &buf[..k] };
+                // Every value is spooled preceded by a comma; the very first one is dropped:
+                // the spool starts with ",".
+                let chunk = if first { &buf[1..] } else { buf };
                 first = false;
                 self.out.write_all(chunk).map_err(io_error)?;
+                reader.consume(k);
             }
             self.out.write_all(b"]").map_err(io_error)?;
         }
