@@ -133,61 +133,33 @@ fn ignore_file_size_signal() {
 
 /// `SIGTERM` or `SIGINT` (Ctrl-C) ends the program after removing the temporary files of the
 /// outputs it was writing (their targets stay as they were), with one line on stderr and the
-/// status 128 + the signal's number, as a shell reports a signal. The work is done in the
-/// signal handler itself, with what a handler may call (no lock, no allocation): no thread
-/// waits for the signal (starting one cost each process ≈ 0.05 ms; BENCHMARKS.md, "The CLI's
-/// start and finish").
+/// status 128 + the signal's number, as a shell reports a signal.
 #[cfg(unix)]
 fn end_cleanly_on_signals() {
-    // SAFETY: a zeroed sigaction is valid (no flags, empty mask before sigaddset); the handler
-    // only calls async-signal-safe functions (see `stop`); both signals are blocked while it
-    // runs, so a second one cannot interrupt the first's line.
-    unsafe {
-        let mut action: libc::sigaction = std::mem::zeroed();
-        action.sa_sigaction = stop as extern "C" fn(libc::c_int) as libc::sighandler_t;
-        libc::sigemptyset(&mut action.sa_mask);
-        libc::sigaddset(&mut action.sa_mask, libc::SIGTERM);
-        libc::sigaddset(&mut action.sa_mask, libc::SIGINT);
-        for signal in [libc::SIGTERM, libc::SIGINT] {
-            libc::sigaction(signal, &action, std::ptr::null_mut());
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGTERM, SIGINT]) else {
+        return;
+    };
+    std::thread::spawn(move || {
+        if let Some(signal) = signals.forever().next() {
+            let removed = screwdyn::io::output::remove_pending();
+            let name = if signal == SIGINT {
+                "SIGINT"
+            } else {
+                "SIGTERM"
+            };
+            let files: Vec<String> = removed.iter().map(|p| p.display().to_string()).collect();
+            if files.is_empty() {
+                eprintln!("screwdyn: stopped by {name}");
+            } else {
+                eprintln!(
+                    "screwdyn: stopped by {name}; removed the unfinished {}",
+                    files.join(", ")
+                );
+            }
+            std::process::exit(128 + signal);
         }
-    }
-}
-
-/// The handler of `SIGTERM` and `SIGINT`: removes the listed temporary files, writes
-/// `screwdyn: stopped by SIGTERM[; removed the unfinished A, B]` to stderr and ends the process
-/// (`_exit`, 128 + the signal's number).
-#[cfg(unix)]
-extern "C" fn stop(signal: libc::c_int) {
-    fn say(bytes: &[u8]) {
-        // SAFETY: write(2) of a valid buffer; a failed or short write only shortens the line.
-        unsafe {
-            libc::write(2, bytes.as_ptr().cast(), bytes.len());
-        }
-    }
-    say(b"screwdyn: stopped by ");
-    say(if signal == libc::SIGINT {
-        b"SIGINT"
-    } else {
-        b"SIGTERM"
     });
-    let mut first = true;
-    screwdyn::io::output::take_pending(|path| {
-        // SAFETY: unlink(2) of a NUL-terminated path.
-        unsafe {
-            libc::unlink(path.as_ptr());
-        }
-        say(if first {
-            b"; removed the unfinished "
-        } else {
-            b", "
-        });
-        say(path.to_bytes());
-        first = false;
-    });
-    say(b"\n");
-    // SAFETY: ends the process at once, as a signal handler may.
-    unsafe { libc::_exit(128 + signal) }
 }
 
 /// The program: its exit status.

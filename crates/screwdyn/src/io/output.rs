@@ -45,13 +45,10 @@
 //! ```
 
 use crate::{Error, Result};
-use std::ffi::CStr;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use tempfile::NamedTempFile;
-
-mod pending;
 
 /// How `path` is written: `Some(target)` when it is replaced (a regular file, reached through
 /// any symbolic links, or a path that does not exist yet: `target` is what the rename goes
@@ -95,9 +92,8 @@ pub struct OutputFile {
 }
 
 enum Destination {
-    /// The temporary file, the path it is renamed to, and its place in the list of files being
-    /// written (handed back after the file: when committed, or dropped and removed).
-    Replace(NamedTempFile, PathBuf, Option<pending::Listed>),
+    /// The temporary file and the path it is renamed to.
+    Replace(NamedTempFile, PathBuf),
     /// The device, FIFO or socket itself.
     Direct(File),
 }
@@ -111,11 +107,7 @@ impl OutputFile {
     /// device cannot be opened.
     pub fn create(path: &Path) -> Result<Self> {
         let dest = match replaced_path(path) {
-            Some(target) => {
-                let tmp = temp_file(path, &target)?;
-                let listed = pending::list(tmp.path());
-                Destination::Replace(tmp, target, listed)
-            }
+            Some(target) => Destination::Replace(temp_file(path, &target)?, target),
             None => Destination::Direct(
                 std::fs::OpenOptions::new()
                     .write(true)
@@ -143,7 +135,7 @@ impl OutputFile {
     /// a writer that opens a path itself.
     pub fn temp_path(&self) -> Option<&Path> {
         match &self.dest {
-            Destination::Replace(tmp, ..) => Some(tmp.path()),
+            Destination::Replace(tmp, _) => Some(tmp.path()),
             Destination::Direct(_) => None,
         }
     }
@@ -151,7 +143,7 @@ impl OutputFile {
     /// The open file (the temporary file or the device).
     pub fn file(&self) -> &File {
         match &self.dest {
-            Destination::Replace(tmp, ..) => tmp.as_file(),
+            Destination::Replace(tmp, _) => tmp.as_file(),
             Destination::Direct(f) => f,
         }
     }
@@ -175,7 +167,8 @@ impl OutputFile {
     /// [`Error::Io`] naming the path when the file cannot be synced or renamed.
     pub fn commit(self) -> Result<()> {
         match self.dest {
-            Destination::Replace(tmp, target, listed) => {
+            Destination::Replace(tmp, target) => {
+                let tmp_path = tmp.path().to_path_buf();
                 let done = tmp
                     .as_file()
                     .sync_all()
@@ -185,7 +178,7 @@ impl OutputFile {
                             .map(drop)
                             .map_err(|e| Error::unwritable(&self.path, &e.error))
                     });
-                drop(listed);
+                forget_pending(&tmp_path);
                 done
             }
             Destination::Direct(_) => Ok(()),
@@ -242,44 +235,30 @@ fn temp_file(path: &Path, target: &Path) -> Result<NamedTempFile> {
     let tmp = b
         .tempfile_in(dir)
         .map_err(|e| Error::unwritable(path, &e))?;
+    pending().push(tmp.path().to_path_buf());
     Ok(tmp)
 }
 
-/// Removes the temporary files this process is writing and returns them: what a program calls
-/// when it is about to end before its outputs are complete (the targets stay as they were).
-/// Allocates: a signal handler calls [`take_pending`] instead.
-pub fn remove_pending() -> Vec<PathBuf> {
-    let mut files = Vec::new();
-    take_pending(|p| {
-        #[cfg(unix)]
-        let path = PathBuf::from(
-            <std::ffi::OsStr as std::os::unix::ffi::OsStrExt>::from_bytes(p.to_bytes()),
-        );
-        #[cfg(not(unix))]
-        let path = PathBuf::from(p.to_string_lossy().into_owned());
-        let _ = std::fs::remove_file(&path);
-        files.push(path);
-    });
-    files
+/// The temporary files this process is writing (removed from the list when committed or
+/// dropped), for [`remove_pending`].
+fn pending() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    static PENDING: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+    PENDING.lock().unwrap_or_else(|e| e.into_inner())
 }
 
-/// Takes the temporary files this process is writing out of its list and passes each path to
-/// `each`, without locking or allocating: what a signal handler (`SIGTERM`, `SIGINT`) may call
-/// to remove them before it ends the process. Their outputs are then never committed.
-///
-/// ```
-/// use screwdyn::io::output::{take_pending, OutputFile};
-/// let path = std::env::temp_dir().join(format!("screwdyn-pending-{}.csv", std::process::id()));
-/// let out = OutputFile::create(&path).unwrap();
-/// let tmp = out.temp_path().unwrap().to_path_buf();
-/// let mut taken = Vec::new();
-/// take_pending(|p| taken.push(p.to_owned()));
-/// assert!(taken.iter().any(|p| p.to_bytes() == tmp.as_os_str().as_encoded_bytes()));
-/// drop(out); // removes the temporary file
-/// assert!(!tmp.exists());
-/// ```
-pub fn take_pending(each: impl FnMut(&CStr)) {
-    pending::take(each);
+fn forget_pending(tmp: &Path) {
+    pending().retain(|p| p != tmp);
+}
+
+/// Removes the temporary files this process is writing and returns them: what a program calls
+/// when a signal (`SIGTERM`, `SIGINT`) ends it before its outputs are complete, so that no
+/// partial file is left behind (the targets stay as they were).
+pub fn remove_pending() -> Vec<PathBuf> {
+    let files = std::mem::take(&mut *pending());
+    for f in &files {
+        let _ = std::fs::remove_file(f);
+    }
+    files
 }
 
 /// Removes temporary files of ours for the same target, `PREFIX<pid>.XXXXXX<suffix>`, whose
@@ -328,34 +307,6 @@ mod tests {
         drop(out);
         assert_eq!(std::fs::read(&path).unwrap(), b"previous");
         assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
-
-    /// A file being written is listed for a signal handler until it is committed or dropped,
-    /// and taken from the list once.
-    #[test]
-    fn only_unfinished_files_are_listed() {
-        let dir = scratch("listed");
-        let taken = || {
-            let mut paths = Vec::new();
-            take_pending(|p| paths.push(p.to_bytes().to_vec()));
-            paths
-        };
-        let bytes = |o: &OutputFile| {
-            let tmp = o.temp_path().unwrap();
-            tmp.as_os_str().as_encoded_bytes().to_vec()
-        };
-        let committed = OutputFile::create(&dir.join("a.csv")).unwrap();
-        let dropped = OutputFile::create(&dir.join("b.csv")).unwrap();
-        let unfinished = OutputFile::create(&dir.join("c.csv")).unwrap();
-        let (a, b, c) = (bytes(&committed), bytes(&dropped), bytes(&unfinished));
-        committed.commit().unwrap();
-        drop(dropped);
-        let first = taken();
-        assert!(first.contains(&c), "{first:?}");
-        assert!(!first.contains(&a) && !first.contains(&b), "{first:?}");
-        assert!(!taken().contains(&c));
-        drop(unfinished);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
