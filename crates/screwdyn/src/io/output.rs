@@ -92,8 +92,9 @@ pub struct OutputFile {
 }
 
 enum Destination {
-    /// The temporary file and the path it is renamed to.
-    Replace(NamedTempFile, PathBuf),
+    /// The temporary file, the path it is renamed to, and its entry in the list of files being
+    /// written (left when the file is committed or dropped).
+    Replace(NamedTempFile, PathBuf, Listed),
     /// The device, FIFO or socket itself.
     Direct(File),
 }
@@ -107,7 +108,11 @@ impl OutputFile {
     /// device cannot be opened.
     pub fn create(path: &Path) -> Result<Self> {
         let dest = match replaced_path(path) {
-            Some(target) => Destination::Replace(temp_file(path, &target)?, target),
+            Some(target) => {
+                let tmp = temp_file(path, &target)?;
+                let listed = Listed::new(tmp.path());
+                Destination::Replace(tmp, target, listed)
+            }
             None => Destination::Direct(
                 std::fs::OpenOptions::new()
                     .write(true)
@@ -135,7 +140,7 @@ impl OutputFile {
     /// a writer that opens a path itself.
     pub fn temp_path(&self) -> Option<&Path> {
         match &self.dest {
-            Destination::Replace(tmp, _) => Some(tmp.path()),
+            Destination::Replace(tmp, ..) => Some(tmp.path()),
             Destination::Direct(_) => None,
         }
     }
@@ -143,7 +148,7 @@ impl OutputFile {
     /// The open file (the temporary file or the device).
     pub fn file(&self) -> &File {
         match &self.dest {
-            Destination::Replace(tmp, _) => tmp.as_file(),
+            Destination::Replace(tmp, ..) => tmp.as_file(),
             Destination::Direct(f) => f,
         }
     }
@@ -167,20 +172,15 @@ impl OutputFile {
     /// [`Error::Io`] naming the path when the file cannot be synced or renamed.
     pub fn commit(self) -> Result<()> {
         match self.dest {
-            Destination::Replace(tmp, target) => {
-                let tmp_path = tmp.path().to_path_buf();
-                let done = tmp
-                    .as_file()
-                    .sync_all()
-                    .map_err(|e| Error::unwritable(&self.path, &e))
-                    .and_then(|()| {
-                        tmp.persist(&target)
-                            .map(drop)
-                            .map_err(|e| Error::unwritable(&self.path, &e.error))
-                    });
-                forget_pending(&tmp_path);
-                done
-            }
+            Destination::Replace(tmp, target, _listed) => tmp
+                .as_file()
+                .sync_all()
+                .map_err(|e| Error::unwritable(&self.path, &e))
+                .and_then(|()| {
+                    tmp.persist(&target)
+                        .map(drop)
+                        .map_err(|e| Error::unwritable(&self.path, &e.error))
+                }),
             Destination::Direct(_) => Ok(()),
         }
     }
@@ -235,7 +235,6 @@ fn temp_file(path: &Path, target: &Path) -> Result<NamedTempFile> {
     let tmp = b
         .tempfile_in(dir)
         .map_err(|e| Error::unwritable(path, &e))?;
-    pending().push(tmp.path().to_path_buf());
     Ok(tmp)
 }
 
@@ -246,8 +245,21 @@ fn pending() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
     PENDING.lock().unwrap_or_else(|e| e.into_inner())
 }
 
-fn forget_pending(tmp: &Path) {
-    pending().retain(|p| p != tmp);
+/// A temporary file's entry in [`pending`]: listed when made, off the list when dropped (after
+/// the file is renamed, or removed with its dropped `NamedTempFile`).
+struct Listed(PathBuf);
+
+impl Listed {
+    fn new(tmp: &Path) -> Self {
+        pending().push(tmp.to_path_buf());
+        Listed(tmp.to_path_buf())
+    }
+}
+
+impl Drop for Listed {
+    fn drop(&mut self) {
+        pending().retain(|p| p != &self.0);
+    }
 }
 
 /// Removes the temporary files this process is writing and returns them: what a program calls
@@ -295,6 +307,27 @@ mod tests {
         let d = std::env::temp_dir().join(format!("screwdyn-output-{name}-{}", std::process::id()));
         std::fs::create_dir_all(&d).unwrap();
         d
+    }
+
+    /// A file being written is on the list a signal handler empties until it is committed or
+    /// dropped (the list is read, not emptied: other tests write files at the same time).
+    #[test]
+    fn only_unfinished_files_are_listed() {
+        let dir = scratch("listed");
+        let temp = |o: &OutputFile| o.temp_path().unwrap().to_path_buf();
+        let committed = OutputFile::create(&dir.join("a.csv")).unwrap();
+        let dropped = OutputFile::create(&dir.join("b.csv")).unwrap();
+        let unfinished = OutputFile::create(&dir.join("c.csv")).unwrap();
+        let (a, b, c) = (temp(&committed), temp(&dropped), temp(&unfinished));
+        assert!([&a, &b, &c].iter().all(|p| pending().contains(p)));
+        committed.commit().unwrap();
+        drop(dropped);
+        let listed = pending().clone();
+        assert!(listed.contains(&c), "{listed:?}");
+        assert!(!listed.contains(&a) && !listed.contains(&b), "{listed:?}");
+        drop(unfinished);
+        assert!(!pending().contains(&c));
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
