@@ -91,6 +91,7 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
         &model.bodies()[..n],
         &model.joints()[..n],
     );
+    let forms = &model.body_inertia_form[..n];
     let Workspace {
         pose_in_world,
         screw_in_world,
@@ -123,7 +124,11 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
             }
         }
         if tree {
-            composites[i] = CompositeInertia::rigid_in_world(&bodies[i].inertia, &poses[i]);
+            composites[i] = CompositeInertia::rigid_in_world_with_form(
+                &bodies[i].inertia,
+                &forms[i],
+                &poses[i],
+            );
         }
     }
     // Bodies on different branches do not couple: those entries stay zero (on a chain every
@@ -142,6 +147,7 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
         run_start: &model.run_start[..n],
         joints,
         bodies,
+        forms,
         poses,
         screws,
         by_coordinate,
@@ -168,6 +174,8 @@ struct Columns<'a, T: Real> {
     run_start: &'a [usize],
     joints: &'a [crate::model::Joint<T>],
     bodies: &'a [crate::model::Body<T>],
+    /// The shape of each body's `I_c` (how `R I_c Rᵀ` is formed).
+    forms: &'a [crate::spatial::inertia_in_world::InertiaForm<T>],
     poses: &'a [crate::spatial::Se3<T>],
     screws: &'a [Twist<T>],
     by_coordinate: &'a [T],
@@ -248,8 +256,11 @@ impl<T: Real> Columns<'_, T> {
         // 𝔍ᶜ_{i+1}, carried to its parent.
         let mut child = CompositeInertia::zero();
         for i in (start..end).rev() {
-            let mut composite =
-                CompositeInertia::rigid_in_world(&self.bodies[i].inertia, &self.poses[i]);
+            let mut composite = CompositeInertia::rigid_in_world_with_form(
+                &self.bodies[i].inertia,
+                &self.forms[i],
+                &self.poses[i],
+            );
             composite.add(&child);
             // The leaves on body i: their columns, and their inertias into 𝔍ᶜ_i.
             while let Some(leaf) = leaves.next_if(|l| LEAVES && l.parent == Some(i)) {
@@ -282,7 +293,11 @@ impl<T: Real> Columns<'_, T> {
         data: &mut [T],
     ) -> CompositeInertia<T> {
         let n = self.screws.len();
-        let composite = CompositeInertia::rigid_in_world(&self.bodies[l].inertia, &self.poses[l]);
+        let composite = CompositeInertia::rigid_in_world_with_form(
+            &self.bodies[l].inertia,
+            &self.forms[l],
+            &self.poses[l],
+        );
         composites[l] = composite;
         let (left, right) = data.split_at_mut(l * n);
         let column = &mut right[..n];
