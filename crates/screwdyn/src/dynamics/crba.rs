@@ -113,8 +113,8 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
         .as_ref()
         .filter(|s| !side_by_side || s.leaves.is_empty());
     let tree = spine.is_none();
-    // 1. s_i = Ad_{H_i^0} S_i and, on a tree, 𝔍ᶜ_i = 𝔍_i^0, body by body (on a large model the
-    // screws are also stored coordinate by coordinate).
+    // 1. s_i = Ad_{H_i^0} S_i and 𝔍_i^0 (a tree's 𝔍ᶜ_i starts from it), body by body (on a large
+    // model the screws are also stored coordinate by coordinate).
     for i in 0..n {
         let s = motions[i].act(&poses[i]);
         screws[i] = s;
@@ -123,13 +123,8 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
                 by_coordinate[r * n + i] = s[r];
             }
         }
-        if tree {
-            composites[i] = CompositeInertia::rigid_in_world_with_form(
-                &bodies[i].inertia,
-                &forms[i],
-                &poses[i],
-            );
-        }
+        composites[i] =
+            CompositeInertia::rigid_in_world_with_form(&bodies[i].inertia, &forms[i], &poses[i]);
     }
     // Bodies on different branches do not couple: those entries stay zero (on a chain every
     // entry is written below, on a chain with leaves the leaves' rows and columns are zeroed
@@ -146,9 +141,6 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
         parents,
         run_start: &model.run_start[..n],
         joints,
-        bodies,
-        forms,
-        poses,
         screws,
         by_coordinate,
     };
@@ -173,10 +165,6 @@ struct Columns<'a, T: Real> {
     parents: &'a [Option<usize>],
     run_start: &'a [usize],
     joints: &'a [crate::model::Joint<T>],
-    bodies: &'a [crate::model::Body<T>],
-    /// The shape of each body's `I_c` (how `R I_c Rᵀ` is formed).
-    forms: &'a [crate::spatial::inertia_in_world::InertiaForm<T>],
-    poses: &'a [crate::spatial::Se3<T>],
     screws: &'a [Twist<T>],
     by_coordinate: &'a [T],
 }
@@ -256,11 +244,8 @@ impl<T: Real> Columns<'_, T> {
         // 𝔍ᶜ_{i+1}, carried to its parent.
         let mut child = CompositeInertia::zero();
         for i in (start..end).rev() {
-            let mut composite = CompositeInertia::rigid_in_world_with_form(
-                &self.bodies[i].inertia,
-                &self.forms[i],
-                &self.poses[i],
-            );
+            // 𝔍ᶜ_i = 𝔍_i^0 (step 1) + 𝔍ᶜ_{i+1}.
+            let mut composite = composites[i];
             composite.add(&child);
             // The leaves on body i: their columns, and their inertias into 𝔍ᶜ_i.
             while let Some(leaf) = leaves.next_if(|l| LEAVES && l.parent == Some(i)) {
@@ -282,7 +267,7 @@ impl<T: Real> Columns<'_, T> {
     }
 
     /// Column `l` of `M` for a leaf body whose ancestors are the run `ancestors`: its inertia
-    /// `𝔍ᶜ_l = 𝔍_l^0` moved to {0} (returned, and stored in `composites`), `M_ll` and
+    /// `𝔍ᶜ_l = 𝔍_l^0` moved to {0} (in `composites` from step 1; returned), `M_ll` and
     /// `M_kl = M_lk` for the ancestors (the other entries were zeroed before).
     #[inline(always)]
     fn leaf<const SIDE_BY_SIDE: bool>(
@@ -293,12 +278,7 @@ impl<T: Real> Columns<'_, T> {
         data: &mut [T],
     ) -> CompositeInertia<T> {
         let n = self.screws.len();
-        let composite = CompositeInertia::rigid_in_world_with_form(
-            &self.bodies[l].inertia,
-            &self.forms[l],
-            &self.poses[l],
-        );
-        composites[l] = composite;
+        let composite = composites[l];
         let (left, right) = data.split_at_mut(l * n);
         let column = &mut right[..n];
         let f = self.diagonal(l, &composite, column);
