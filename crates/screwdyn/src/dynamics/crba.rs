@@ -18,13 +18,15 @@ use nalgebra::Vector3;
 /// 1. forward kinematics `H_i^0 = (R_i, p_i)`, then body by body the joint's screw
 ///    `s_i = Ad_{H_i^0} S_i` (a space-Jacobian column) and the body's inertia in {0} by its ten
 ///    parameters: `c_i⁰ = R_i c_i + p_i`, `h = m_i c_i⁰`,
-///    `I_o = R_i I_{c,i} R_iᵀ + m_i(|c_i⁰|² 1 − c_i⁰ c_i⁰ᵀ)` (about the origin of {0});
+///    `I_o = R_i I_{c,i} R_iᵀ + m_i(|c_i⁰|² 1 − c_i⁰ c_i⁰ᵀ)` (about the origin of {0}; with
+///    no products of inertia, `I_{c,i} = a·1 + Σ_k μ_k e_k e_kᵀ` and `R_i I_{c,i} R_iᵀ =
+///    a·1 + Σ_k μ_k r_k r_kᵀ`, `r_k` the columns of `R_i`: one term for two equal moments);
 /// 2. from the leaves: `𝔍ᶜ_i = 𝔍_i^0 + Σ_children 𝔍ᶜ_c` (ten additions per child),
 ///    `F_i = 𝔍ᶜ_i s_i = (I_o ω + h × v, m v − h × ω)` for `s_i = (ω, v)`,
 ///    `M_ii = s_iᵀ F_i + I_a,i` and `M_ki = M_ik = s_kᵀ F_i` for every ancestor `k` of `i`
 ///    (entries of bodies on different branches are zero). On a serial chain (`λ(i) = i − 1`)
-///    the body's inertia is moved to {0} in this pass instead, and added to its child's
-///    composite while that is still in registers; the ancestors are then the one run `0..i`.
+///    the body's inertia from step 1 is added to its child's composite while that is still in
+///    registers; the ancestors are then the one run `0..i`.
 ///    The same on a chain with leaf bodies (fingers, tool bodies: the Panda), where
 ///    `𝔍ᶜ_i = 𝔍_i^0 + 𝔍ᶜ_{i+1} + Σ_leaves 𝔍_l^0`: each leaf's column is formed when its
 ///    parent is reached, and its inertia added to the parent's composite in registers.
