@@ -123,6 +123,7 @@ fn aba_passes<T: Real>(
         &model.bodies()[..n],
         &model.joints()[..n],
     );
+    let forms = &model.body_inertia_form[..n];
     let (v, tau) = (&v[..n], &tau[..n]);
     // The workspace's buffers borrowed once, as slices of length n: their addresses and lengths
     // stay in registers instead of being reloaded after every store (and most bounds checks go).
@@ -175,7 +176,7 @@ fn aba_passes<T: Real>(
     // (kept in `u_over_d` until pass 2 divides it) and s_iᵀ 𝔍_i^0 s_i + I_a,i of D_i.
     for i in 0..n {
         let h = &poses[i];
-        let inertia = InertiaInWorld::new(&bodies[i].inertia, h);
+        let inertia = InertiaInWorld::with_form(&bodies[i].inertia, &forms[i], h);
         inertia.write_matrix(&mut inertias[i]);
         let vi = &twists[i];
         let mut p = inertia.velocity_product_wrench(vi);

@@ -18,13 +18,15 @@ use nalgebra::Vector3;
 /// 1. forward kinematics `H_i^0 = (R_i, p_i)`, then body by body the joint's screw
 ///    `s_i = Ad_{H_i^0} S_i` (a space-Jacobian column) and the body's inertia in {0} by its ten
 ///    parameters: `c_i⁰ = R_i c_i + p_i`, `h = m_i c_i⁰`,
-///    `I_o = R_i I_{c,i} R_iᵀ + m_i(|c_i⁰|² 1 − c_i⁰ c_i⁰ᵀ)` (about the origin of {0});
+///    `I_o = R_i I_{c,i} R_iᵀ + m_i(|c_i⁰|² 1 − c_i⁰ c_i⁰ᵀ)` (about the origin of {0}; with
+///    no products of inertia, `I_{c,i} = a·1 + Σ_k μ_k e_k e_kᵀ` and `R_i I_{c,i} R_iᵀ =
+///    a·1 + Σ_k μ_k r_k r_kᵀ`, `r_k` the columns of `R_i`: one term for two equal moments);
 /// 2. from the leaves: `𝔍ᶜ_i = 𝔍_i^0 + Σ_children 𝔍ᶜ_c` (ten additions per child),
 ///    `F_i = 𝔍ᶜ_i s_i = (I_o ω + h × v, m v − h × ω)` for `s_i = (ω, v)`,
 ///    `M_ii = s_iᵀ F_i + I_a,i` and `M_ki = M_ik = s_kᵀ F_i` for every ancestor `k` of `i`
 ///    (entries of bodies on different branches are zero). On a serial chain (`λ(i) = i − 1`)
-///    the body's inertia is moved to {0} in this pass instead, and added to its child's
-///    composite while that is still in registers; the ancestors are then the one run `0..i`.
+///    the body's inertia from step 1 is added to its child's composite while that is still in
+///    registers; the ancestors are then the one run `0..i`.
 ///    The same on a chain with leaf bodies (fingers, tool bodies: the Panda), where
 ///    `𝔍ᶜ_i = 𝔍_i^0 + 𝔍ᶜ_{i+1} + Σ_leaves 𝔍_l^0`: each leaf's column is formed when its
 ///    parent is reached, and its inertia added to the parent's composite in registers.
@@ -91,6 +93,7 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
         &model.bodies()[..n],
         &model.joints()[..n],
     );
+    let forms = &model.body_inertia_form[..n];
     let Workspace {
         pose_in_world,
         screw_in_world,
@@ -112,8 +115,8 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
         .as_ref()
         .filter(|s| !side_by_side || s.leaves.is_empty());
     let tree = spine.is_none();
-    // 1. s_i = Ad_{H_i^0} S_i and, on a tree, 𝔍ᶜ_i = 𝔍_i^0, body by body (on a large model the
-    // screws are also stored coordinate by coordinate).
+    // 1. s_i = Ad_{H_i^0} S_i and 𝔍_i^0 (a tree's 𝔍ᶜ_i starts from it), body by body (on a large
+    // model the screws are also stored coordinate by coordinate).
     for i in 0..n {
         let s = motions[i].act(&poses[i]);
         screws[i] = s;
@@ -122,9 +125,8 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
                 by_coordinate[r * n + i] = s[r];
             }
         }
-        if tree {
-            composites[i] = CompositeInertia::rigid_in_world(&bodies[i].inertia, &poses[i]);
-        }
+        composites[i] =
+            CompositeInertia::rigid_in_world_with_form(&bodies[i].inertia, &forms[i], &poses[i]);
     }
     // Bodies on different branches do not couple: those entries stay zero (on a chain every
     // entry is written below, on a chain with leaves the leaves' rows and columns are zeroed
@@ -141,8 +143,6 @@ pub(crate) fn crba_given_poses<T: Real>(model: &Model<T>, ws: &mut Workspace<T>)
         parents,
         run_start: &model.run_start[..n],
         joints,
-        bodies,
-        poses,
         screws,
         by_coordinate,
     };
@@ -167,8 +167,6 @@ struct Columns<'a, T: Real> {
     parents: &'a [Option<usize>],
     run_start: &'a [usize],
     joints: &'a [crate::model::Joint<T>],
-    bodies: &'a [crate::model::Body<T>],
-    poses: &'a [crate::spatial::Se3<T>],
     screws: &'a [Twist<T>],
     by_coordinate: &'a [T],
 }
@@ -248,8 +246,8 @@ impl<T: Real> Columns<'_, T> {
         // 𝔍ᶜ_{i+1}, carried to its parent.
         let mut child = CompositeInertia::zero();
         for i in (start..end).rev() {
-            let mut composite =
-                CompositeInertia::rigid_in_world(&self.bodies[i].inertia, &self.poses[i]);
+            // 𝔍ᶜ_i = 𝔍_i^0 (step 1) + 𝔍ᶜ_{i+1}.
+            let mut composite = composites[i];
             composite.add(&child);
             // The leaves on body i: their columns, and their inertias into 𝔍ᶜ_i.
             while let Some(leaf) = leaves.next_if(|l| LEAVES && l.parent == Some(i)) {
@@ -271,7 +269,7 @@ impl<T: Real> Columns<'_, T> {
     }
 
     /// Column `l` of `M` for a leaf body whose ancestors are the run `ancestors`: its inertia
-    /// `𝔍ᶜ_l = 𝔍_l^0` moved to {0} (returned, and stored in `composites`), `M_ll` and
+    /// `𝔍ᶜ_l = 𝔍_l^0` moved to {0} (in `composites` from step 1; returned), `M_ll` and
     /// `M_kl = M_lk` for the ancestors (the other entries were zeroed before).
     #[inline(always)]
     fn leaf<const SIDE_BY_SIDE: bool>(
@@ -282,8 +280,7 @@ impl<T: Real> Columns<'_, T> {
         data: &mut [T],
     ) -> CompositeInertia<T> {
         let n = self.screws.len();
-        let composite = CompositeInertia::rigid_in_world(&self.bodies[l].inertia, &self.poses[l]);
-        composites[l] = composite;
+        let composite = composites[l];
         let (left, right) = data.split_at_mut(l * n);
         let column = &mut right[..n];
         let f = self.diagonal(l, &composite, column);

@@ -441,6 +441,7 @@ impl<T: Real> ModelBuilder<T> {
             motions: Vec::new(),
             inertia_scale: T::zero(),
             body_composite: Vec::new(),
+            body_inertia_form: Vec::new(),
             is_chain: false,
             run_start: Vec::new(),
             spine: None,

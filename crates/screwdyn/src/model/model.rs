@@ -67,6 +67,9 @@ pub struct Model<T: Real = f64> {
     pub(crate) inertia_scale: T,
     /// Derived: each body's inertia in the parameters CRBA sums (`m`, `m c`, `I_o`).
     pub(crate) body_composite: Vec<crate::spatial::CompositeInertia<T>>,
+    /// Derived: the shape of each body's `I_c` ([`InertiaForm`](crate::spatial::inertia_in_world::InertiaForm)),
+    /// which decides how `R I_c Rᵀ` is formed in {0}.
+    pub(crate) body_inertia_form: Vec<crate::spatial::inertia_in_world::InertiaForm<T>>,
     /// Derived: the tree is a single chain (`λ(i) = i − 1`).
     pub(crate) is_chain: bool,
     /// Derived: for each body `k`, the first body `j ≤ k` of the unbranched run ending at `k`
@@ -241,6 +244,11 @@ impl<T: Real> Model<T> {
             .bodies
             .iter()
             .map(|b| crate::spatial::CompositeInertia::from(&b.inertia))
+            .collect();
+        self.body_inertia_form = self
+            .bodies
+            .iter()
+            .map(|b| crate::spatial::inertia_in_world::InertiaForm::of(&b.inertia.inertia_com))
             .collect();
         self.is_chain = self
             .parents
@@ -723,6 +731,7 @@ impl Model<f64> {
             motions: Vec::new(),
             inertia_scale: U::zero(),
             body_composite: Vec::new(),
+            body_inertia_form: Vec::new(),
             is_chain: false,
             run_start: Vec::new(),
             spine: None,

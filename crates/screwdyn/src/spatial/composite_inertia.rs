@@ -3,7 +3,7 @@
 //! `M = Σ_i J_iᵀ 𝔍_i J_i` summed over subtrees).
 
 use super::inertia::SpatialInertia;
-use super::inertia_in_world::InertiaInWorld;
+use super::inertia_in_world::{InertiaForm, InertiaInWorld};
 use super::se3::Se3;
 use super::so3::hat;
 use super::twist::{Twist, Wrench};
@@ -109,12 +109,28 @@ impl<T: Real> CompositeInertia<T> {
     /// ```
     #[inline(always)]
     pub fn rigid_in_world(body: &SpatialInertia<T>, pose_in_world: &Se3<T>) -> Self {
-        // m, c⁰ = R c + p and the six entries of R I_c Rᵀ; then h = m c⁰.
+        Self::from_in_world(InertiaInWorld::new(body, pose_in_world))
+    }
+
+    /// [`CompositeInertia::rigid_in_world`] with `R I_c Rᵀ` formed from `form`, the shape of
+    /// `body.inertia_com` (the model's derived per-body forms).
+    #[inline(always)]
+    pub(crate) fn rigid_in_world_with_form(
+        body: &SpatialInertia<T>,
+        form: &InertiaForm<T>,
+        pose_in_world: &Se3<T>,
+    ) -> Self {
+        Self::from_in_world(InertiaInWorld::with_form(body, form, pose_in_world))
+    }
+
+    /// `h = m c⁰` and `I_o = I_c^0 + m(|c⁰|² 1 − c⁰ c⁰ᵀ)` from `m`, `c⁰` and `I_c^0`.
+    #[inline(always)]
+    fn from_in_world(inertia: InertiaInWorld<T>) -> Self {
         let InertiaInWorld {
             mass: m,
             com: c0,
             rotational: [i00, i11, i22, i01, i02, i12],
-        } = InertiaInWorld::new(body, pose_in_world);
+        } = inertia;
         let h = c0 * m;
         // m(|c⁰|² 1 − c⁰ c⁰ᵀ): the diagonal is h_y c⁰_y + h_z c⁰_z, …, the rest −h_a c⁰_b.
         let (xx, yy, zz) = (h.x * c0.x, h.y * c0.y, h.z * c0.z);

@@ -20,32 +20,21 @@ impl<T: Real> InertiaInWorld<T> {
     /// `m`, `c^0 = R c + p` and `I_c^0 = R I_c Rᵀ` of `body` (given in its own frame) at `h = H_i^0`.
     #[inline(always)]
     pub(crate) fn new(body: &SpatialInertia<T>, h: &Se3<T>) -> Self {
-        let (r, ic) = (&h.rotation, &body.inertia_com);
-        // A = R I_c, row by row.
-        let a = Matrix3::from_fn(|row, k| {
-            r[(row, 2)].mul_add(
-                ic[(2, k)],
-                r[(row, 1)].mul_add(ic[(1, k)], r[(row, 0)] * ic[(0, k)]),
-            )
-        });
-        // (A Rᵀ)_{jk} = row j of A · row k of R; symmetric, so six are formed.
-        let dot = |j: usize, k: usize| {
-            a[(j, 2)].mul_add(
-                r[(k, 2)],
-                a[(j, 1)].mul_add(r[(k, 1)], a[(j, 0)] * r[(k, 0)]),
-            )
-        };
         Self {
             mass: body.mass,
             com: com_in_world(body, h),
-            rotational: [
-                dot(0, 0),
-                dot(1, 1),
-                dot(2, 2),
-                dot(0, 1),
-                dot(0, 2),
-                dot(1, 2),
-            ],
+            rotational: rotated_general(&body.inertia_com, &h.rotation),
+        }
+    }
+
+    /// As [`InertiaInWorld::new`], with `I_c^0 = R I_c Rᵀ` formed from `form`, the shape of
+    /// `body.inertia_com` ([`InertiaForm::of`] of it: the model's derived per-body forms).
+    #[inline(always)]
+    pub(crate) fn with_form(body: &SpatialInertia<T>, form: &InertiaForm<T>, h: &Se3<T>) -> Self {
+        Self {
+            mass: body.mass,
+            com: com_in_world(body, h),
+            rotational: form.rotated(&body.inertia_com, &h.rotation),
         }
     }
 
@@ -127,6 +116,131 @@ impl<T: Real> InertiaInWorld<T> {
     }
 }
 
+/// `R I_c Rᵀ` by the general products (27 + 18 fused multiply–adds), as
+/// `(I₀₀, I₁₁, I₂₂, I₀₁, I₀₂, I₁₂)`.
+#[inline(always)]
+fn rotated_general<T: Real>(ic: &Matrix3<T>, r: &Matrix3<T>) -> [T; 6] {
+    // A = R I_c, row by row.
+    let a = Matrix3::from_fn(|row, k| {
+        r[(row, 2)].mul_add(
+            ic[(2, k)],
+            r[(row, 1)].mul_add(ic[(1, k)], r[(row, 0)] * ic[(0, k)]),
+        )
+    });
+    // (A Rᵀ)_{jk} = row j of A · row k of R; symmetric, so six are formed.
+    let dot = |j: usize, k: usize| {
+        a[(j, 2)].mul_add(
+            r[(k, 2)],
+            a[(j, 1)].mul_add(r[(k, 1)], a[(j, 0)] * r[(k, 0)]),
+        )
+    };
+    [
+        dot(0, 0),
+        dot(1, 1),
+        dot(2, 2),
+        dot(0, 1),
+        dot(0, 2),
+        dot(1, 2),
+    ]
+}
+
+/// The shape of a body's rotational inertia `I_c` (in its own frame {i}) that decides how
+/// `R I_c Rᵀ` is formed. With zero products of inertia, `I_c = diag(d₀, d₁, d₂) =
+/// a·1 + Σ_k μ_k e_k e_kᵀ` (`μ_k = d_k − a`), so `R I_c Rᵀ = a·1 + Σ_k μ_k r_k r_kᵀ` with
+/// `r_k = R e_k` the k-th column of `R`: no product `R I_c` is formed. Published arms mostly
+/// have such inertias (a cylinder along a coordinate axis has two equal moments: one term).
+/// Only exactly-zero products and exactly-equal moments are used.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum InertiaForm<T: Real> {
+    /// `I_c = a·1 + μ e_k e_kᵀ` (`k = axis`; spherical when `μ = 0`):
+    /// `R I_c Rᵀ = a·1 + μ r_k r_kᵀ` (3 products, 6 fused multiply–adds).
+    Axisymmetric { a: T, mu: T, axis: usize },
+    /// `I_c = a·1 + μ₀ e_j e_jᵀ + μ₁ e_k e_kᵀ` (`[j, k] = axes`, `a` the third moment):
+    /// `R I_c Rᵀ = a·1 + μ₀ r_j r_jᵀ + μ₁ r_k r_kᵀ` (6 products, 12 fused multiply–adds).
+    Diagonal { a: T, mu: [T; 2], axes: [usize; 2] },
+    /// Nonzero products of inertia: `R I_c Rᵀ` by the general products.
+    General,
+}
+
+impl<T: Real> InertiaForm<T> {
+    /// The form of `ic` (`I_c` in the body's own frame).
+    pub(crate) fn of(ic: &Matrix3<T>) -> Self {
+        let zero = T::zero();
+        let products_zero = (0..3).all(|j| (0..3).all(|k| j == k || ic[(j, k)] == zero));
+        if !products_zero {
+            return Self::General;
+        }
+        let d = [ic[(0, 0)], ic[(1, 1)], ic[(2, 2)]];
+        // The odd moment out of two equal ones (or any, when all three are equal).
+        let odd = match (d[0] == d[1], d[0] == d[2], d[1] == d[2]) {
+            (true, true, _) => Some(2),
+            (true, false, _) => Some(2),
+            (false, true, _) => Some(1),
+            (false, false, true) => Some(0),
+            (false, false, false) => None,
+        };
+        if let Some(k) = odd {
+            let a = d[(k + 1) % 3];
+            return Self::Axisymmetric {
+                a,
+                mu: d[k] - a,
+                axis: k,
+            };
+        }
+        // Three distinct moments: `a` the smallest, so that both μ are positive.
+        let smallest = (0..3)
+            .min_by(|&j, &k| d[j].partial_cmp(&d[k]).unwrap_or(std::cmp::Ordering::Equal))
+            .unwrap_or(0);
+        let axes = [(smallest + 1) % 3, (smallest + 2) % 3];
+        let a = d[smallest];
+        Self::Diagonal {
+            a,
+            mu: [d[axes[0]] - a, d[axes[1]] - a],
+            axes,
+        }
+    }
+
+    /// `R I_c Rᵀ` as `(I₀₀, I₁₁, I₂₂, I₀₁, I₀₂, I₁₂)`, where `ic = I_c` has this form.
+    #[inline(always)]
+    pub(crate) fn rotated(&self, ic: &Matrix3<T>, r: &Matrix3<T>) -> [T; 6] {
+        let column = |k: usize| {
+            let k = k.min(2);
+            Vector3::new(r[(0, k)], r[(1, k)], r[(2, k)])
+        };
+        match *self {
+            // a·1 + (μ r_k) r_kᵀ.
+            Self::Axisymmetric { a, mu, axis } => {
+                let rk = column(axis);
+                let m = rk * mu;
+                [
+                    m.x.mul_add(rk.x, a),
+                    m.y.mul_add(rk.y, a),
+                    m.z.mul_add(rk.z, a),
+                    m.x * rk.y,
+                    m.x * rk.z,
+                    m.y * rk.z,
+                ]
+            }
+            // a·1 + (μ₀ r_j) r_jᵀ + (μ₁ r_k) r_kᵀ.
+            Self::Diagonal { a, mu, axes } => {
+                let (rj, rk) = (column(axes[0]), column(axes[1]));
+                let (mj, mk) = (rj * mu[0], rk * mu[1]);
+                let diagonal = |p: usize| mk[p].mul_add(rk[p], mj[p].mul_add(rj[p], a));
+                let off = |p: usize, q: usize| mk[p].mul_add(rk[q], mj[p] * rj[q]);
+                [
+                    diagonal(0),
+                    diagonal(1),
+                    diagonal(2),
+                    off(0, 1),
+                    off(0, 2),
+                    off(1, 2),
+                ]
+            }
+            Self::General => rotated_general(ic, r),
+        }
+    }
+}
+
 /// `c^0 = R c + p`: the centre of mass of `body` in {0} at `h = H_i^0 = (R, p)`.
 #[inline(always)]
 pub(crate) fn com_in_world<T: Real>(body: &SpatialInertia<T>, h: &Se3<T>) -> Vector3<T> {
@@ -173,5 +287,134 @@ mod tests {
         let expected = -ad_matrix(&vel).transpose() * (inertia_in_world * vel);
         let got = InertiaInWorld::new(&body, &h).velocity_product_wrench(&vel);
         assert!((got - expected).norm() < 1e-13, "{got} vs {expected}");
+    }
+
+    /// `R I_c Rᵀ` from the form of `I_c` against the general products, for random rotations
+    /// (largest entry error relative to the largest moment); returns the form.
+    fn check_form(ic: Matrix3<f64>) -> InertiaForm<f64> {
+        let form = InertiaForm::of(&ic);
+        let scale = ic.amax();
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut uniform = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 6.4 - 3.2
+        };
+        for _ in 0..200 {
+            let r = Se3::from_rpy(uniform(), uniform(), uniform()).rotation;
+            let expected = rotated_general(&ic, &r);
+            let got = form.rotated(&ic, &r);
+            for (g, e) in got.iter().zip(&expected) {
+                assert!(
+                    (g - e).abs() <= 1e-15 * scale,
+                    "{form:?}: {got:?} vs {expected:?}"
+                );
+            }
+            // and against R I_c Rᵀ by nalgebra's own products.
+            let full = r * ic * r.transpose();
+            let six = [
+                full[(0, 0)],
+                full[(1, 1)],
+                full[(2, 2)],
+                full[(0, 1)],
+                full[(0, 2)],
+                full[(1, 2)],
+            ];
+            for (g, e) in got.iter().zip(&six) {
+                assert!(
+                    (g - e).abs() <= 1e-15 * scale,
+                    "{form:?}: {got:?} vs {six:?}"
+                );
+            }
+        }
+        form
+    }
+
+    #[test]
+    fn spherical_inertia_rotates_to_itself() {
+        let form = check_form(Matrix3::from_diagonal_element(0.37));
+        assert_eq!(
+            form,
+            InertiaForm::Axisymmetric {
+                a: 0.37,
+                mu: 0.0,
+                axis: 2
+            }
+        );
+    }
+
+    #[test]
+    fn axisymmetric_inertias_about_each_axis() {
+        // UR5 (example-robot-data) upper arm: ixx = iyy, about z; cylinders along x and y.
+        let about_z = check_form(Matrix3::from_diagonal(&Vector3::new(
+            0.22689067591,
+            0.22689067591,
+            0.0151074,
+        )));
+        assert!(matches!(about_z, InertiaForm::Axisymmetric { axis: 2, .. }));
+        let about_x = check_form(Matrix3::from_diagonal(&Vector3::new(
+            0.0151074,
+            0.13388583541666668,
+            0.13388583541666668,
+        )));
+        assert!(matches!(about_x, InertiaForm::Axisymmetric { axis: 0, .. }));
+        let about_y = check_form(Matrix3::from_diagonal(&Vector3::new(
+            0.0102675, 0.00666, 0.0102675,
+        )));
+        assert!(matches!(about_y, InertiaForm::Axisymmetric { axis: 1, .. }));
+    }
+
+    #[test]
+    fn diagonal_inertias_take_the_smallest_moment_as_a() {
+        for d in [[0.3, 0.2, 0.1], [0.1, 0.3, 0.2], [0.2, 0.1, 0.3]] {
+            let form = check_form(Matrix3::from_diagonal(&Vector3::from(d)));
+            let InertiaForm::Diagonal { a, mu, .. } = form else {
+                panic!("{form:?}")
+            };
+            assert_eq!(a, 0.1);
+            assert!(mu[0] > 0.0 && mu[1] > 0.0, "{form:?}");
+        }
+    }
+
+    #[test]
+    fn inertias_with_products_take_the_general_products() {
+        // Panda link 1 (franka_description): nonzero products.
+        let ic = Matrix3::new(
+            0.70337, -0.000139, 0.006772, -0.000139, 0.70661, 0.019169, 0.006772, 0.019169,
+            0.009117,
+        );
+        assert_eq!(check_form(ic), InertiaForm::General);
+        // A single nonzero product is enough.
+        let mut one = Matrix3::from_diagonal(&Vector3::new(0.2, 0.2, 0.1));
+        one[(1, 2)] = 1e-9;
+        one[(2, 1)] = 1e-9;
+        assert_eq!(check_form(one), InertiaForm::General);
+    }
+
+    /// The UR5 (builtin:ur5, models/ur5.urdf) has cylinders along coordinate axes: every body
+    /// takes the one-term rotation; the Panda's inertias have products.
+    #[test]
+    fn published_arms_are_classified_once_per_body() {
+        for name in ["ur5", "models/ur5.urdf", "panda"] {
+            let path = if name.contains('/') {
+                format!("{}/../../{name}", env!("CARGO_MANIFEST_DIR"))
+            } else {
+                format!("builtin:{name}")
+            };
+            let model = crate::io::load_model(&path).unwrap();
+            let forms = &model.body_inertia_form;
+            assert_eq!(forms.len(), model.nbodies());
+            for (body, form) in model.bodies().iter().zip(forms) {
+                assert_eq!(*form, InertiaForm::of(&body.inertia.inertia_com));
+                let axisymmetric = matches!(form, InertiaForm::Axisymmetric { .. });
+                assert_eq!(
+                    axisymmetric,
+                    name.contains("ur5"),
+                    "{name} {}: {form:?}",
+                    body.name
+                );
+            }
+        }
     }
 }
