@@ -41,8 +41,8 @@ pub struct ClassicLink {
     pub tau: f64,
 }
 
-/// The classic vector Newton–Euler recursion (the outward and inward iterations, seed
-/// 004's Luh–Walker–Paul algorithm) on any model, in the links' frames. For joint `i` with screw
+/// The classic vector Newton–Euler recursion (the outward and inward iterations of
+/// Luh, Walker and Paul's algorithm, as in Craig's *Introduction to Robotics*) on any model, in the links' frames. For joint `i` with screw
 /// axis `S_i = (ŝ, v_s)` in frame `i` (`ŝ = ẑ`, `v_s = 0` for Craig's revolute joint; `ŝ = 0`,
 /// `v_s = ẑ` for a prismatic one), `R = R_i^{λ}`, `p` the origin of `i` in `λ`:
 ///

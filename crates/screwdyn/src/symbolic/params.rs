@@ -99,11 +99,11 @@ impl ParamTable {
     /// `Ixx_<link>`, …, `g`, and `a_<i>`, `d_<i>` (standard-DH joints) or `px_<i>`, `py_<i>`,
     /// `pz_<i>` (joint `i`'s home offset, 1-based), and `Ia_<i>` (joint `i`'s armature, 1-based).
     pub fn new(model: &Model) -> Self {
-        let seeds = model.name() == "planar2" && model.nq() == 2;
+        let textbook = model.name() == "planar2" && model.nq() == 2;
         let mut params = Vec::new();
         let bodies = model.bodies();
         let body_tag = |i: usize| -> String {
-            if seeds {
+            if textbook {
                 format!("{}", i + 1)
             } else {
                 // Link names become identifiers of generated code: other characters → '_'.
@@ -160,9 +160,9 @@ impl ParamTable {
             meaning: "gravity magnitude".into(),
         });
         for (i, j) in model.joints().iter().enumerate() {
-            let dh = !seeds && standard_dh_shape(model, i);
+            let dh = !textbook && standard_dh_shape(model, i);
             for (a, ax) in AX.iter().enumerate() {
-                let name = if seeds {
+                let name = if textbook {
                     if a == 0 {
                         format!("L{}", i + 1)
                     } else {
