@@ -9,7 +9,7 @@ use super::wrenches::ExternalWrenches;
 use crate::model::Model;
 use crate::scalar::Real;
 use crate::spatial::fused::{ad_fused, cross, dot6};
-use crate::spatial::inertia_in_world::{com_in_world, velocity_product_wrench, InertiaInWorld};
+use crate::spatial::inertia_in_world::{com_in_world, InertiaInWorld};
 use crate::spatial::{lin, twist, Twist};
 use crate::workspace::Workspace;
 
@@ -89,6 +89,7 @@ pub(crate) fn rnea_in_world_passes<T: Real>(
     // ... then, body by body (each on its own), W_i = 𝔍_i^0 V̇_i − ad_{V_i}ᵀ 𝔍_i^0 V_i − W_ext,i,
     // the velocity product only when the bodies move.
     let at_rest = v.is_none() && a.is_none();
+    let forms = &model.body_inertia_form[..n];
     for i in 0..n {
         let h = &poses[i];
         let body = &bodies[i].inertia;
@@ -98,11 +99,10 @@ pub(crate) fn rnea_in_world_passes<T: Real>(
             let f = lin(&base) * body.mass;
             twist(cross(&com_in_world(body, h), &f), f)
         } else {
-            let inertia = InertiaInWorld::new(body, h);
+            let inertia = InertiaInWorld::with_form(body, &forms[i], h);
             let mut w = inertia.momentum(&accels[i]);
             if v.is_some() {
-                let vi = &twists[i];
-                w += velocity_product_wrench(vi, &inertia.momentum(vi));
+                w += inertia.velocity_product_wrench(&twists[i]);
             }
             w
         };

@@ -55,8 +55,8 @@ impl<T: Real> InertiaInWorld<T> {
 
     /// The bias wrench `−ad_Vᵀ 𝔍^0 V` of the twist `V = (ω, v)` from the ten parameters:
     /// with the centre of mass's velocity `v_c = v + ω × c^0` and `g = m ω × v_c`,
-    /// `−ad_Vᵀ 𝔍^0 V = (ω × I_c^0 ω + c^0 × g, g)`. (It equals
-    /// [`velocity_product_wrench`]`(V, 𝔍^0 V)`: with `f = m v_c` and `l = I_c^0 ω + c^0 × f`,
+    /// `−ad_Vᵀ 𝔍^0 V = (ω × I_c^0 ω + c^0 × g, g)`. (It equals `(ω × l + v × f, ω × f)` of the
+    /// momentum `(l, f) = 𝔍^0 V`: with `f = m v_c` and `l = I_c^0 ω + c^0 × f`,
     /// `v × f = −(ω × c^0) × f` as `v_c × f = 0`, and `ω × (c^0 × f) − (ω × c^0) × f =
     /// c^0 × (ω × f)` by the Jacobi identity.) 36 products against 51 through the momentum.
     #[inline(always)]
@@ -251,15 +251,6 @@ pub(crate) fn com_in_world<T: Real>(body: &SpatialInertia<T>, h: &Se3<T>) -> Vec
             r[(row, 1)].mul_add(c.y, r[(row, 0)].mul_add(c.x, h.translation[row])),
         )
     })
-}
-
-/// The bias wrench `−ad_Vᵀ 𝔍^0 V = (ω × l + v × f, ω × f)` of the twist `V = (ω, v)` whose
-/// momentum is `(l, f) = 𝔍^0 V`.
-#[inline(always)]
-pub(crate) fn velocity_product_wrench<T: Real>(vel: &Twist<T>, momentum: &Wrench<T>) -> Wrench<T> {
-    let (w, v) = (ang(vel), lin(vel));
-    let (l, f) = (ang(momentum), lin(momentum));
-    twist(cross(&w, &l) + cross(&v, &f), cross(&w, &f))
 }
 
 #[cfg(test)]
