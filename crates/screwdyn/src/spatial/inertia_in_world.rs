@@ -20,11 +20,7 @@ impl<T: Real> InertiaInWorld<T> {
     /// `m`, `c^0 = R c + p` and `I_c^0 = R I_c Rᵀ` of `body` (given in its own frame) at `h = H_i^0`.
     #[inline(always)]
     pub(crate) fn new(body: &SpatialInertia<T>, h: &Se3<T>) -> Self {
-        Self {
-            mass: body.mass,
-            com: com_in_world(body, h),
-            rotational: rotated_general(&body.inertia_com, &h.rotation),
-        }
+        Self::with_form(body, &InertiaForm::General, h)
     }
 
     /// As [`InertiaInWorld::new`], with `I_c^0 = R I_c Rᵀ` formed from `form`, the shape of
@@ -173,8 +169,7 @@ impl<T: Real> InertiaForm<T> {
         let d = [ic[(0, 0)], ic[(1, 1)], ic[(2, 2)]];
         // The odd moment out of two equal ones (or any, when all three are equal).
         let odd = match (d[0] == d[1], d[0] == d[2], d[1] == d[2]) {
-            (true, true, _) => Some(2),
-            (true, false, _) => Some(2),
+            (true, _, _) => Some(2),
             (false, true, _) => Some(1),
             (false, false, true) => Some(0),
             (false, false, false) => None,
