@@ -221,7 +221,8 @@ pub struct Common {
     #[arg(long, allow_hyphen_values = true, value_name = "X,Y,Z")]
     pub gravity: Option<String>,
     /// Many states from a CSV file: columns q.<joint>, v.<joint>, a.<joint>, tau.<joint>
-    /// (a missing column is zero); one output row / JSON object per input row.
+    /// (a missing column is zero); one output row / JSON object per input row. `-` reads
+    /// standard input.
     #[arg(long, value_name = "STATES.CSV")]
     pub input: Option<PathBuf>,
 }
@@ -310,7 +311,7 @@ pub struct IkArgs {
     pub max_restarts: Option<usize>,
     /// Many targets from a CSV file: columns x, y, z, qw, qx, qy, qz (world frame, quaternion
     /// scalar first; without the quaternion columns the targets are positions) and optional
-    /// q0.<joint>; one output row per target, streamed.
+    /// q0.<joint>; one output row per target, streamed. `-` reads standard input.
     #[arg(long, value_name = "TARGETS.CSV")]
     pub input: Option<PathBuf>,
     /// With --input: write the rows to this .csv or .json file instead of stdout.

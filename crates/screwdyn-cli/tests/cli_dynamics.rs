@@ -522,3 +522,52 @@ fn csv_columns_follow_design() {
     ]);
     assert!(out.starts_with("kinetic_energy,potential_energy,total_energy,center_of_mass.x,"));
 }
+
+/// `--input -` reads the states from standard input: the torques are the library's RNEA of the
+/// same states, and a bad row is named by its line of standard input while the good rows still
+/// come out.
+#[test]
+fn batch_input_from_standard_input() {
+    let model = load_model("builtin:planar2").unwrap();
+    let states = [
+        [0.3, -0.2, 0.5, 1.0, -0.4, 0.7],
+        [1.1, 0.4, -0.6, 0.2, 0.9, -1.3],
+    ];
+    let mut text = String::from("q.joint1,q.joint2,v.joint1,v.joint2,a.joint1,a.joint2\n");
+    for s in &states {
+        text.push_str(&csv(s));
+        text.push('\n');
+    }
+    let out = bin()
+        .args(["rnea", "builtin:planar2", "--input", "-", "--format", "csv"])
+        .write_stdin(text.clone())
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines.len(), 3);
+    let mut ws = Workspace::new(&model);
+    for (s, line) in states.iter().zip(&lines[1..]) {
+        let tau = dynamics::rnea(&model, &mut ws, &s[0..2], &s[2..4], &s[4..6]).unwrap();
+        let row: Vec<f64> = line.split(',').map(|c| c.parse().unwrap()).collect();
+        close(&row, tau.as_slice(), 1e-12);
+    }
+    text.push_str("0,zero,0,0,0,0\n");
+    let out = bin()
+        .args(["rnea", "builtin:planar2", "--input", "-", "--format", "csv"])
+        .write_stdin(text)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(String::from_utf8(out.stdout).unwrap().lines().count(), 3);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("standard input:4: column 'q.joint2': 'zero' is not a number"),
+        "{err}"
+    );
+}

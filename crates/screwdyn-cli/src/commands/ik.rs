@@ -2,7 +2,7 @@
 //! for every row of `--input targets.csv`, streamed in chunks solved on `--threads` threads.
 
 use super::inputs::{load, names, parse_fixed, parse_vector};
-use super::states::{open_text, shorten, split_cells, TextOnly};
+use super::states::{open_text, shorten, split_cells, InputSource, TextOnly};
 use crate::args::{Format, IkArgs};
 use crate::output::{self, Labels, Report, ReportWriter, Value};
 use crate::CliError;
@@ -263,7 +263,7 @@ impl Columns {
 /// The lines of a targets file, without line ends; empty lines skipped.
 struct Lines {
     file: String,
-    input: std::io::BufReader<TextOnly<std::fs::File>>,
+    input: std::io::BufReader<TextOnly<InputSource>>,
     buffer: Vec<u8>,
     line_no: u64,
 }

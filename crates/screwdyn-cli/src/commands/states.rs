@@ -122,7 +122,7 @@ impl<R> TextOnly<R> {
 /// skipped, `\r\n` line ends accepted, spaces around cells ignored.
 struct StateReader {
     file: String,
-    input: std::io::BufReader<TextOnly<std::fs::File>>,
+    input: std::io::BufReader<TextOnly<InputSource>>,
     /// The current line, without its line end.
     line: Vec<u8>,
     /// Its number in the file (1-based).
@@ -133,14 +133,22 @@ struct StateReader {
     rows: usize,
 }
 
-/// A buffered reader of `path` that refuses binary data and overlong lines ([`TextOnly`]), and
-/// the path as text for messages.
+/// What an `--input` is read from: a file, or standard input for `-`.
+pub(super) type InputSource = Box<dyn std::io::Read + Send>;
+
+/// A buffered reader of `path` (standard input for `-`, as in most Unix programs) that refuses
+/// binary data and overlong lines ([`TextOnly`]), and the path as text for messages.
 pub(super) fn open_text(
     path: &Path,
-) -> Result<(String, std::io::BufReader<TextOnly<std::fs::File>>), CliError> {
-    let file = path.display().to_string();
-    let f = std::fs::File::open(path)
-        .map_err(|e| CliError::input(format!("{file}: cannot be read ({e})")))?;
+) -> Result<(String, std::io::BufReader<TextOnly<InputSource>>), CliError> {
+    let (file, f): (String, InputSource) = if path == Path::new("-") {
+        ("standard input".into(), Box::new(std::io::stdin()))
+    } else {
+        let file = path.display().to_string();
+        let f = std::fs::File::open(path)
+            .map_err(|e| CliError::input(format!("{file}: cannot be read ({e})")))?;
+        (file, Box::new(f))
+    };
     let input = std::io::BufReader::with_capacity(
         1 << 16,
         TextOnly {
