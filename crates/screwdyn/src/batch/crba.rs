@@ -14,7 +14,7 @@ use crate::model::Model;
 /// alike).
 ///
 /// Forward: kinematics `H_i^0 = H_λ^0 H_i^λ(q_i)`, base-frame screws `s_i = Ad_{H_i^0} S_i`
-/// and body inertias `Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i}`. Backward, from the leaves: the composite
+/// and body inertias `Ad_{H_0^i}ᵀ 𝔍_i Ad_{H_0^i}` (by the shape of each `I_c`). Backward, from the leaves: the composite
 /// `𝔍ᶜ_i` (its body's inertia plus its children's composites) is whole when body `i` is
 /// reached, so `M_ki = s_kᵀ 𝔍ᶜ_i s_i` for every `k` supporting `i` (Lynch & Park, *Modern Robotics*
 /// `M = Sᵀ Lᵀ 𝔍 L S`), plus the armature `I_a,i` on the diagonal, then `𝔍ᶜ_i` is added to
@@ -22,9 +22,10 @@ use crate::model::Model;
 #[inline(always)]
 pub(super) fn crba<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut Buffers<L>) {
     let n = model.nbodies();
-    let (parents, bodies, joints) = (
+    let (parents, bodies, forms, joints) = (
         &model.parents()[..n],
-        &model.body_composite[..n],
+        &model.bodies()[..n],
+        &model.body_inertia_form[..n],
         &joints[..n],
     );
     let q = &b.q[..n];
@@ -40,7 +41,7 @@ pub(super) fn crba<const L: usize>(model: &Model, joints: &[LaneJoint], b: &mut 
             Some(p) => piw[p].compose(&h),
             None => h,
         };
-        ci[i] = Composite::transformed(&bodies[i], &piw[i]);
+        ci[i] = Composite::rigid_in_world_with_form(&bodies[i].inertia, &forms[i], &piw[i]);
         s[i] = joints[i].act(&piw[i]);
     }
     let m = &mut b.out[..n * n];

@@ -6,7 +6,8 @@
 //! plain `f64` and are broadcast by the arithmetic.
 
 use super::lanes::Lanes;
-use crate::spatial::{CompositeInertia, SpatialInertia};
+use crate::spatial::inertia_in_world::InertiaForm;
+use crate::spatial::SpatialInertia;
 
 /// A 3-vector of lanes.
 pub type V3<const L: usize> = [Lanes<L>; 3];
@@ -202,8 +203,9 @@ pub fn apply_body_inertia<const L: usize>(j: &SpatialInertia<f64>, v: &V6<L>) ->
     join(l, p)
 }
 
-/// A spatial inertia in the ten parameters CRBA sums ([`CompositeInertia`]): the mass (the same
-/// in every lane), the first moment `h = m c` and the rotational inertia about the origin.
+/// A spatial inertia in the ten parameters CRBA sums
+/// ([`CompositeInertia`](crate::spatial::CompositeInertia)): the mass (the same in every
+/// lane), the first moment `h = m c` and the rotational inertia about the origin.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Composite<const L: usize> {
     /// `m`.
@@ -224,42 +226,77 @@ impl<const L: usize> Composite<L> {
         self.inertia_origin = each33!(|i, j| a[i][j] + b[i][j]);
     }
 
-    /// A body's constant inertia, given in its frame, written in the frame `h` maps from
-    /// ([`CompositeInertia::transformed`]): `h' = R h`, and
-    /// `I_o' = R I_o Rᵀ + 2(h'·p) 1 − p h'ᵀ − h' pᵀ + m (|p|² 1 − p pᵀ)`.
+    /// A body's constant inertia, given in its frame, written in the frame `h` maps from, in
+    /// the ten parameters
+    /// ([`CompositeInertia::rigid_in_world`](crate::spatial::CompositeInertia::rigid_in_world)),
+    /// through its centre of mass with `form` the shape of its `I_c` ([`InertiaForm`]): with
+    /// `c⁰ = R c + p`, `h' = m c⁰` and `I_o' = R I_c Rᵀ + m(|c⁰|² 1 − c⁰ c⁰ᵀ)`, where an
+    /// axisymmetric or diagonal `I_c` gives `R I_c Rᵀ = a·1 + Σ_k μ_k r_k r_kᵀ` from columns of
+    /// `R` alone, and a general `I_c` the products `(R I_c) Rᵀ`.
     #[inline(always)]
-    pub fn transformed(j: &CompositeInertia<f64>, h: &Pose<L>) -> Composite<L> {
-        let (r, p, m) = (&h.r, &h.p, j.mass);
-        let fm = [j.first_moment.x, j.first_moment.y, j.first_moment.z];
-        let rh: V3<L> = each!(3, |i| dot!(3, |k| r[i][k], fm[k]));
-        let io = &j.inertia_origin;
-        // R I_o, then (R I_o Rᵀ)_ab = Σ_k (R I_o)_ak R_bk.
-        let ri = each33!(|a, b| dot!(3, |k| r[a][k], io[(k, b)]));
-        let diag = dot3(p, p).mul_add(m, dot3(&rh, p) * 2.0);
-        // Entry (a, b) of R I_o Rᵀ − p h'ᵀ − h' pᵀ − m p pᵀ, as R I_o Rᵀ − p (h' + m p)ᵀ − h' pᵀ.
-        let hmp: V3<L> = each!(3, |k| rh[k] + p[k] * m);
-        macro_rules! entry {
-            ($a:expr, $b:expr) => {
-                (-rh[$a]).mul_add(
-                    p[$b],
-                    (-p[$a]).mul_add(hmp[$b], dot!(3, |k| ri[$a][k], r[$b][k])),
-                )
-            };
-        }
-        let (i01, i02, i12) = (entry!(0, 1), entry!(0, 2), entry!(1, 2));
-        let (i00, i11, i22) = (
-            entry!(0, 0) + diag,
-            entry!(1, 1) + diag,
-            entry!(2, 2) + diag,
-        );
+    pub fn rigid_in_world_with_form(
+        body: &SpatialInertia<f64>,
+        form: &InertiaForm<f64>,
+        h: &Pose<L>,
+    ) -> Composite<L> {
+        let (r, p, m) = (&h.r, &h.p, body.mass);
+        // R I_c Rᵀ as (00, 11, 22, 01, 02, 12).
+        let rotated: [Lanes<L>; 6] = match *form {
+            InertiaForm::Axisymmetric { a, mu, axis } => {
+                let rk: V3<L> = each!(3, |i| r[i][axis]);
+                let mk: V3<L> = each!(3, |i| rk[i] * mu);
+                [
+                    mk[0].mul_add(rk[0], Lanes::splat(a)),
+                    mk[1].mul_add(rk[1], Lanes::splat(a)),
+                    mk[2].mul_add(rk[2], Lanes::splat(a)),
+                    mk[0] * rk[1],
+                    mk[0] * rk[2],
+                    mk[1] * rk[2],
+                ]
+            }
+            InertiaForm::Diagonal { a, mu, axes } => {
+                let rj: V3<L> = each!(3, |i| r[i][axes[0]]);
+                let rk: V3<L> = each!(3, |i| r[i][axes[1]]);
+                let mj: V3<L> = each!(3, |i| rj[i] * mu[0]);
+                let mk: V3<L> = each!(3, |i| rk[i] * mu[1]);
+                let diagonal =
+                    |d: usize| mk[d].mul_add(rk[d], mj[d].mul_add(rj[d], Lanes::splat(a)));
+                let off = |d: usize, e: usize| mk[d].mul_add(rk[e], mj[d] * rj[e]);
+                [
+                    diagonal(0),
+                    diagonal(1),
+                    diagonal(2),
+                    off(0, 1),
+                    off(0, 2),
+                    off(1, 2),
+                ]
+            }
+            _ => {
+                // (R I_c) then (R I_c Rᵀ)_ab = Σ_k (R I_c)_ak R_bk.
+                let ic = &body.inertia_com;
+                let ri = each33!(|a, b| dot!(3, |k| r[a][k], ic[(k, b)]));
+                let e = |a: usize, b: usize| dot!(3, |k| ri[a][k], r[b][k]);
+                [e(0, 0), e(1, 1), e(2, 2), e(0, 1), e(0, 2), e(1, 2)]
+            }
+        };
+        let c = [body.com.x, body.com.y, body.com.z];
+        let c0: V3<L> = each!(3, |i| dot!(3, |k| r[i][k], c[k]; p[i]));
+        let hm: V3<L> = each!(3, |i| c0[i] * m);
+        // m(|c⁰|² 1 − c⁰ c⁰ᵀ): the diagonal is h_y c⁰_y + h_z c⁰_z, …, the rest −h_a c⁰_b.
+        let (xx, yy, zz) = (hm[0] * c0[0], hm[1] * c0[1], hm[2] * c0[2]);
+        let [i00, i11, i22, i01, i02, i12] = rotated;
+        let i01 = (-hm[0]).mul_add(c0[1], i01);
+        let i02 = (-hm[0]).mul_add(c0[2], i02);
+        let i12 = (-hm[1]).mul_add(c0[2], i12);
+        let (i00, i11, i22) = (i00 + (yy + zz), i11 + (xx + zz), i22 + (xx + yy));
         Composite {
             mass: m,
-            first_moment: hmp,
+            first_moment: hm,
             inertia_origin: [[i00, i01, i02], [i01, i11, i12], [i02, i12, i22]],
         }
     }
 
-    /// `𝔍 V = (I_o ω + h × v, m v − h × ω)` ([`CompositeInertia::apply`]).
+    /// `𝔍 V = (I_o ω + h × v, m v − h × ω)` ([`CompositeInertia::apply`](crate::spatial::CompositeInertia::apply)).
     #[inline(always)]
     pub fn apply(&self, v: &V6<L>) -> V6<L> {
         let (w, l) = (ang(v), lin(v));

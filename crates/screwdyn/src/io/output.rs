@@ -12,7 +12,7 @@
 //!   keeps being a device and a reader of a FIFO receives the data; every write error is
 //!   reported (`/dev/full` gives "No space left on device").
 //!
-//! Errors are [`Error::Io`](crate::Error::Io) with the sentence `cannot write PATH (reason)`.
+//! Errors are [`Error::Io`] with the sentence `cannot write PATH (reason)`.
 //!
 //! ```
 //! use screwdyn::io::output::{write_file, OutputFile};

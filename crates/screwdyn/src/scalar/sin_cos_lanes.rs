@@ -16,9 +16,10 @@ use super::sin_cos::Reduction;
 use super::{Real, SIN_COS_MEDIUM};
 use std::any::Any;
 
-/// `(sin x_l, cos x_l)` of `L` angles (4 or 8: one or two AVX2 registers, one AVX-512 register): [`sin_cos_array`] for `f64` (the products fused, so
-/// only where the CPU has fused multiply–adds: see [`sin_cos_array`]), `T::sin_cos` lane by
-/// lane for any other `T`. The type test is resolved at compile time.
+/// `(sin x_l, cos x_l)` of `L` angles (4 or 8: one or two AVX2 registers, one AVX-512
+/// register): for `f64` the fast path of [`sin_cos`](super::sin_cos) in lanes (the products
+/// fused, so only where the CPU has fused multiply–adds), `T::sin_cos` lane by lane for any
+/// other `T`. The type test is resolved at compile time.
 ///
 /// ```
 /// let x = [0.0, 0.5, -1.0, 2.0, 3.0, -4.0, 10.0, 100.0_f64];

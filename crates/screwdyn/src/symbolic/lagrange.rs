@@ -43,7 +43,7 @@ pub struct LagrangeSteps {
 /// ```
 ///
 /// # Errors
-/// As [`derive`].
+/// As [`derive()`].
 pub fn lagrange_steps(model: &Model, options: &Options) -> Result<LagrangeSteps> {
     let e = derive(model, Quantity::Energy, options)?;
     let (k, p) = (

@@ -158,7 +158,7 @@ impl std::str::FromStr for CoriolisForm {
     }
 }
 
-/// Options of [`derive`] and [`generate`].
+/// Options of [`derive()`] and [`generate`].
 #[derive(Clone, Debug)]
 pub struct Options {
     /// The parameters kept as symbols (see [`ParamTable::select`]); `""` keeps all numeric.
@@ -169,7 +169,7 @@ pub struct Options {
     pub reference: Reference,
     /// Which `C`.
     pub coriolis: CoriolisForm,
-    /// The largest number of terms one expanded expression may have ([`derive`] only).
+    /// The largest number of terms one expanded expression may have ([`derive()`] only).
     pub max_terms: usize,
     /// The largest number of graph nodes code generation may build ([`generate`] only).
     pub max_ops: usize,
@@ -208,7 +208,7 @@ pub struct SymMatrix {
     pub entries: Vec<Poly>,
 }
 
-/// The result of [`derive`]: the quantity's matrices and everything needed to print them.
+/// The result of [`derive()`]: the quantity's matrices and everything needed to print them.
 #[derive(Clone, Debug)]
 pub struct Derivation {
     /// Model name.

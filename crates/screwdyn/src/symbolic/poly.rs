@@ -40,7 +40,7 @@ pub enum Var {
     /// A symbolic parameter: index into the parameter table.
     Param(u16),
     /// `cos` of the sum of the angles in the bit mask (one bit: `cos θ_i`; several bits only
-    /// appear after [`recombine`](super::print) for printing).
+    /// appear after `recombine` (in the printer) for printing).
     Cos(u64),
     /// `sin` of the sum of the angles in the bit mask.
     Sin(u64),
