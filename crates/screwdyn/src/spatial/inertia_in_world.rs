@@ -158,8 +158,8 @@ pub(crate) enum InertiaForm<T: Real> {
     /// Nonzero products of inertia, by the principal axes: `I_c = a·1 + u₀u₀ᵀ + u₁u₁ᵀ` with
     /// `a` the smallest principal moment and `u_k = √(μ_k) v_k` (`v_k` the unit principal axes
     /// of the other two moments, `μ_k ≥ 0` their excess over `a`), found once when the model is
-    /// built: `R I_c Rᵀ = a·1 + w₀w₀ᵀ + w₁w₁ᵀ` with `w_k = R u_k` (18 products for `w_k`,
-    /// 12 fused multiply–adds, against the general products' 45). Equal to the general
+    /// built: `R I_c Rᵀ = a·1 + w₀w₀ᵀ + w₁w₁ᵀ` with `w_k = R u_k` (18 operations for the
+    /// `w_k`, 12 for the sum: 30 against the general products' 45). Equal to the general
     /// products up to rounding.
     Principal { a: T, u: [Vector3<T>; 2] },
     /// `R I_c Rᵀ` by the general products (an `I_c` that is not exactly symmetric, or whose
