@@ -186,7 +186,7 @@ enum Kinematics {
 
 /// Both passes of [`rnea_derivatives`] given `ws.pose_in_world` (one copy, shared with
 /// [`aba_derivatives`]). Each body's inertia `𝔍_i` in {0} is formed from its ten parameters
-/// ([`CompositeInertia::rigid_in_world`]: `m`, `h = m c⁰`, `I_o`).
+/// ([`CompositeInertia::rigid_in_world`] with the body's inertia form: `m`, `h = m c⁰`, `I_o`).
 #[multiversion::multiversion(targets(
     "x86_64+avx512f+avx512vl+avx512dq+avx512bw+avx2+fma",
     "x86_64+avx2+fma"
@@ -206,6 +206,7 @@ fn derivative_passes<T: Real>(
         &model.bodies()[..n],
         &model.joints()[..n],
     );
+    let forms = &model.body_inertia_form[..n];
     let (v, a) = (&v[..n], &a[..n]);
     let base = base_acceleration(model);
     let two: T = real(2.0);
@@ -265,7 +266,7 @@ fn derivative_passes<T: Real>(
             }
         };
         let alpha = ad(&ap, &s) + ad(&vp, &sdot);
-        let inertia = CompositeInertia::rigid_in_world(&bodies[i].inertia, h);
+        let inertia = CompositeInertia::rigid_in_world_with_form(&bodies[i].inertia, &forms[i], h);
         let momentum = inertia.apply(&vi);
         let mut w = inertia.apply(&ai) - ad_transpose(&vi, &momentum);
         let mut fixed_in_space = Wrench::zeros();
