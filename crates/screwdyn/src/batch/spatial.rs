@@ -232,7 +232,8 @@ impl<const L: usize> Composite<L> {
     /// through its centre of mass with `form` the shape of its `I_c` ([`InertiaForm`]): with
     /// `c⁰ = R c + p`, `h' = m c⁰` and `I_o' = R I_c Rᵀ + m(|c⁰|² 1 − c⁰ c⁰ᵀ)`, where an
     /// axisymmetric or diagonal `I_c` gives `R I_c Rᵀ = a·1 + Σ_k μ_k r_k r_kᵀ` from columns of
-    /// `R` alone, and a general `I_c` the products `(R I_c) Rᵀ`.
+    /// `R` alone, one with products of inertia `a·1 + Σ_k (R u_k)(R u_k)ᵀ` by its principal
+    /// axes, and any other `I_c` the products `(R I_c) Rᵀ`.
     #[inline(always)]
     pub fn rigid_in_world_with_form(
         body: &SpatialInertia<f64>,
@@ -271,7 +272,23 @@ impl<const L: usize> Composite<L> {
                     off(1, 2),
                 ]
             }
-            _ => {
+            // a·1 + w₀w₀ᵀ + w₁w₁ᵀ with w_k = R u_k.
+            InertiaForm::Principal { a, u } => {
+                let w0: V3<L> = each!(3, |i| dot!(3, |k| r[i][k], u[0][k]));
+                let w1: V3<L> = each!(3, |i| dot!(3, |k| r[i][k], u[1][k]));
+                let diagonal =
+                    |d: usize| w1[d].mul_add(w1[d], w0[d].mul_add(w0[d], Lanes::splat(a)));
+                let off = |d: usize, e: usize| w1[d].mul_add(w1[e], w0[d] * w0[e]);
+                [
+                    diagonal(0),
+                    diagonal(1),
+                    diagonal(2),
+                    off(0, 1),
+                    off(0, 2),
+                    off(1, 2),
+                ]
+            }
+            InertiaForm::General => {
                 // (R I_c) then (R I_c Rᵀ)_ab = Σ_k (R I_c)_ak R_bk.
                 let ic = &body.inertia_com;
                 let ri = each33!(|a, b| dot!(3, |k| r[a][k], ic[(k, b)]));
