@@ -444,14 +444,14 @@ where
 /// operations, which the compiler vectorises with the loop that forms the values) and read by
 /// [`all_finite`].
 #[inline(always)]
-fn non_finite_flag(x: f64) -> u64 {
+pub(super) fn non_finite_flag(x: f64) -> u64 {
     const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
     (x.to_bits() & EXPONENT) + (1 << 52)
 }
 
 /// Whether no value whose [`non_finite_flag`] went into `flags` was ±∞ or NaN.
 #[inline(always)]
-fn all_finite(flags: u64) -> bool {
+pub(super) fn all_finite(flags: u64) -> bool {
     flags >> 63 == 0
 }
 

@@ -3,7 +3,7 @@
 
 use super::controller::Controller;
 use super::effects::{EffectGains, JointEffects};
-use super::integrate::Stepper;
+use super::integrate::{all_finite, non_finite_flag, Stepper};
 use super::limit_events::LimitWatch;
 use super::options::SimOptions;
 use super::record::{Recording, Sample, SampleSink};
@@ -148,7 +148,11 @@ impl Plant<'_> {
             &mut self.cmd
         };
         self.controller.torque(t, q, v, torque)?;
-        if let Some(i) = first_non_finite(torque) {
+        let flags = torque.iter().fold(0, |f, &x| f | non_finite_flag(x));
+        if let Some(i) = (!all_finite(flags))
+            .then(|| first_non_finite(torque))
+            .flatten()
+        {
             let x = torque[i];
             return Err(Error::Numerical(format!(
                 "the controller returned a non-finite torque {x} for joint '{}' at t = {t:.6} s",
@@ -192,12 +196,15 @@ impl Plant<'_> {
             forward_dynamics(self.model, &mut self.ws, q, v, &self.tau, fext, self.method)?
         };
         // q̈ copied into the stage's buffer and checked finite in one loop.
-        let mut finite = true;
+        let mut flags = 0;
         for (out, &x) in qdd.iter_mut().zip(a.as_slice()) {
             *out = x;
-            finite &= x.is_finite();
+            flags |= non_finite_flag(x);
         }
-        if let Some(i) = (!finite).then(|| first_non_finite(qdd)).flatten() {
+        if let Some(i) = (!all_finite(flags))
+            .then(|| first_non_finite(qdd))
+            .flatten()
+        {
             let cause = if self.effects.total_torque_is_commanded() {
                 "a fixed step too large for the robot's fastest motion, or a controller with \
                  gains too high for the step, does this"
