@@ -5,6 +5,7 @@ use super::inputs::checked_poses;
 use super::rnea::base_acceleration;
 use super::wrenches::ExternalWrenches;
 use crate::error::{Error, Result};
+use crate::kinematics::world_poses_of_checked;
 use crate::model::Model;
 use crate::scalar::Real;
 use crate::spatial::fused::{ad_fused, dot6, mat6_vec};
@@ -87,18 +88,30 @@ pub(crate) fn articulated_body<'w, T: Real>(
 /// [`articulated_body`] for a caller that guarantees that `v` and `tau` have one finite entry
 /// per joint: the simulator, whose plant checks every torque it passes and whose stepper
 /// integrates a state it has already checked (a non-finite acceleration stops the run before it
-/// reaches the state). Only `q` and the wrenches are checked, `q` by forward kinematics.
+/// reaches the state). `q` is checked by forward kinematics, unless `q_checked`: then the caller
+/// also guarantees that `q` has one finite entry per joint and that `ws` was made for `model`
+/// (RK4's stage states, checked as they are formed, in the plant's own workspace), and only the
+/// poses in {0} that the passes read are written (`ws.pose_in_parent` is left as it was).
+/// The wrenches, when given, are always checked.
 pub(crate) fn articulated_body_for_stepper<'w, T: Real>(
     model: &Model<T>,
     ws: &'w mut Workspace<T>,
-    q: &[T],
+    (q, q_checked): (&[T], bool),
     v: &[T],
     tau: &[T],
     fext: Option<&ExternalWrenches<T>>,
 ) -> Result<&'w DVector<T>> {
     debug_assert!(v.len() == model.nq() && tau.len() == model.nq());
     debug_assert!(v.iter().chain(tau).all(|x| x.is_finite()));
-    checked_poses(model, ws, q, &[], fext)?;
+    if q_checked {
+        debug_assert!(ws.check(model).is_ok() && model.check_vector(q, "q").is_ok());
+        if let Some(f) = fext {
+            f.check(model)?;
+        }
+        world_poses_of_checked(model, ws, q);
+    } else {
+        checked_poses(model, ws, q, &[], fext)?;
+    }
     aba_passes(model, ws, v, tau, fext)?;
     Ok(&ws.qdd)
 }

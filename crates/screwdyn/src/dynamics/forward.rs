@@ -84,18 +84,19 @@ pub fn forward_dynamics<'w, T: Real>(
 }
 
 /// [`forward_dynamics`] for the simulator's plant, which guarantees that `v` and `tau` have one
-/// finite entry per joint (see [`articulated_body_for_stepper`]): ABA skips checking them again.
+/// finite entry per joint, and `q` too when `q_checked` (see [`articulated_body_for_stepper`]):
+/// ABA skips checking them again. The other methods check everything.
 pub(crate) fn forward_dynamics_for_stepper<'w, T: Real>(
     model: &Model<T>,
     ws: &'w mut Workspace<T>,
-    q: &[T],
+    (q, q_checked): (&[T], bool),
     v: &[T],
     tau: &[T],
     fext: Option<&ExternalWrenches<T>>,
     method: ForwardMethod,
 ) -> Result<&'w DVector<T>> {
     match method {
-        ForwardMethod::Aba => articulated_body_for_stepper(model, ws, q, v, tau, fext),
+        ForwardMethod::Aba => articulated_body_for_stepper(model, ws, (q, q_checked), v, tau, fext),
         _ => forward_dynamics(model, ws, q, v, tau, fext, method),
     }
 }

@@ -66,8 +66,21 @@ pub fn poses_in_parent<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]
     poses::<T, false>(model, ws, q, lanes)
 }
 
-/// The body poses in the parents' frames, and in the world frame when `WORLD`; the sines and
-/// cosines by lanes when `lanes` (see [`sin_cos_packed`]).
+/// [`forward_kinematics`]' poses in {0} for the simulator's stepper, which has checked that
+/// `q` has one finite entry per joint and that `ws` was made for `model` (RK4's stage states,
+/// checked as they are formed): no checks, and only `ws.pose_in_world` is written
+/// (articulated-body dynamics reads nothing else; `ws.pose_in_parent` is left as it was).
+#[multiversion::multiversion(targets(
+    "x86_64+avx512f+avx512vl+avx512dq+avx512bw+avx2+fma",
+    "x86_64+avx2+fma"
+))]
+pub(crate) fn world_poses_of_checked<T: Real>(model: &Model<T>, ws: &mut Workspace<T>, q: &[T]) {
+    let lanes = multiversion::target::target_cfg_f!(target_feature = "fma");
+    pose_pass::<T, false, true>(model, ws, q, lanes);
+}
+
+/// The body poses in the parents' frames, and in the world frame when `WORLD`, after checking
+/// `ws` and `q` against `model`.
 #[inline(always)]
 fn poses<T: Real, const WORLD: bool>(
     model: &Model<T>,
@@ -77,7 +90,21 @@ fn poses<T: Real, const WORLD: bool>(
 ) -> Result<()> {
     ws.check(model)?;
     model.check_vector(q, "q")?;
-    // `check_vector` made `q.len() == n`; `check` that the workspace was made for this model.
+    pose_pass::<T, true, WORLD>(model, ws, q, lanes);
+    Ok(())
+}
+
+/// The body poses in the parents' frames when `PARENT` (`ws.pose_in_parent`), in the world
+/// frame when `WORLD` (`ws.pose_in_world`); the sines and cosines by lanes when `lanes` (see
+/// [`sin_cos_packed`]). For `q` with `nq` entries and `ws` made for `model` (checked by the
+/// callers).
+#[inline(always)]
+fn pose_pass<T: Real, const PARENT: bool, const WORLD: bool>(
+    model: &Model<T>,
+    ws: &mut Workspace<T>,
+    q: &[T],
+    lanes: bool,
+) {
     let n = model.nq();
     // Everything as slices of length n, so that the loop's bounds checks go.
     let (joints, motions, parents) = (
@@ -113,7 +140,9 @@ fn poses<T: Real, const WORLD: bool>(
             } else {
                 motions[i].pose_in_parent_given(&joints[i].home, q[i], sc)
             };
-            pip[i] = h;
+            if PARENT {
+                pip[i] = h;
+            }
             if WORLD {
                 piw[i] = match parents[i] {
                     Some(p) if lanes => piw[p].compose_fused(&h),
@@ -123,7 +152,6 @@ fn poses<T: Real, const WORLD: bool>(
             }
         }
     }
-    Ok(())
 }
 
 /// Joints per block of forward kinematics: the sines and cosines of a block's angles are

@@ -19,6 +19,7 @@ pub mod ik;
 mod jacobian;
 mod motion;
 
+pub(crate) use forward::world_poses_of_checked;
 pub use forward::{forward_kinematics, forward_kinematics_poe, frame_pose, poses_in_parent};
 pub use jacobian::{
     compute_joint_jacobians, frame_acceleration, frame_jacobian, frame_twist, link_jacobian,

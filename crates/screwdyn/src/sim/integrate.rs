@@ -175,6 +175,46 @@ impl Stepper {
         q: &mut [f64],
         v: &mut [f64],
     ) -> Result<()> {
+        self.check_step(t, dt, q, v)?;
+        self.advance_after_checks(f, t, dt, q, v)
+    }
+
+    /// [`Stepper::advance`] for the simulator's plant, whose `f` takes a fifth argument:
+    /// whether the stepper has checked that the state `(q, v)` it hands over is finite (RK4
+    /// forms each stage's state and checks it in one loop; the other schemes pass `false`).
+    /// `checked` says whether the caller's `(q, v)` is known finite; returns whether the new
+    /// state is (known) finite, for the next step's `checked`.
+    ///
+    /// # Errors
+    /// As [`Stepper::advance`].
+    pub(crate) fn advance_checked<F>(
+        &mut self,
+        f: &mut F,
+        t: f64,
+        dt: f64,
+        (q, v): (&mut [f64], &mut [f64]),
+        checked: bool,
+    ) -> Result<bool>
+    where
+        F: FnMut(f64, &[f64], &[f64], &mut [f64], bool) -> Result<()>,
+    {
+        self.check_step(t, dt, q, v)?;
+        match self.integrator {
+            Integrator::Rk4 => {
+                let finite = self.rk4(f, t, dt, q, v, checked)?;
+                self.steps.0 += 1;
+                Ok(finite)
+            }
+            _ => {
+                let mut f = |t, q: &[f64], v: &[f64], qdd: &mut [f64]| f(t, q, v, qdd, false);
+                self.advance_after_checks(&mut f, t, dt, q, v)?;
+                Ok(false)
+            }
+        }
+    }
+
+    /// The checks of [`Stepper::advance`]: the lengths of `q`, `v`, and finite `t`, `dt > 0`.
+    fn check_step(&self, t: f64, dt: f64, q: &[f64], v: &[f64]) -> Result<()> {
         let n = self.qs.len();
         if q.len() != n || v.len() != n {
             return Err(Error::InvalidArgument(format!(
@@ -188,6 +228,18 @@ impl Stepper {
                 "a step needs a finite time and a positive finite step (got t = {t}, dt = {dt})"
             )));
         }
+        Ok(())
+    }
+
+    /// [`Stepper::advance`] after [`Stepper::check_step`].
+    fn advance_after_checks(
+        &mut self,
+        f: &mut AccelFn,
+        t: f64,
+        dt: f64,
+        q: &mut [f64],
+        v: &mut [f64],
+    ) -> Result<()> {
         match self.integrator {
             Integrator::SymplecticEuler => {
                 let n = q.len();
@@ -201,7 +253,7 @@ impl Stepper {
                 Ok(())
             }
             Integrator::Rk4 => {
-                self.rk4(f, t, dt, q, v)?;
+                self.rk4(&mut |t, q, v, qdd, _| f(t, q, v, qdd), t, dt, q, v, false)?;
                 self.steps.0 += 1;
                 Ok(())
             }
@@ -239,7 +291,25 @@ impl Stepper {
     /// stage states are formed directly rather than by the general tableau sum of `combine`.
     /// The `q̇` half of stage `s`'s derivative is the stage's own velocity, so it is written once,
     /// into `k[s][..n]`, and `f` reads it there (the first stage reads `(q, v)` in place).
-    fn rk4(&mut self, f: &mut AccelFn, t: f64, h: f64, q: &mut [f64], v: &mut [f64]) -> Result<()> {
+    ///
+    /// `f`'s fifth argument says whether the stage state is known finite: `checked` for the
+    /// first stage (the caller's state), and for the later ones whether the loop that formed
+    /// them found every entry finite. Returns whether the new `(q, v)` is finite (checked in the
+    /// loop that sums it).
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn rk4<F>(
+        &mut self,
+        f: &mut F,
+        t: f64,
+        h: f64,
+        q: &mut [f64],
+        v: &mut [f64],
+        checked: bool,
+    ) -> Result<bool>
+    where
+        F: FnMut(f64, &[f64], &[f64], &mut [f64], bool) -> Result<()>,
+    {
         let n = q.len();
         let Stepper { k, qs, .. } = self;
         let qs = &mut qs[..n];
@@ -247,19 +317,21 @@ impl Stepper {
             unreachable!("Stepper::new makes seven stages")
         };
         // Stage 1 at (q, v) itself: its q̇ is `v`, read in place.
-        f(t, q, v, &mut k0[n..2 * n])?;
+        f(t, q, v, &mut k0[n..2 * n], checked)?;
         rk4_stage(f, t, h, 0.5, (q, v), (v, &k0[n..2 * n]), qs, k1)?;
         let (qd, qdd) = k1.split_at(n);
         rk4_stage(f, t, h, 0.5, (q, v), (qd, qdd), qs, k2)?;
         let (qd, qdd) = k2.split_at(n);
         rk4_stage(f, t, h, 1.0, (q, v), (qd, qdd), qs, k3)?;
         let (k1, k2, k3) = (&k1[..2 * n], &k2[..2 * n], &k3[..2 * n]);
-        let k0 = &k0[n..2 * n];
+        let (k0, v) = (&k0[n..2 * n], &mut v[..n]);
+        let mut flags = 0;
         for i in 0..n {
             q[i] += h / 6.0 * (v[i] + 2.0 * k1[i] + 2.0 * k2[i] + k3[i]);
             v[i] += h / 6.0 * (k0[i] + 2.0 * k1[n + i] + 2.0 * k2[n + i] + k3[n + i]);
+            flags |= non_finite_flag(q[i]) | non_finite_flag(v[i]);
         }
-        Ok(())
+        Ok(all_finite(flags))
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -337,11 +409,13 @@ impl Stepper {
 }
 
 /// One later Runge–Kutta stage: `(q_s, q̇_s) = (q, q̇) + c h (q̇_prev, q̈_prev)`, then
-/// `q̈_s = f(t + c h, q_s, q̇_s)`; `q̇_s` and `q̈_s` are written into `next` (its two halves).
+/// `q̈_s = f(t + c h, q_s, q̇_s, finite)` with `finite` whether every entry of `(q_s, q̇_s)` is
+/// finite (checked in the loop that forms them); `q̇_s` and `q̈_s` are written into `next` (its
+/// two halves).
 #[allow(clippy::too_many_arguments)]
 #[inline]
-fn rk4_stage(
-    f: &mut AccelFn,
+fn rk4_stage<F>(
+    f: &mut F,
     t: f64,
     h: f64,
     c: f64,
@@ -349,13 +423,106 @@ fn rk4_stage(
     (qd_prev, qdd_prev): (&[f64], &[f64]),
     qs: &mut [f64],
     next: &mut [f64],
-) -> Result<()> {
+) -> Result<()>
+where
+    F: FnMut(f64, &[f64], &[f64], &mut [f64], bool) -> Result<()>,
+{
     let n = q.len();
     let (vs, qdd) = next[..2 * n].split_at_mut(n);
     let (v, qd_prev, qdd_prev, qs) = (&v[..n], &qd_prev[..n], &qdd_prev[..n], &mut qs[..n]);
+    let mut flags = 0;
     for i in 0..n {
         qs[i] = q[i] + h * (c * qd_prev[i]);
         vs[i] = v[i] + h * (c * qdd_prev[i]);
+        flags |= non_finite_flag(qs[i]) | non_finite_flag(vs[i]);
     }
-    f(t + c * h, qs, vs, qdd)
+    f(t + c * h, qs, vs, qdd, all_finite(flags))
+}
+
+/// The exponent bits of `x` plus one unit of the exponent: the sign bit of the sum is set
+/// exactly when the exponent is all ones (`x` is ±∞ or NaN). OR-ed over a vector (integer
+/// operations, which the compiler vectorises with the loop that forms the values) and read by
+/// [`all_finite`].
+#[inline(always)]
+pub(super) fn non_finite_flag(x: f64) -> u64 {
+    const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
+    (x.to_bits() & EXPONENT) + (1 << 52)
+}
+
+/// Whether no value whose [`non_finite_flag`] went into `flags` was ±∞ or NaN.
+#[inline(always)]
+pub(super) fn all_finite(flags: u64) -> bool {
+    flags >> 63 == 0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_flag_of_each_stage_state_says_whether_it_is_finite() {
+        // RK4 hands `f` a flag with each stage state; it must be true exactly when every entry
+        // of (q, q̇) is finite, as `f64::is_finite` says. Huge finite states whose stage sums
+        // overflow to ±∞ (q + c h q̇ beyond f64::MAX), NaN and ±∞ entries, and ordinary ones.
+        let big = f64::MAX / 1.5;
+        let cases: [(&[f64], &[f64], f64); 6] = [
+            (&[0.3, -1.2, 2.0], &[0.5, 0.0, -4.0], 1e-3),
+            (&[big, 0.0, 0.0], &[big, 0.0, 0.0], 1.0),
+            (&[0.0, -big, 1.0], &[0.0, -big, 0.0], 2.0),
+            (&[0.0, 1.0, 2.0], &[f64::NAN, 0.0, 0.0], 1e-3),
+            (&[f64::INFINITY, 1.0, 2.0], &[0.0; 3], 1e-3),
+            (&[1.0, 2.0, 3.0], &[0.0, f64::NEG_INFINITY, 0.0], 1e-3),
+        ];
+        let mut overflowed = 0;
+        for (q0, v0, h) in cases {
+            let mut s = Stepper::new(Integrator::Rk4, 3).unwrap();
+            let (mut q, mut v) = (q0.to_vec(), v0.to_vec());
+            let start_finite = q0.iter().chain(v0).all(|x| x.is_finite());
+            let mut seen = Vec::new();
+            let mut f = |_t: f64, q: &[f64], v: &[f64], qdd: &mut [f64], checked: bool| {
+                let finite = q.iter().chain(v).all(|x| x.is_finite());
+                seen.push((checked, finite));
+                // A constant acceleration, large enough to overflow the huge states' velocity.
+                qdd.fill(big);
+                Ok(())
+            };
+            let end = s
+                .advance_checked(&mut f, 0.0, h, (&mut q, &mut v), start_finite)
+                .unwrap();
+            assert_eq!(seen.len(), 4);
+            for (stage, &(checked, finite)) in seen.iter().enumerate() {
+                assert_eq!(checked, finite, "stage {stage} of {q0:?}, {v0:?}");
+            }
+            assert_eq!(end, q.iter().chain(&v).all(|x| x.is_finite()));
+            overflowed += usize::from(start_finite && seen.iter().any(|&(_, finite)| !finite));
+        }
+        // The two huge cases start finite and leave the finite numbers in a later stage.
+        assert_eq!(overflowed, 2);
+    }
+
+    #[test]
+    fn the_checked_step_is_the_step() {
+        // `advance_checked` and `advance` take the same RK4 step, to the bit.
+        let mut f = |_t: f64, q: &[f64], v: &[f64], qdd: &mut [f64]| {
+            for i in 0..q.len() {
+                qdd[i] = -9.81 * q[i].sin() - 0.1 * v[i];
+            }
+            Ok(())
+        };
+        let (mut a, mut b) = (
+            Stepper::new(Integrator::Rk4, 2).unwrap(),
+            Stepper::new(Integrator::Rk4, 2).unwrap(),
+        );
+        let (mut qa, mut va) = (vec![0.4, -1.0], vec![0.0, 2.0]);
+        let (mut qb, mut vb) = (qa.clone(), va.clone());
+        for k in 0..100 {
+            let t = k as f64 * 1e-2;
+            a.advance(&mut f, t, 1e-2, &mut qa, &mut va).unwrap();
+            let mut g = |t, q: &[f64], v: &[f64], qdd: &mut [f64], _| f(t, q, v, qdd);
+            assert!(b
+                .advance_checked(&mut g, t, 1e-2, (&mut qb, &mut vb), true)
+                .unwrap());
+        }
+        assert_eq!((qa, va), (qb, vb));
+    }
 }

@@ -3,7 +3,7 @@
 
 use super::controller::Controller;
 use super::effects::{EffectGains, JointEffects};
-use super::integrate::Stepper;
+use super::integrate::{all_finite, non_finite_flag, Stepper};
 use super::limit_events::LimitWatch;
 use super::options::SimOptions;
 use super::record::{Recording, Sample, SampleSink};
@@ -98,7 +98,19 @@ impl Plant<'_> {
     /// the step that starts at the sample), returns the recorder's result: the controller, a
     /// function of the state, is not asked twice. Every other call evaluates, with nothing to
     /// compare or copy.
-    fn accel(&mut self, t: f64, q: &[f64], v: &[f64], qdd: &mut [f64]) -> Result<()> {
+    ///
+    /// `checked` says that the stepper has checked `(q, q̇)` finite (RK4's stage states): then
+    /// forward kinematics does not check `q` again. Unchecked states go through the checks of
+    /// [`forward_dynamics`], which report a non-finite `q` as they always have.
+    #[inline]
+    fn accel(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        qdd: &mut [f64],
+        checked: bool,
+    ) -> Result<()> {
         let r = &mut self.recorded;
         if r.pending {
             r.pending = false;
@@ -107,12 +119,12 @@ impl Plant<'_> {
                 return Ok(());
             }
         }
-        self.evaluate(t, q, v, qdd)
+        self.evaluate(t, q, v, qdd, checked)
     }
 
     /// [`Plant::accel`] for a recorded sample, kept for the next step's first stage.
     fn accel_for_sample(&mut self, t: f64, q: &[f64], v: &[f64], qdd: &mut [f64]) -> Result<()> {
-        self.accel(t, q, v, qdd)?;
+        self.accel(t, q, v, qdd, false)?;
         let r = &mut self.recorded;
         r.pending = true;
         r.t = t;
@@ -122,14 +134,25 @@ impl Plant<'_> {
         Ok(())
     }
 
-    fn evaluate(&mut self, t: f64, q: &[f64], v: &[f64], qdd: &mut [f64]) -> Result<()> {
+    fn evaluate(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        qdd: &mut [f64],
+        checked: bool,
+    ) -> Result<()> {
         let torque = if self.commanded_only {
             &mut self.tau
         } else {
             &mut self.cmd
         };
         self.controller.torque(t, q, v, torque)?;
-        if let Some(i) = first_non_finite(torque) {
+        let flags = torque.iter().fold(0, |f, &x| f | non_finite_flag(x));
+        if let Some(i) = (!all_finite(flags))
+            .then(|| first_non_finite(torque))
+            .flatten()
+        {
             let x = torque[i];
             return Err(Error::Numerical(format!(
                 "the controller returned a non-finite torque {x} for joint '{}' at t = {t:.6} s",
@@ -159,11 +182,11 @@ impl Plant<'_> {
         };
         let a = if self.commanded_only {
             // The torque is the controller's, checked above, and the stepper only hands over
-            // states it has checked: ABA need not check them again.
+            // states it has checked (`q` too when `checked`): ABA need not check them again.
             forward_dynamics_for_stepper(
                 self.model,
                 &mut self.ws,
-                q,
+                (q, checked),
                 v,
                 &self.tau,
                 fext,
@@ -172,8 +195,16 @@ impl Plant<'_> {
         } else {
             forward_dynamics(self.model, &mut self.ws, q, v, &self.tau, fext, self.method)?
         };
-        qdd.copy_from_slice(a.as_slice());
-        if let Some(i) = first_non_finite(qdd) {
+        // q̈ copied into the stage's buffer and checked finite in one loop.
+        let mut flags = 0;
+        for (out, &x) in qdd.iter_mut().zip(a.as_slice()) {
+            *out = x;
+            flags |= non_finite_flag(x);
+        }
+        if let Some(i) = (!all_finite(flags))
+            .then(|| first_non_finite(qdd))
+            .flatten()
+        {
             let cause = if self.effects.total_torque_is_commanded() {
                 "a fixed step too large for the robot's fastest motion, or a controller with \
                  gains too high for the step, does this"
@@ -333,18 +364,20 @@ pub fn simulate_into(
     // Countdowns instead of `k % every` and `k % report`: two integer divisions a step.
     let (mut to_record, mut to_report) = (every, 1);
     let mut t = 0.0;
+    // Whether `(q, q̇)` is known finite: `(q0, v0)` was checked, later states by the stepper.
+    let mut state_checked = true;
     for k in 0..steps {
         let h = if k + 1 == steps { last_dt } else { opts.dt };
         if watching {
             q_before.copy_from_slice(&q);
             v_before.copy_from_slice(&v);
         }
-        stepper.advance(
-            &mut |t, q, v, qdd| plant.accel(t, q, v, qdd),
+        state_checked = stepper.advance_checked(
+            &mut |t, q, v, qdd, checked| plant.accel(t, q, v, qdd, checked),
             t,
             h,
-            &mut q,
-            &mut v,
+            (&mut q, &mut v),
+            state_checked,
         )?;
         if watching {
             limit_events += watch.step(model, t, h, (&q_before, &v_before), &q, &mut |e| {
