@@ -440,7 +440,6 @@ impl<T: Real> ModelBuilder<T> {
             meshes: self.meshes.clone(),
             motions: Vec::new(),
             inertia_scale: T::zero(),
-            body_composite: Vec::new(),
             body_inertia_form: Vec::new(),
             is_chain: false,
             run_start: Vec::new(),

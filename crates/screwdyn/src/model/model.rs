@@ -65,8 +65,6 @@ pub struct Model<T: Real = f64> {
     pub(crate) motions: Vec<JointMotion<T>>,
     /// Derived: the largest entry of any body's 6×6 spatial inertia (ABA's singularity scale).
     pub(crate) inertia_scale: T,
-    /// Derived: each body's inertia in the parameters CRBA sums (`m`, `m c`, `I_o`).
-    pub(crate) body_composite: Vec<crate::spatial::CompositeInertia<T>>,
     /// Derived: the shape of each body's `I_c` ([`InertiaForm`](crate::spatial::inertia_in_world::InertiaForm)),
     /// which decides how `R I_c Rᵀ` is formed in {0}.
     pub(crate) body_inertia_form: Vec<crate::spatial::inertia_in_world::InertiaForm<T>>,
@@ -239,11 +237,6 @@ impl<T: Real> Model<T> {
             .joints
             .iter()
             .map(|j| JointMotion::classify(&j.screw))
-            .collect();
-        self.body_composite = self
-            .bodies
-            .iter()
-            .map(|b| crate::spatial::CompositeInertia::from(&b.inertia))
             .collect();
         self.body_inertia_form = self
             .bodies
@@ -730,7 +723,6 @@ impl Model<f64> {
             meshes: self.meshes.clone(),
             motions: Vec::new(),
             inertia_scale: U::zero(),
-            body_composite: Vec::new(),
             body_inertia_form: Vec::new(),
             is_chain: false,
             run_start: Vec::new(),
