@@ -203,6 +203,26 @@ pub fn apply_body_inertia<const L: usize>(j: &SpatialInertia<f64>, v: &V6<L>) ->
     join(l, p)
 }
 
+/// `a·1 + x₀y₀ᵀ + x₁y₁ᵀ` as `(00, 11, 22, 01, 02, 12)`, for `x_k` a multiple of `y_k` (the
+/// lanes' copy of the scalar one in `spatial::inertia_in_world`).
+#[inline(always)]
+fn identity_plus_two_outer<const L: usize>(
+    a: f64,
+    [x0, y0]: [&V3<L>; 2],
+    [x1, y1]: [&V3<L>; 2],
+) -> [Lanes<L>; 6] {
+    let diagonal = |d: usize| x1[d].mul_add(y1[d], x0[d].mul_add(y0[d], Lanes::splat(a)));
+    let off = |d: usize, e: usize| x1[d].mul_add(y1[e], x0[d] * y0[e]);
+    [
+        diagonal(0),
+        diagonal(1),
+        diagonal(2),
+        off(0, 1),
+        off(0, 2),
+        off(1, 2),
+    ]
+}
+
 /// A spatial inertia in the ten parameters CRBA sums
 /// ([`CompositeInertia`](crate::spatial::CompositeInertia)): the mass (the same in every
 /// lane), the first moment `h = m c` and the rotational inertia about the origin.
@@ -260,33 +280,13 @@ impl<const L: usize> Composite<L> {
                 let rk: V3<L> = each!(3, |i| r[i][axes[1]]);
                 let mj: V3<L> = each!(3, |i| rj[i] * mu[0]);
                 let mk: V3<L> = each!(3, |i| rk[i] * mu[1]);
-                let diagonal =
-                    |d: usize| mk[d].mul_add(rk[d], mj[d].mul_add(rj[d], Lanes::splat(a)));
-                let off = |d: usize, e: usize| mk[d].mul_add(rk[e], mj[d] * rj[e]);
-                [
-                    diagonal(0),
-                    diagonal(1),
-                    diagonal(2),
-                    off(0, 1),
-                    off(0, 2),
-                    off(1, 2),
-                ]
+                identity_plus_two_outer(a, [&mj, &rj], [&mk, &rk])
             }
             // a·1 + w₀w₀ᵀ + w₁w₁ᵀ with w_k = R u_k.
             InertiaForm::Principal { a, u } => {
                 let w0: V3<L> = each!(3, |i| dot!(3, |k| r[i][k], u[0][k]));
                 let w1: V3<L> = each!(3, |i| dot!(3, |k| r[i][k], u[1][k]));
-                let diagonal =
-                    |d: usize| w1[d].mul_add(w1[d], w0[d].mul_add(w0[d], Lanes::splat(a)));
-                let off = |d: usize, e: usize| w1[d].mul_add(w1[e], w0[d] * w0[e]);
-                [
-                    diagonal(0),
-                    diagonal(1),
-                    diagonal(2),
-                    off(0, 1),
-                    off(0, 2),
-                    off(1, 2),
-                ]
+                identity_plus_two_outer(a, [&w0, &w0], [&w1, &w1])
             }
             InertiaForm::General => {
                 // (R I_c) then (R I_c Rᵀ)_ab = Σ_k (R I_c)_ak R_bk.

@@ -255,16 +255,7 @@ impl<T: Real> InertiaForm<T> {
             Self::Diagonal { a, mu, axes } => {
                 let (rj, rk) = (column(axes[0]), column(axes[1]));
                 let (mj, mk) = (rj * mu[0], rk * mu[1]);
-                let diagonal = |p: usize| mk[p].mul_add(rk[p], mj[p].mul_add(rj[p], a));
-                let off = |p: usize, q: usize| mk[p].mul_add(rk[q], mj[p] * rj[q]);
-                [
-                    diagonal(0),
-                    diagonal(1),
-                    diagonal(2),
-                    off(0, 1),
-                    off(0, 2),
-                    off(1, 2),
-                ]
+                identity_plus_two_outer(a, [&mj, &rj], [&mk, &rk])
             }
             // a·1 + w₀w₀ᵀ + w₁w₁ᵀ with w_k = R u_k.
             Self::Principal { a, u } => {
@@ -274,20 +265,31 @@ impl<T: Real> InertiaForm<T> {
                     })
                 };
                 let (w0, w1) = (rotate(&u[0]), rotate(&u[1]));
-                let diagonal = |p: usize| w1[p].mul_add(w1[p], w0[p].mul_add(w0[p], a));
-                let off = |p: usize, q: usize| w1[p].mul_add(w1[q], w0[p] * w0[q]);
-                [
-                    diagonal(0),
-                    diagonal(1),
-                    diagonal(2),
-                    off(0, 1),
-                    off(0, 2),
-                    off(1, 2),
-                ]
+                identity_plus_two_outer(a, [&w0, &w0], [&w1, &w1])
             }
             Self::General => rotated_general(ic, r),
         }
     }
+}
+
+/// `a·1 + x₀y₀ᵀ + x₁y₁ᵀ` as `(00, 11, 22, 01, 02, 12)`, for `x_k` a multiple of `y_k` (so
+/// that the sum is symmetric), every sum of products fused.
+#[inline(always)]
+fn identity_plus_two_outer<T: Real>(
+    a: T,
+    [x0, y0]: [&Vector3<T>; 2],
+    [x1, y1]: [&Vector3<T>; 2],
+) -> [T; 6] {
+    let diagonal = |p: usize| x1[p].mul_add(y1[p], x0[p].mul_add(y0[p], a));
+    let off = |p: usize, q: usize| x1[p].mul_add(y1[q], x0[p] * y0[q]);
+    [
+        diagonal(0),
+        diagonal(1),
+        diagonal(2),
+        off(0, 1),
+        off(0, 2),
+        off(1, 2),
+    ]
 }
 
 /// `c^0 = R c + p`: the centre of mass of `body` in {0} at `h = H_i^0 = (R, p)`.
