@@ -211,15 +211,24 @@ fn identity_plus_two_outer<const L: usize>(
     [x0, y0]: [&V3<L>; 2],
     [x1, y1]: [&V3<L>; 2],
 ) -> [Lanes<L>; 6] {
-    let diagonal = |d: usize| x1[d].mul_add(y1[d], x0[d].mul_add(y0[d], Lanes::splat(a)));
-    let off = |d: usize, e: usize| x1[d].mul_add(y1[e], x0[d] * y0[e]);
+    // Entries written out, no closures (see docs/architecture.md, "Batches").
+    macro_rules! diagonal {
+        ($d:expr) => {
+            x1[$d].mul_add(y1[$d], x0[$d].mul_add(y0[$d], Lanes::splat(a)))
+        };
+    }
+    macro_rules! off {
+        ($d:expr, $e:expr) => {
+            x1[$d].mul_add(y1[$e], x0[$d] * y0[$e])
+        };
+    }
     [
-        diagonal(0),
-        diagonal(1),
-        diagonal(2),
-        off(0, 1),
-        off(0, 2),
-        off(1, 2),
+        diagonal!(0),
+        diagonal!(1),
+        diagonal!(2),
+        off!(0, 1),
+        off!(0, 2),
+        off!(1, 2),
     ]
 }
 
