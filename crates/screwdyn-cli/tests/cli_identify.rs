@@ -245,6 +245,11 @@ fn bad_logs_are_one_sentence_errors() {
         ],
         "is not finite",
     );
+    // Standard input cannot be read twice.
+    fails(
+        &["identify", "builtin:pendulum", "--input", "-"],
+        "--input must name a file, not standard input",
+    );
     // Missing column.
     std::fs::write(&p, "t,q.pivot,v.pivot\n0,0.1,0.2\n").unwrap();
     fails(

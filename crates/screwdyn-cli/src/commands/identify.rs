@@ -214,6 +214,12 @@ pub fn identify(a: &IdentifyArgs) -> Result<(), CliError> {
             "identify needs a log: --input LOG.csv (or --excite --output LOG.csv to make one)",
         ));
     };
+    if path == Path::new("-") {
+        // The log is read twice (the estimate, then the residuals of every sample).
+        return Err(CliError::input(
+            "identify reads its log twice, so --input must name a file, not standard input ('-')",
+        ));
+    }
     if let Some(p) = &a.plot {
         let ext = p.extension().and_then(|e| e.to_str()).unwrap_or("");
         if ext != "png" && ext != "svg" {
