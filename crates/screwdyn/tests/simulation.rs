@@ -50,6 +50,28 @@ fn ur5_start() -> (Vec<f64>, Vec<f64>) {
     )
 }
 
+/// `ZeroTorque` says it is zero, so the simulator keeps a zero torque instead of calling it:
+/// the run is the one of a controller that is called at every evaluation and returns zeros
+/// (`ConstantTorque` of zeros), to the bit, with and without joint effects.
+#[test]
+fn a_zero_controller_is_not_called_and_changes_nothing() {
+    let m = builtin::load("ur5").unwrap();
+    let (q0, v0) = ur5_start();
+    assert!(ZeroTorque.is_zero() && !ConstantTorque(vec![0.0; 6]).is_zero());
+    for effects in [JointEffects::none(), JointEffects::default()] {
+        let opts = SimOptions {
+            effects,
+            ..passive(0.2, 1e-3, Integrator::Rk4, 1)
+        };
+        let skipped = simulate(&m, &q0, &v0, &mut ZeroTorque, &[], &opts, &mut |_| {}).unwrap();
+        let mut zeros = ConstantTorque(vec![0.0; 6]);
+        let called = simulate(&m, &q0, &v0, &mut zeros, &[], &opts, &mut |_| {}).unwrap();
+        assert_eq!(skipped.q, called.q);
+        assert_eq!(skipped.v, called.v);
+        assert_eq!(skipped.tau, called.tau);
+    }
+}
+
 /// The largest `|E(t) − E(0)|` over the samples `range` of a run.
 fn energy_deviation(run: &Recording, range: std::ops::Range<usize>) -> f64 {
     let e0 = run.total_energy[0];

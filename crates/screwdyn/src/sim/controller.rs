@@ -26,6 +26,18 @@ use crate::workspace::Workspace;
 pub trait Controller {
     /// Writes the commanded torques for time `t` and state `(q, v)` into `tau`.
     fn torque(&mut self, t: f64, q: &[f64], v: &[f64], tau: &mut [f64]) -> Result<()>;
+
+    /// Whether [`Controller::torque`] always writes zeros (no actuation): the simulator then
+    /// keeps a zero torque and does not call it. `false` unless a controller says otherwise.
+    ///
+    /// ```
+    /// use screwdyn::sim::{ConstantTorque, Controller, ZeroTorque};
+    /// assert!(ZeroTorque.is_zero());
+    /// assert!(!ConstantTorque(vec![0.0; 2]).is_zero());
+    /// ```
+    fn is_zero(&self) -> bool {
+        false
+    }
 }
 
 /// No actuation: the robot moves passively.
@@ -36,6 +48,10 @@ impl Controller for ZeroTorque {
     fn torque(&mut self, _t: f64, _q: &[f64], _v: &[f64], tau: &mut [f64]) -> Result<()> {
         tau.fill(0.0);
         Ok(())
+    }
+
+    fn is_zero(&self) -> bool {
+        true
     }
 }
 

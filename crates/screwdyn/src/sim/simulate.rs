@@ -48,6 +48,9 @@ struct Plant<'a> {
     effects: JointEffects,
     /// Every joint effect is off: the controller writes the applied torque into `tau` itself.
     commanded_only: bool,
+    /// The controller is [`Controller::is_zero`]: its torque, all zeros, is in `cmd` and `tau`
+    /// from the start and it is not called.
+    zero_controller: bool,
     gains: EffectGains,
     /// The recorder's evaluation `(t, q, q̇) ↦ q̈` (its `τ` is still in `tau`): a sample is
     /// recorded at the state the next step starts from, so the integrator's first stage there
@@ -142,22 +145,24 @@ impl Plant<'_> {
         qdd: &mut [f64],
         checked: bool,
     ) -> Result<()> {
-        let torque = if self.commanded_only {
-            &mut self.tau
-        } else {
-            &mut self.cmd
-        };
-        self.controller.torque(t, q, v, torque)?;
-        let flags = torque.iter().fold(0, |f, &x| f | non_finite_flag(x));
-        if let Some(i) = (!all_finite(flags))
-            .then(|| first_non_finite(torque))
-            .flatten()
-        {
-            let x = torque[i];
-            return Err(Error::Numerical(format!(
-                "the controller returned a non-finite torque {x} for joint '{}' at t = {t:.6} s",
-                self.model.joints()[i].name
-            )));
+        if !self.zero_controller {
+            let torque = if self.commanded_only {
+                &mut self.tau
+            } else {
+                &mut self.cmd
+            };
+            self.controller.torque(t, q, v, torque)?;
+            let flags = torque.iter().fold(0, |f, &x| f | non_finite_flag(x));
+            if let Some(i) = (!all_finite(flags))
+                .then(|| first_non_finite(torque))
+                .flatten()
+            {
+                let x = torque[i];
+                return Err(Error::Numerical(format!(
+                    "the controller returned a non-finite torque {x} for joint '{}' at t = {t:.6} s",
+                    self.model.joints()[i].name
+                )));
+            }
         }
         if !self.commanded_only {
             if self.effects.position_limits && EffectGains::any_in_stop(self.model, q) {
@@ -333,6 +338,7 @@ pub fn simulate_into(
 ) -> Result<RunSummary> {
     check_inputs(model, q0, v0, disturbances, opts)?;
     let n = model.nq();
+    let zero_controller = controller.is_zero();
     let mut plant = Plant {
         model,
         ws: Workspace::new(model),
@@ -344,6 +350,7 @@ pub fn simulate_into(
         method: opts.method,
         effects: opts.effects,
         commanded_only: opts.effects.total_torque_is_commanded(),
+        zero_controller,
         gains: EffectGains::new(&opts.effects, model, q0, opts.dt)?,
         recorded: RecordedEvaluation::new(n),
     };
