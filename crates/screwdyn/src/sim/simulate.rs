@@ -152,11 +152,7 @@ impl Plant<'_> {
                 &mut self.cmd
             };
             self.controller.torque(t, q, v, torque)?;
-            let flags = torque.iter().fold(0, |f, &x| f | non_finite_flag(x));
-            if let Some(i) = (!all_finite(flags))
-                .then(|| first_non_finite(torque))
-                .flatten()
-            {
+            if let Some(i) = first_non_finite(torque) {
                 let x = torque[i];
                 return Err(Error::Numerical(format!(
                     "the controller returned a non-finite torque {x} for joint '{}' at t = {t:.6} s",

@@ -38,15 +38,21 @@ impl<T: Real> InertiaInWorld<T> {
     /// `f = m (x_v − c^0 × x_ω)`, `l = I_c^0 x_ω + c^0 × f`.
     #[inline(always)]
     pub(crate) fn momentum(&self, x: &Twist<T>) -> Wrench<T> {
-        let [i00, i11, i22, i01, i02, i12] = self.rotational;
         let (w, v) = (ang(x), lin(x));
         let f = (v - cross(&self.com, &w)) * self.mass;
-        let l = Vector3::new(
+        let l = self.rotational_times(&w) + cross(&self.com, &f);
+        twist(l, f)
+    }
+
+    /// `I_c^0 w` from the six entries of the symmetric `I_c^0`, fused.
+    #[inline(always)]
+    fn rotational_times(&self, w: &Vector3<T>) -> Vector3<T> {
+        let [i00, i11, i22, i01, i02, i12] = self.rotational;
+        Vector3::new(
             i02.mul_add(w.z, i01.mul_add(w.y, i00 * w.x)),
             i12.mul_add(w.z, i11.mul_add(w.y, i01 * w.x)),
             i22.mul_add(w.z, i12.mul_add(w.y, i02 * w.x)),
-        ) + cross(&self.com, &f);
-        twist(l, f)
+        )
     }
 
     /// The bias wrench `−ad_Vᵀ 𝔍^0 V` of the twist `V = (ω, v)` from the ten parameters:
@@ -57,7 +63,6 @@ impl<T: Real> InertiaInWorld<T> {
     /// c^0 × (ω × f)` by the Jacobi identity.) 36 products against 51 through the momentum.
     #[inline(always)]
     pub(crate) fn velocity_product_wrench(&self, vel: &Twist<T>) -> Wrench<T> {
-        let [i00, i11, i22, i01, i02, i12] = self.rotational;
         let (w, v, c) = (ang(vel), lin(vel), &self.com);
         // v_c = v + ω × c^0.
         let vc = Vector3::new(
@@ -67,13 +72,8 @@ impl<T: Real> InertiaInWorld<T> {
         );
         // g = ω × (m v_c).
         let g = cross(&w, &(vc * self.mass));
-        // I_c^0 ω, then ω × I_c^0 ω + c^0 × g.
-        let iw = Vector3::new(
-            i02.mul_add(w.z, i01.mul_add(w.y, i00 * w.x)),
-            i12.mul_add(w.z, i11.mul_add(w.y, i01 * w.x)),
-            i22.mul_add(w.z, i12.mul_add(w.y, i02 * w.x)),
-        );
-        let wiw = cross(&w, &iw);
+        // ω × I_c^0 ω + c^0 × g.
+        let wiw = cross(&w, &self.rotational_times(&w));
         let l = Vector3::new(
             c.y.mul_add(g.z, (-c.z).mul_add(g.y, wiw.x)),
             c.z.mul_add(g.x, (-c.x).mul_add(g.z, wiw.y)),
